@@ -1,0 +1,16 @@
+// commands.hpp: the subcommands of build/bin/exactpixels. Each chapter that adds a
+// command writes one src/cli/<name>_command.cpp defining its add_*_command function and
+// adds one line to main.cpp.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace exactpixels::cli {
+
+/// The exit code for malformed input (a message naming the line and value goes to stderr).
+inline constexpr int exit_bad_input = 2;
+
+/// Registers `exactpixels pattern`: writes the chapter 0 "F" test pattern as a PNG.
+void add_pattern_command(CLI::App& app, int& exit_code);
+
+} // namespace exactpixels::cli

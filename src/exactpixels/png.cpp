@@ -1,0 +1,61 @@
+#include "exactpixels/png.hpp"
+
+#include "exactpixels/error.hpp"
+
+#include <fmt/format.h>
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <cstring>
+#include <system_error>
+
+namespace exactpixels {
+
+void write_png(const std::filesystem::path& path, const Framebuffer& frame) {
+    if (frame.width() <= 0 || frame.height() <= 0) {
+        throw Error(fmt::format("{}: cannot write an empty {}x{} image", path.string(),
+                                frame.width(), frame.height()));
+    }
+    std::filesystem::path temporary = path;
+    temporary += ".partial";
+    const int stride = frame.width() * 4;
+    const bool written = stbi_write_png(temporary.c_str(), frame.width(), frame.height(), 4,
+                                        frame.pixels().data(), stride) != 0;
+    std::error_code ignored;
+    if (!written) {
+        std::filesystem::remove(temporary, ignored);
+        throw Error(fmt::format("{}: cannot write PNG file ({})", path.string(),
+                                std::strerror(errno)));
+    }
+    std::error_code renamed;
+    std::filesystem::rename(temporary, path, renamed);
+    if (renamed) {
+        std::filesystem::remove(temporary, ignored);
+        throw Error(fmt::format("{}: cannot write PNG file ({})", path.string(),
+                                renamed.message()));
+    }
+}
+
+Framebuffer read_png(const std::filesystem::path& path) {
+    int width = 0, height = 0, channels = 0;
+    unsigned char* data = stbi_load(path.c_str(), &width, &height, &channels, 4);
+    if (data == nullptr) {
+        throw Error(fmt::format("{}: cannot read image ({})", path.string(),
+                                stbi_failure_reason() ? stbi_failure_reason() : "unknown"));
+    }
+    if (width <= 0 || height <= 0) {
+        stbi_image_free(data);
+        throw Error(fmt::format("{}: image has zero size", path.string()));
+    }
+    Framebuffer frame(width, height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const unsigned char* p = data + (static_cast<std::size_t>(y) * width + x) * 4;
+            frame.at(x, y) = rgba(p[0], p[1], p[2], p[3]);
+        }
+    }
+    stbi_image_free(data);
+    return frame;
+}
+
+} // namespace exactpixels
