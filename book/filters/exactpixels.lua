@@ -1,0 +1,507 @@
+-- exactpixels.lua: the Pandoc filter that makes the book and the code one.
+--
+-- It pulls listings from compiled source by region name, splices generated Markdown
+-- (measured tables), numbers equations, figures, listings, tables and sections per
+-- chapter, resolves @eq: @fig: @lst: @tbl: @sec: references (across chapters too),
+-- checks that every test the text names exists, and refuses hand-typed code blocks.
+-- Any broken reference fails the build with "chapter file:line: what is wrong".
+--
+-- Environment (set by book/CMakeLists.txt):
+--   EP_ROOT          the source tree
+--   EP_FIGURES       the folder the figure programs wrote into
+--   EP_TARGET        html or latex
+--   EP_CHAPTERS      the chapter folders of this run, in order (e.g. "01-gradients")
+--   EP_ALL_CHAPTERS  every chapter folder of the book, in order (for cross references)
+--   EP_OUT           the HTML output folder (source pages of named tests go below it)
+--   EP_LATEX_FIGURES the folder where SVG figures were converted to PDF (LaTeX only)
+
+local root = assert(os.getenv("EP_ROOT"), "EP_ROOT not set")
+local figures = assert(os.getenv("EP_FIGURES"), "EP_FIGURES not set")
+local target = os.getenv("EP_TARGET") or "html"
+local out_dir = os.getenv("EP_OUT") or "."
+local latex_figures = os.getenv("EP_LATEX_FIGURES") or figures
+
+local function split(text)
+  local items = {}
+  for item in (text or ""):gmatch("%S+") do items[#items + 1] = item end
+  return items
+end
+local chapters_here = split(os.getenv("EP_CHAPTERS"))
+local all_chapters = split(os.getenv("EP_ALL_CHAPTERS"))
+
+local function read_file(path)
+  local file = io.open(path, "r")
+  if not file then return nil end
+  local text = file:read("a")
+  file:close()
+  return text
+end
+
+local function lines_of(text)
+  local lines = {}
+  for line in (text .. "\n"):gmatch("(.-)\r?\n") do lines[#lines + 1] = line end
+  if lines[#lines] == "" then lines[#lines] = nil end
+  return lines
+end
+
+local function chapter_file(dir) return "chapters/" .. dir .. "/chapter.md" end
+local function chapter_number(dir) return tonumber(dir:sub(1, 2)) end
+
+-- The line of the chapter file where `needle` first appears, for error messages.
+local function line_of(dir, needle)
+  local text = read_file(root .. "/" .. chapter_file(dir)) or ""
+  local n = 0
+  for line in (text .. "\n"):gmatch("(.-)\n") do
+    n = n + 1
+    if line:find(needle, 1, true) then return n end
+  end
+  return 0
+end
+
+-- Stops the build with "chapters/NN-slug/chapter.md:LINE: message" and a non-zero status.
+local function fail(dir, needle, message)
+  io.stderr:write(string.format("%s:%d: error: %s\n", chapter_file(dir or "??"),
+    line_of(dir or "", needle), message))
+  os.exit(1)
+end
+
+-- Undoes Pandoc's smart typography, so text can be compared with source code.
+local function plain(text)
+  local replacements = { ["\u{2013}"] = "--", ["\u{2014}"] = "---", ["\u{2018}"] = "'",
+    ["\u{2019}"] = "'", ["\u{201C}"] = '"', ["\u{201D}"] = '"', ["\u{2026}"] = "...",
+    ["\u{a0}"] = " " }
+  for from, to in pairs(replacements) do text = text:gsub(from, to) end
+  return text
+end
+
+---------------------------------------------------------------------------------------
+-- Recognising numbered things
+
+local function equation_label(block)
+  if block.t ~= "Para" then return nil end
+  local c = block.content
+  if #c >= 1 and c[1].t == "Math" and c[1].mathtype == "DisplayMath" then
+    local last = c[#c]
+    if #c >= 2 and last.t == "Str" then
+      local label = last.text:match("^{#(eq:[%w%-_]+)}$")
+      if label then return label, c[1].text end
+    end
+    if #c == 1 then return "", c[1].text end
+  end
+  return nil
+end
+
+local function figure_image(block)
+  if block.t == "Para" and #block.content == 1 and block.content[1].t == "Image"
+      and #block.content[1].caption > 0 then
+    return block.content[1]
+  end
+  return nil
+end
+
+local function table_label(block)
+  if block.t ~= "Table" then return nil end
+  local caption = block.caption.long
+  if #caption == 0 then return nil end
+  local inlines = caption[#caption].content
+  local last = inlines[#inlines]
+  if last and last.t == "Str" then
+    local label = last.text:match("^{#(tbl:[%w%-_]+)}$")
+    if label then return label end
+  end
+  return ""
+end
+
+local function is_unnumbered(header)
+  return header.classes:includes("unnumbered")
+end
+
+---------------------------------------------------------------------------------------
+-- Numbering: one traversal order, used both to collect labels from every chapter and
+-- to render this run's chapters, so the numbers always agree.
+
+local function new_counters(dir)
+  return { dir = dir, number = chapter_number(dir), eq = 0, fig = 0, lst = 0, tbl = 0,
+           sec = 0, subsec = 0 }
+end
+
+-- Calls visit(block, counters) for every block in document order, descending into
+-- divs, quotes and lists. Level-1 headers move to the next chapter of `dirs`.
+local function each_block(blocks, state, visit)
+  for _, block in ipairs(blocks) do
+    if block.t == "Header" and block.level == 1 then
+      state.h1 = state.h1 + 1
+      local dir = state.dirs[state.h1]
+      if not dir then error("more level-1 headings than chapters in this run", 0) end
+      state.counters = new_counters(dir)
+    end
+    visit(block, state.counters)
+    if block.t == "Div" or block.t == "BlockQuote" then
+      each_block(block.content, state, visit)
+    elseif block.t == "BulletList" or block.t == "OrderedList" then
+      for _, item in ipairs(block.content) do each_block(item, state, visit) end
+    elseif block.t == "CodeBlock" and block.classes:includes("generated") then
+      local text = read_file(figures .. "/" .. (block.attributes.file or ""))
+      if text then each_block(pandoc.read(text, "markdown").blocks, state, visit) end
+    end
+  end
+end
+
+-- Advances the counters for `block`; returns kind and number text when it is numbered.
+local function number_of(block, counters)
+  if not counters then return nil end
+  local n = counters.number
+  if block.t == "Header" and block.level == 1 then
+    return "ch", tostring(n)
+  elseif block.t == "Header" and block.level == 2 and not is_unnumbered(block) then
+    counters.sec = counters.sec + 1
+    counters.subsec = 0
+    return "sec", string.format("%d.%d", n, counters.sec)
+  elseif block.t == "Header" and block.level == 3 and not is_unnumbered(block) then
+    counters.subsec = counters.subsec + 1
+    return "sec", string.format("%d.%d.%d", n, counters.sec, counters.subsec)
+  elseif equation_label(block) and equation_label(block) ~= "" then
+    counters.eq = counters.eq + 1
+    return "eq", string.format("%d.%d", n, counters.eq)
+  elseif figure_image(block) then
+    counters.fig = counters.fig + 1
+    return "fig", string.format("%d.%d", n, counters.fig)
+  elseif block.t == "CodeBlock" and block.classes:includes("snippet") then
+    counters.lst = counters.lst + 1
+    return "lst", string.format("%d.%d", n, counters.lst)
+  elseif table_label(block) then
+    counters.tbl = counters.tbl + 1
+    return "tbl", string.format("%d.%d", n, counters.tbl)
+  end
+  return nil
+end
+
+local function label_of(block)
+  if block.t == "Header" then return block.identifier end
+  local eq = equation_label(block)
+  if eq then return eq end
+  local image = figure_image(block)
+  if image then return image.identifier end
+  if block.t == "CodeBlock" then return block.identifier end
+  return table_label(block)
+end
+
+-- Every label of the book: label -> { kind, number, dir }.
+local labels = {}
+local function collect_labels()
+  for _, dir in ipairs(all_chapters) do
+    local text = read_file(root .. "/" .. chapter_file(dir))
+    if text then
+      local doc = pandoc.read(text, "markdown")
+      local state = { h1 = 0, dirs = { dir } }
+      each_block(doc.blocks, state, function(block, counters)
+        local kind, number = number_of(block, counters)
+        local label = kind and label_of(block)
+        if label and label ~= "" then
+          if labels[label] then
+            fail(dir, label, "label '" .. label .. "' is defined twice")
+          end
+          labels[label] = { kind = kind, number = number, dir = dir }
+        end
+      end)
+    end
+  end
+end
+
+---------------------------------------------------------------------------------------
+-- Listings pulled from source
+
+local language_of = { hpp = "cpp", cpp = "cpp", h = "cpp", txt = "text", toml = "toml",
+                      cmake = "cmake", lua = "lua", sh = "bash", gp = "gnuplot" }
+
+local function extract_region(dir, file, name)
+  local text = read_file(root .. "/" .. file)
+  if not text then fail(dir, file, "snippet file '" .. file .. "' does not exist") end
+  local region, inside, found = {}, false, false
+  for _, line in ipairs(lines_of(text)) do
+    local open = line:match("^%s*//>%s*(.-)%s*$")
+    local close = line:match("^%s*//<%s*(.-)%s*$")
+    if open == name then
+      if found then fail(dir, name, "region '" .. name .. "' appears twice in " .. file) end
+      inside, found = true, true
+    elseif close == name and inside then
+      inside = false
+    elseif inside and not open and not close and not line:match("^%s*//|") then
+      region[#region + 1] = line
+    end
+  end
+  if not found then
+    fail(dir, 'name="' .. name .. '"',
+      "snippet '" .. name .. "' not found in " .. file .. " (no line '//> " .. name .. "')")
+  end
+  if inside then fail(dir, name, "region '" .. name .. "' in " .. file .. " is not closed") end
+  local indent = math.huge
+  for _, line in ipairs(region) do
+    if line:match("%S") then indent = math.min(indent, #line:match("^%s*")) end
+  end
+  if indent == math.huge then indent = 0 end
+  for i, line in ipairs(region) do region[i] = line:sub(indent + 1) end
+  return table.concat(region, "\n")
+end
+
+local allowed_code_classes = { pseudocode = true, text = true, toml = true, sh = true,
+                               bash = true, csv = true, markdown = true }
+
+---------------------------------------------------------------------------------------
+-- Rendering
+
+local function raw(format, text)
+  return pandoc.RawBlock(format, text)
+end
+
+local function caption_prefix(word, number)
+  return pandoc.Strong({ pandoc.Str(word .. "\u{a0}" .. number .. ":") })
+end
+
+local function figure_path(dir, src)
+  if src:find("/") then fail(dir, src, "figure '" .. src .. "' must be a file name only") end
+  local path = figures .. "/" .. src
+  if not read_file(path) then
+    fail(dir, src, "figure '" .. src .. "' was not made by the build (no " .. path .. ")")
+  end
+  if target == "latex" then
+    if src:match("%.svg$") then
+      local pdf = latex_figures .. "/" .. src:gsub("%.svg$", ".pdf")
+      if not read_file(pdf) then fail(dir, src, "no PDF conversion of " .. src) end
+      return pdf
+    end
+    return path
+  end
+  return "figures/" .. src
+end
+
+local render_blocks
+
+local function render_block(block, counters, state)
+  local kind, number = number_of(block, counters)
+  local dir = counters and counters.dir
+  local html = target == "html"
+
+  if block.t == "Header" then
+    if kind == "ch" then
+      state.title = pandoc.utils.stringify(block.content)
+      if html then
+        table.insert(block.content, 1, pandoc.Span({ pandoc.Str(number) }, { class = "secnum" }))
+        table.insert(block.content, 2, pandoc.Space())
+        return { block }
+      end
+      return { raw("latex", string.format("\\setcounter{chapter}{%d}", counters.number - 1)),
+               block }
+    elseif kind == "sec" and html then
+      table.insert(block.content, 1, pandoc.Span({ pandoc.Str(number) }, { class = "secnum" }))
+      table.insert(block.content, 2, pandoc.Space())
+    end
+    return { block }
+  end
+
+  if kind == "eq" then
+    local label, tex = equation_label(block)
+    if html then
+      local math = pandoc.Para({ pandoc.Math("DisplayMath", tex) })
+      local tag = pandoc.Para({ pandoc.Str("(" .. number .. ")") })
+      return { pandoc.Div({ math, tag }, { id = label, class = "equation" }) }
+    end
+    return { raw("latex", "\\begin{equation*}" .. tex .. "\\tag{" .. number .. "}\\label{"
+      .. label .. "}\\end{equation*}") }
+  end
+
+  if kind == "fig" then
+    local image = figure_image(block)
+    image.src = figure_path(dir, image.src)
+    if html then
+      table.insert(image.caption, 1, caption_prefix("Figure", number))
+      table.insert(image.caption, 2, pandoc.Space())
+    end
+    return { block }
+  end
+
+  if block.t == "CodeBlock" then
+    if block.classes:includes("snippet") then
+      local file, name = block.attributes.file, block.attributes.name
+      if not file or not name then
+        fail(dir, "snippet", "a snippet block needs file=\"...\" and name=\"...\"")
+      end
+      local code = extract_region(dir, file, name)
+      local extension = file:match("%.([%w]+)$") or ""
+      local listing = pandoc.CodeBlock(code, { class = language_of[extension] or "text" })
+      local caption = pandoc.Para({ caption_prefix("Listing", number), pandoc.Space(),
+                                    pandoc.Code(file) })
+      local label = block.identifier ~= "" and block.identifier or nil
+      if html then
+        return { pandoc.Div({ caption, listing }, { id = label, class = "listing" }) }
+      end
+      local anchor = label and raw("latex", "\\phantomsection\\label{" .. label .. "}") or nil
+      return { anchor or raw("latex", ""), raw("latex", "\\needspace{4\\baselineskip}"),
+               caption, listing }
+    elseif block.classes:includes("generated") then
+      local file = block.attributes.file or ""
+      local text = read_file(figures .. "/" .. file)
+      if not text then
+        fail(dir, file, "generated fragment '" .. file .. "' was not made by the build")
+      end
+      return render_blocks(pandoc.read(text, "markdown").blocks, counters, state)
+    end
+    for _, class in ipairs(block.classes) do
+      if allowed_code_classes[class] then return { block } end
+    end
+    fail(dir, "```", "a code block typed by hand: pull it from source with .snippet, or "
+      .. "mark it .pseudocode / .text / .sh / .toml")
+  end
+
+  if kind == "tbl" then
+    local caption = block.caption.long
+    local inlines = caption[#caption].content
+    local label = table_label(block)
+    if label ~= "" then
+      inlines:remove(#inlines)
+      if inlines[#inlines] and inlines[#inlines].t == "Space" then inlines:remove(#inlines) end
+    end
+    if html then
+      table.insert(inlines, 1, caption_prefix("Table", number))
+      table.insert(inlines, 2, pandoc.Space())
+      if label ~= "" then block.identifier = label end
+    elseif label ~= "" then
+      inlines:insert(pandoc.RawInline("latex", "\\label{" .. label .. "}"))
+    end
+    return { block }
+  end
+
+  if block.t == "Div" or block.t == "BlockQuote" then
+    block.content = render_blocks(block.content, counters, state, true)
+    return { block }
+  elseif block.t == "BulletList" or block.t == "OrderedList" then
+    for i, item in ipairs(block.content) do
+      block.content[i] = render_blocks(item, counters, state, true)
+    end
+    return { block }
+  end
+  return { block }
+end
+
+-- Renders a list of blocks in document order. The traversal mirrors each_block.
+render_blocks = function(blocks, counters, state, nested)
+  local out = pandoc.List()
+  for _, block in ipairs(blocks) do
+    if not nested and block.t == "Header" and block.level == 1 then
+      state.h1 = state.h1 + 1
+      local dir = state.dirs[state.h1]
+      if not dir then error("more level-1 headings than chapters in this run", 0) end
+      state.counters = new_counters(dir)
+      counters = state.counters
+    end
+    for _, b in ipairs(render_block(block, counters, state)) do out:insert(b) end
+  end
+  return out
+end
+
+---------------------------------------------------------------------------------------
+-- References and named tests (inline)
+
+local kind_word = { eq = nil, fig = "Figure", lst = "Listing", tbl = "Table",
+                    sec = "Section", ch = "Chapter" }
+
+local function page_of(dir) return dir .. ".html" end
+
+local function reference(label, from_dir)
+  local entry = labels[label]
+  if not entry then fail(from_dir, "@" .. label, "unknown reference '@" .. label .. "'") end
+  local text = entry.kind == "eq" and ("(" .. entry.number .. ")")
+    or (kind_word[entry.kind] .. "\u{a0}" .. entry.number)
+  if target == "latex" then
+    return pandoc.RawInline("latex", "\\hyperref[" .. label .. "]{" .. text .. "}")
+  end
+  local href = (entry.dir == from_dir and "" or page_of(entry.dir)) .. "#" .. label
+  return pandoc.Link({ pandoc.Str(text) }, href, "", { class = "ref" })
+end
+
+local source_pages = {}
+local function source_page(file)
+  if source_pages[file] then return end
+  source_pages[file] = true
+  local text = read_file(root .. "/" .. file)
+  local doc = pandoc.Pandoc({ pandoc.Header(1, { pandoc.Code(file) }),
+    pandoc.CodeBlock(text, { id = "src", class = "cpp numberLines" }) })
+  local body = pandoc.write(doc, "html5")
+  local page = '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
+    .. "<title>" .. file .. " · Exact Pixels</title>\n"
+    .. '<link rel="stylesheet" href="../style.css">\n</head>\n<body>\n'
+    .. '<nav class="pager"><a href="../index.html">Contents</a></nav>\n<main class="source">\n'
+    .. body .. "\n</main>\n</body>\n</html>\n"
+  local path = out_dir .. "/source/" .. file:gsub("/", "_") .. ".html"
+  local handle = assert(io.open(path, "w"))
+  handle:write(page)
+  handle:close()
+end
+
+local function test_reference(span, dir)
+  local file = span.attributes.file
+  local name = plain(pandoc.utils.stringify(span.content))
+  if not file then fail(dir, name, "a .test span needs file=\"tests/...\"") end
+  local text = read_file(root .. "/" .. file)
+  if not text then fail(dir, file, "test file '" .. file .. "' does not exist") end
+  local line_number
+  for n, line in ipairs(lines_of(text)) do
+    if line:find('TEST_CASE("' .. name .. '"', 1, true)
+        or line:find('TEST_CASE_TEMPLATE("' .. name .. '"', 1, true) then
+      line_number = n
+      break
+    end
+  end
+  if not line_number then
+    fail(dir, name, "the text names test '" .. name .. "' but " .. file
+      .. " has no TEST_CASE(\"" .. name .. "\")")
+  end
+  local label = pandoc.Code(name)
+  if target == "latex" then
+    return pandoc.Span({ label }, { class = "test" })
+  end
+  source_page(file)
+  local href = "source/" .. file:gsub("/", "_") .. ".html#src-" .. line_number
+  return pandoc.Link({ label }, href, file .. ", line " .. line_number, { class = "test" })
+end
+
+local function render_inlines(doc, dir_of_block)
+  return doc:walk({
+    Cite = function(cite)
+      local out = pandoc.List()
+      for i, citation in ipairs(cite.citations) do
+        if i > 1 then out:insert(pandoc.Str(", ")) end
+        out:insert(reference(citation.id, dir_of_block()))
+      end
+      return out
+    end,
+    Span = function(span)
+      if span.classes:includes("test") then return test_reference(span, dir_of_block()) end
+    end,
+  })
+end
+
+---------------------------------------------------------------------------------------
+
+function Pandoc(doc)
+  collect_labels()
+  -- Inline references need the chapter each block belongs to: resolve them block by
+  -- block, top level, tracking level-1 headings.
+  local h1, blocks = 0, pandoc.List()
+  for _, block in ipairs(doc.blocks) do
+    if block.t == "Header" and block.level == 1 then h1 = h1 + 1 end
+    local dir = chapters_here[math.max(h1, 1)]
+    local single = pandoc.Pandoc({ block })
+    single = render_inlines(single, function() return dir end)
+    for _, b in ipairs(single.blocks) do blocks:insert(b) end
+  end
+  local state = { h1 = 0, dirs = chapters_here }
+  doc.blocks = render_blocks(blocks, nil, state)
+  if state.h1 ~= #chapters_here then
+    error(string.format("expected %d chapter headings, found %d", #chapters_here, state.h1), 0)
+  end
+  if target == "html" and state.title then
+    doc.meta.pagetitle = state.title
+  end
+  return doc
+end
