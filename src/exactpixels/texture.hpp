@@ -31,7 +31,7 @@ enum class Wrap {
 
 /// A width x height grid of texels (RGBA8), row-major, row 0 at the top. Never empty.
 class Texture {
-public:
+  public:
     /// A texture from its texels, row after row from the top (width * height of them).
     /// Throws Error when a size is < 1 or the texel count does not match.
     Texture(int width, int height, std::vector<Rgba8> texels);
@@ -49,7 +49,7 @@ public:
     /// All texels, row after row from the top.
     const std::vector<Rgba8>& texels() const { return texels_; }
 
-private:
+  private:
     int width_;
     int height_;
     std::vector<Rgba8> texels_;
@@ -68,7 +68,8 @@ Rgba8 sample_nearest(const Texture& texture, TexCoord uv, Wrap wrap);
 /// A width x height checkerboard of `square`-texel squares; texel (0, 0) has colour
 /// `even`. Sizes and square must be >= 1 (Error otherwise).
 Texture checkerboard_texture(int width, int height, int square,
-                             Rgba8 even = rgba(235, 235, 235), Rgba8 odd = rgba(40, 40, 40));
+                             Rgba8 even = rgba(235, 235, 235),
+                             Rgba8 odd = rgba(40, 40, 40));
 
 /// The book's asymmetric "F" (red on blue, see test_pattern.hpp), `cell` texels per
 /// glyph cell: (5 * cell) x (7 * cell) texels. cell must be >= 1 (Error otherwise).

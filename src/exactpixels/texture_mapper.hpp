@@ -14,7 +14,8 @@
 // top-left rule decides pixels on edges, so every mapper covers the same pixels as
 // chapter 2's edge-function rasterizer; the mappers differ only in the texel they pick.
 //
-// The mappers (chapter 3): u/w, v/w and 1/w are linear in screen space (eq. 3.3), so
+// The mappers (chapter 3): u/w, v/w and 1/w are linear in screen space (chapter 3,
+// @eq:linear-in-screen), so
 //   - exact divides u/w by 1/w at every pixel;
 //   - affine interpolates u and v themselves (wrong under perspective);
 //   - subdivided is exact every `span` pixels and affine in between;
@@ -75,11 +76,11 @@ enum class Precision {
 
 /// Everything that chooses how a textured triangle is drawn.
 struct MapperSettings {
-    MapperKind kind = MapperKind::exact;   ///< which mapper
-    int span = 16;                         ///< pixels per piece (subdivided kinds), >= 2
+    MapperKind kind = MapperKind::exact; ///< which mapper
+    int span = 16;                       ///< pixels per piece (subdivided kinds), >= 2
     Precision precision = Precision::float64; ///< inner-loop arithmetic
-    TexelRounding rounding = {};           ///< texel index rounding (all precisions)
-    Wrap wrap = Wrap::repeat;              ///< how indices outside the texture wrap
+    TexelRounding rounding = {};              ///< texel index rounding (all precisions)
+    Wrap wrap = Wrap::repeat;                 ///< how indices outside the texture wrap
 };
 
 /// The texel index a mapper picks from a 16.16 coordinate U: floor((U + bias - D/2) / D).
@@ -102,6 +103,8 @@ struct TexelMap {
     std::vector<bool> covered; ///< true where a triangle wrote the pixel (row-major)
     std::vector<int> i;        ///< texel column chosen at each covered pixel
     std::vector<int> j;        ///< texel row chosen at each covered pixel
+    std::vector<double> u;     ///< the u the mapper computed there, texels (fixed: U / D)
+    std::vector<double> v;     ///< the v the mapper computed there, texels (fixed: V / D)
 };
 
 /// Checks the triangle and settings: finite positions within chapter 2's fixed-point
