@@ -13,4 +13,8 @@ inline constexpr int exit_bad_input = 2;
 /// Registers `exactpixels pattern`: writes the chapter 0 "F" test pattern as a PNG.
 void add_pattern_command(CLI::App& app, int& exit_code);
 
+/// Registers `exactpixels coverage`: reads a frame size and triangles from standard
+/// input and prints how many triangles cover each pixel centre (chapter 2).
+void add_coverage_command(CLI::App& app, int& exit_code);
+
 } // namespace exactpixels::cli

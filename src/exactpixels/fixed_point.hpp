@@ -7,10 +7,15 @@
 // top-left, y down). Snapping rounds to the nearest 1/256 px, halves rounding up
 // (towards +infinity), so a shift of the whole input by a multiple of 1/256 px never
 // changes how it snaps. Chapter 2 derives the coordinate range for which rasterizing
-// snapped triangles is exact and checks input against it.
+// snapped triangles is exact (eq. 2.8): |x|, |y| <= max_fixed_coordinate (2^28 units =
+// 2^20 px = 1048576 px). snap_in_range and check_fixed_range reject anything outside
+// with an Error naming the value; nothing is ever wrapped around.
 #pragma once
 
+#include "exactpixels/error.hpp"
 #include "exactpixels/types.hpp"
+
+#include <fmt/format.h>
 
 #include <cmath>
 #include <cstdint>
@@ -37,6 +42,40 @@ inline FixedPoint2 snap_to_subpixel(Point2 p) {
     return {snap_to_subpixel(p.x), snap_to_subpixel(p.y)};
 }
 //< snap
+
+//> fixed-range
+/// The largest |x| or |y| in 1/256 px for which the fixed-point rasterizers are exact:
+/// 2^28 (2^20 px). Every edge function value is then below 2^59 in magnitude and the
+/// sum of all three below 2^61, far inside int64 (eq. 2.8).
+inline constexpr std::int64_t max_fixed_coordinate = std::int64_t{1} << 28;
+/// max_fixed_coordinate in pixels: 1048576 px.
+inline constexpr double max_fixed_coordinate_px =
+    static_cast<double>(max_fixed_coordinate) / subpixel_scale;
+//< fixed-range
+
+/// Throws Error naming the value unless |p.x| and |p.y| are at most max_fixed_coordinate.
+inline void check_fixed_range(FixedPoint2 p) {
+    for (const std::int64_t value : {p.x, p.y}) {
+        if (value < -max_fixed_coordinate || value > max_fixed_coordinate) {
+            throw Error(fmt::format("fixed-point coordinate {} (1/256 px) is outside the "
+                                    "exact range [-2^28, 2^28]",
+                                    value));
+        }
+    }
+}
+
+/// snap_to_subpixel(p) after checking p: throws Error naming the value when a
+/// coordinate is not finite or its magnitude exceeds max_fixed_coordinate_px.
+inline FixedPoint2 snap_in_range(Point2 p) {
+    for (const double value : {p.x, p.y}) {
+        if (!(std::abs(value) <= max_fixed_coordinate_px)) { // false for NaN too
+            throw Error(fmt::format("coordinate {} px is outside the exact fixed-point "
+                                    "range [-1048576, 1048576]",
+                                    value));
+        }
+    }
+    return snap_to_subpixel(p);
+}
 
 /// The point in pixels that a fixed-point point stands for (exact in double).
 inline Point2 to_pixels(FixedPoint2 p) {
