@@ -32,8 +32,8 @@ TEST_CASE("pixel centres sit at half-integer coordinates") {
 
 TEST_CASE("the framebuffer is row-major with the origin at the top left") {
     Framebuffer frame(3, 2, rgba(0, 0, 0));
-    frame.at(2, 0) = rgba(1, 2, 3);  // top row, rightmost column
-    frame.at(0, 1) = rgba(4, 5, 6);  // bottom row, leftmost column
+    frame.at(2, 0) = rgba(1, 2, 3); // top row, rightmost column
+    frame.at(0, 1) = rgba(4, 5, 6); // bottom row, leftmost column
     // Element y * width + x: (2, 0) is element 2, (0, 1) is element 3.
     CHECK(frame.pixels()[2] == rgba(1, 2, 3));
     CHECK(frame.pixels()[3] == rgba(4, 5, 6));
@@ -106,7 +106,8 @@ TEST_CASE("writing to an unwritable path fails, names the path and leaves no fil
 TEST_CASE("reading a missing or corrupt file fails with the path in the message") {
     const auto folder = scratch_folder("corrupt");
     CHECK_THROWS_WITH_AS(read_png(folder / "missing.png"),
-                         doctest::Contains((folder / "missing.png").string().c_str()), Error);
+                         doctest::Contains((folder / "missing.png").string().c_str()),
+                         Error);
     std::ofstream(folder / "bad.png") << "not a png";
     CHECK_THROWS_AS(read_png(folder / "bad.png"), Error);
     fs::remove_all(folder);
@@ -114,7 +115,8 @@ TEST_CASE("reading a missing or corrupt file fails with the path in the message"
 
 TEST_CASE("exactpixels pattern: --help, --version, and an unwritable output") {
     using testing::run_command;
-    CHECK(run_command(testing::cli_path() + " --version").out.find("exactpixels 0.") == 0);
+    CHECK(run_command(testing::cli_path() + " --version").out.find("exactpixels 0.") ==
+          0);
     CHECK(run_command(testing::cli_path() + " --help").exit_code == 0);
 
     const auto folder = scratch_folder("cli");
@@ -124,7 +126,8 @@ TEST_CASE("exactpixels pattern: --help, --version, and an unwritable output") {
     CHECK(read_png(folder / "f.png") == draw_f_pattern(2));
 
     const fs::path bad = folder / "missing" / "f.png";
-    const auto failed = run_command(testing::cli_path() + " pattern -o '" + bad.string() + "'");
+    const auto failed =
+        run_command(testing::cli_path() + " pattern -o '" + bad.string() + "'");
     CHECK(failed.exit_code != 0);
     CHECK(failed.err.find(bad.string()) != std::string::npos);
     CHECK_FALSE(fs::exists(bad));

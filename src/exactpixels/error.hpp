@@ -11,7 +11,7 @@ namespace exactpixels {
 
 /// Bad input or failed I/O. what() names the file, line and offending value.
 class Error : public std::runtime_error {
-public:
+  public:
     /// Makes an error whose message is shown to the user as it is.
     explicit Error(const std::string& message) : std::runtime_error(message) {}
 };

@@ -21,7 +21,9 @@ Framebuffer::Framebuffer(int width, int height, Rgba8 fill)
     assert(width >= 0 && height >= 0);
 }
 
-void Framebuffer::fill(Rgba8 colour) { std::fill(pixels_.begin(), pixels_.end(), colour); }
+void Framebuffer::fill(Rgba8 colour) {
+    std::fill(pixels_.begin(), pixels_.end(), colour);
+}
 
 std::size_t Framebuffer::index(int x, int y) const {
     assert(contains(x, y));

@@ -18,16 +18,17 @@ namespace exactpixels {
 
 /// One pixel: 8-bit red, green, blue and alpha, in that order in memory.
 struct Rgba8 {
-    std::uint8_t r = 0; ///< red
-    std::uint8_t g = 0; ///< green
-    std::uint8_t b = 0; ///< blue
+    std::uint8_t r = 0;   ///< red
+    std::uint8_t g = 0;   ///< green
+    std::uint8_t b = 0;   ///< blue
     std::uint8_t a = 255; ///< alpha (255 = opaque)
     /// Pixels are equal when all four channels are.
     friend constexpr bool operator==(Rgba8, Rgba8) = default;
 };
 
 /// An opaque pixel from 8-bit channel values.
-constexpr Rgba8 rgba(std::uint8_t r, std::uint8_t g, std::uint8_t b, std::uint8_t a = 255) {
+constexpr Rgba8 rgba(std::uint8_t r, std::uint8_t g, std::uint8_t b,
+                     std::uint8_t a = 255) {
     return {r, g, b, a};
 }
 
@@ -36,7 +37,7 @@ Rgba8 to_rgba8(const Colour& colour);
 
 /// A width x height grid of Rgba8 pixels, row-major, origin top-left, y down.
 class Framebuffer {
-public:
+  public:
     /// A width x height frame filled with `fill`. Sizes must be >= 0.
     Framebuffer(int width, int height, Rgba8 fill = {});
 
@@ -64,7 +65,7 @@ public:
     /// Frames are equal when they have the same size and the same pixels.
     friend bool operator==(const Framebuffer&, const Framebuffer&) = default;
 
-private:
+  private:
     std::size_t index(int x, int y) const;
 
     int width_;

@@ -19,8 +19,8 @@ void write_png(const std::filesystem::path& path, const Framebuffer& frame) {
     std::filesystem::path temporary = path;
     temporary += ".partial";
     const int stride = frame.width() * 4;
-    const bool written = stbi_write_png(temporary.c_str(), frame.width(), frame.height(), 4,
-                                        frame.pixels().data(), stride) != 0;
+    const bool written = stbi_write_png(temporary.c_str(), frame.width(), frame.height(),
+                                        4, frame.pixels().data(), stride) != 0;
     std::error_code ignored;
     if (!written) {
         std::filesystem::remove(temporary, ignored);
@@ -40,8 +40,9 @@ Framebuffer read_png(const std::filesystem::path& path) {
     int width = 0, height = 0, channels = 0;
     unsigned char* data = stbi_load(path.c_str(), &width, &height, &channels, 4);
     if (data == nullptr) {
-        throw Error(fmt::format("{}: cannot read image ({})", path.string(),
-                                stbi_failure_reason() ? stbi_failure_reason() : "unknown"));
+        throw Error(
+            fmt::format("{}: cannot read image ({})", path.string(),
+                        stbi_failure_reason() ? stbi_failure_reason() : "unknown"));
     }
     if (width <= 0 || height <= 0) {
         stbi_image_free(data);

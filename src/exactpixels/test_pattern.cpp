@@ -16,7 +16,8 @@ bool f_glyph_cell(int column, int row) {
     if (column < 0 || row < 0 || column >= f_glyph_width || row >= f_glyph_height) {
         return false;
     }
-    return f_glyph[static_cast<std::size_t>(row)][static_cast<std::size_t>(column)] == '#';
+    return f_glyph[static_cast<std::size_t>(row)][static_cast<std::size_t>(column)] ==
+           '#';
 }
 
 //> draw-f

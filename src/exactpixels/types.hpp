@@ -34,7 +34,9 @@ inline constexpr int subpixel_scale = 1 << subpixel_bits;
 
 //> pixel-centre
 /// The centre of pixel (x, y): the point every coverage and interpolation test samples.
-constexpr Point2 pixel_centre(int x, int y) { return {x + 0.5, y + 0.5}; }
+constexpr Point2 pixel_centre(int x, int y) {
+    return {x + 0.5, y + 0.5};
+}
 //< pixel-centre
 
 } // namespace exactpixels

@@ -35,6 +35,8 @@ CommandResult run_command(const std::string& command, const std::string& input) 
     return result;
 }
 
-std::string cli_path() { return std::string("'") + EXACTPIXELS_CLI + "'"; }
+std::string cli_path() {
+    return std::string("'") + EXACTPIXELS_CLI + "'";
+}
 
 } // namespace exactpixels::testing

@@ -7,9 +7,9 @@ namespace exactpixels::testing {
 
 /// What a finished command printed and returned.
 struct CommandResult {
-    int exit_code = -1;   ///< the process's exit status
-    std::string out;      ///< everything written to standard output
-    std::string err;      ///< everything written to standard error
+    int exit_code = -1; ///< the process's exit status
+    std::string out;    ///< everything written to standard output
+    std::string err;    ///< everything written to standard error
 };
 
 /// Runs `command` through /bin/sh with `input` on its standard input.

@@ -1,0 +1,167 @@
+// Tests of the book's Pandoc filter (book/filters/exactpixels.lua): listings are the
+// compiled source minus marker lines, and every broken link between text and code fails
+// the build with "chapters/NN-slug/chapter.md:LINE: error: ...".
+#include "support/process.hpp"
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using exactpixels::testing::run_command;
+
+namespace {
+
+// A throw-away source tree with one chapter, one source file and one test file.
+struct FixtureBook {
+    fs::path root;
+
+    FixtureBook() {
+        root = fs::temp_directory_path() /
+               ("exactpixels-book-" + std::to_string(::getpid()));
+        fs::remove_all(root);
+        fs::create_directories(root / "chapters" / "07-demo");
+        fs::create_directories(root / "src");
+        fs::create_directories(root / "tests");
+        fs::create_directories(root / "figures");
+        fs::create_directories(root / "out" / "source");
+        write("src/demo.hpp", "int before;\n"
+                              "//> answer\n"
+                              "    int answer() {\n"
+                              "        //> exercise ch07-demo: return the answer\n"
+                              "        return 42;\n"
+                              "        //| return 0;\n"
+                              "        //< exercise ch07-demo\n"
+                              "    }\n"
+                              "//< answer\n"
+                              "int after;\n");
+        write("tests/ch07_demo.cpp", "TEST_CASE(\"the answer is 42\") {}\n");
+    }
+    ~FixtureBook() { fs::remove_all(root); }
+
+    void write(const std::string& relative, const std::string& text) const {
+        std::ofstream(root / relative) << text;
+    }
+
+    // Renders chapters/07-demo/chapter.md with `markdown` as its text, to HTML.
+    exactpixels::testing::CommandResult render(const std::string& markdown) const {
+        write("chapters/07-demo/chapter.md", markdown);
+        const std::string env =
+            "EP_ROOT='" + root.string() + "' EP_FIGURES='" + (root / "figures").string() +
+            "' EP_OUT='" + (root / "out").string() +
+            "' EP_TARGET=html EP_CHAPTERS=07-demo EP_ALL_CHAPTERS=07-demo ";
+        return run_command(env + "pandoc --from=markdown --to=html5 --lua-filter='" +
+                           std::string(EXACTPIXELS_SOURCE_DIR) +
+                           "/book/filters/exactpixels.lua' '" +
+                           (root / "chapters/07-demo/chapter.md").string() + "'");
+    }
+};
+
+const std::string title = "# Demo\n\nSome text.\n\n";
+
+// The text of an HTML fragment with every tag removed (highlighting splits code into
+// spans).
+std::string without_tags(const std::string& html) {
+    std::string text;
+    bool in_tag = false;
+    for (char c : html) {
+        if (c == '<')
+            in_tag = true;
+        else if (c == '>')
+            in_tag = false;
+        else if (!in_tag)
+            text += c;
+    }
+    return text;
+}
+
+} // namespace
+
+TEST_CASE("a listing is the source region minus every marker and stub line") {
+    FixtureBook book;
+    const auto result =
+        book.render(title + "```{.snippet file=\"src/demo.hpp\" name=\"answer\"}\n```\n");
+    REQUIRE(result.exit_code == 0);
+    const std::string text = without_tags(result.out);
+    // Dedented by the region's common indent; exercise markers and the stub are gone.
+    CHECK(text.find("int answer() {") != std::string::npos);
+    CHECK(text.find("return 42;") != std::string::npos);
+    CHECK(text.find("return 0;") == std::string::npos);
+    CHECK(text.find("exercise") == std::string::npos);
+    CHECK(text.find("before") == std::string::npos);
+    CHECK(text.find("after") == std::string::npos);
+    CHECK(text.find("Listing\u00a07.1:") != std::string::npos);
+    CHECK(result.out.find("src/demo.hpp") != std::string::npos);
+}
+
+TEST_CASE("a missing snippet region fails naming the chapter file, line and region") {
+    FixtureBook book;
+    const auto result = book.render(
+        title + "```{.snippet file=\"src/demo.hpp\" name=\"no-such-region\"}\n```\n");
+    CHECK(result.exit_code != 0);
+    CHECK(result.err.find("chapters/07-demo/chapter.md:5: error:") != std::string::npos);
+    CHECK(result.err.find("no-such-region") != std::string::npos);
+}
+
+TEST_CASE("a missing snippet file fails naming the file") {
+    FixtureBook book;
+    const auto result =
+        book.render(title + "```{.snippet file=\"src/gone.hpp\" name=\"answer\"}\n```\n");
+    CHECK(result.exit_code != 0);
+    CHECK(result.err.find("chapters/07-demo/chapter.md:5: error:") != std::string::npos);
+    CHECK(result.err.find("src/gone.hpp") != std::string::npos);
+}
+
+TEST_CASE("a hand-typed code block is refused, a pseudo-code block is allowed") {
+    FixtureBook book;
+    CHECK(book.render(title + "```cpp\nint x;\n```\n").exit_code != 0);
+    CHECK(book.render(title + "```\nint x;\n```\n").exit_code != 0);
+    CHECK(book.render(title + "```{.pseudocode}\nfor each pixel\n```\n").exit_code == 0);
+}
+
+TEST_CASE("equations are numbered per chapter and references resolve") {
+    FixtureBook book;
+    const auto result = book.render(title + "$$ a = b $$ {#eq:first}\n\n"
+                                            "$$ c = d $$ {#eq:second}\n\n"
+                                            "See @eq:second and @sec:part.\n\n"
+                                            "## Part {#sec:part}\n");
+    REQUIRE(result.exit_code == 0);
+    CHECK(result.out.find("(7.1)") != std::string::npos);
+    CHECK(result.out.find("href=\"#eq:second\"") != std::string::npos);
+    CHECK(result.out.find(">(7.2)</a>") != std::string::npos);
+    CHECK(result.out.find(">Section\u00a07.1</a>") != std::string::npos);
+}
+
+TEST_CASE("an unknown reference fails naming the line") {
+    FixtureBook book;
+    const auto result = book.render(title + "See @eq:nowhere.\n");
+    CHECK(result.exit_code != 0);
+    CHECK(result.err.find("chapters/07-demo/chapter.md:5: error:") != std::string::npos);
+    CHECK(result.err.find("eq:nowhere") != std::string::npos);
+}
+
+TEST_CASE("a named test must exist in the named file") {
+    FixtureBook book;
+    const auto good =
+        book.render(title + "[the answer is 42]{.test file=\"tests/ch07_demo.cpp\"}\n");
+    REQUIRE(good.exit_code == 0);
+    CHECK(good.out.find("ch07_demo.cpp.html#src-1") != std::string::npos);
+    const auto bad =
+        book.render(title + "[the answer is 41]{.test file=\"tests/ch07_demo.cpp\"}\n");
+    CHECK(bad.exit_code != 0);
+    CHECK(bad.err.find("the answer is 41") != std::string::npos);
+}
+
+TEST_CASE("a figure the build did not make fails the book") {
+    FixtureBook book;
+    const auto missing = book.render(title + "![A figure.](ch07_none.png){#fig:none}\n");
+    CHECK(missing.exit_code != 0);
+    CHECK(missing.err.find("ch07_none.png") != std::string::npos);
+    book.write("figures/ch07_made.png", "png");
+    const auto made = book.render(title + "![A figure.](ch07_made.png){#fig:made}\n");
+    CHECK(made.exit_code == 0);
+    CHECK(made.out.find("Figure\u00a07.1:") != std::string::npos);
+}
