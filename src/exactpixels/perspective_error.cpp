@@ -30,7 +30,7 @@ double affine_worst_t(double r) {
 
 double quadratic_error(double r, double t) {
     const double k = r - 1.0;
-    return 2.0 * k * k * t * (t - 0.5) * (t - 1.0) / ((r + 1.0) * (r - k * t));
+    return 2.0 * k * k * t * (t - 0.5) * (1.0 - t) / ((r + 1.0) * (r - k * t));
 }
 
 double quadratic_error_max(double r) {

@@ -30,7 +30,7 @@ double affine_worst_t(double r);
 
 /// The quadratic (Pursey) mapper's error at t as a fraction of du: the parabola through
 /// t = 0, 1/2, 1 minus the exact fraction,
-/// 2 (r - 1)^2 t (t - 1/2) (t - 1) / ((r + 1) (r - (r - 1) t)) (@eq:quadratic-error).
+/// 2 (r - 1)^2 t (t - 1/2) (1 - t) / ((r + 1) (r - (r - 1) t)) (@eq:quadratic-error).
 double quadratic_error(double r, double t);
 
 /// The largest |quadratic_error(r, t)| over t in [0, 1], found by a dense search refined

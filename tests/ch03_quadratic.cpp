@@ -1,0 +1,212 @@
+// Chapter 3 tests: Pursey's quadratic and Thellier's form of it, forward differencing,
+// and the closed-form errors of the affine and quadratic mappers, checked in exact
+// rational arithmetic wherever the claim is exact.
+#include "exactpixels/perspective_error.hpp"
+#include "exactpixels/quadratic.hpp"
+#include "support/rational.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+
+using namespace exactpixels;
+using exactpixels::testing::Rational;
+
+namespace {
+/// The exact u at screen parameter t of a span from (u0, depth w0) to (u2, depth w2):
+/// u/w and 1/w interpolated linearly, then divided (eq:exact-divide), in exact
+/// arithmetic.
+Rational exact_u(Rational u0, Rational w0, Rational u2, Rational w2, Rational t) {
+    const Rational one(1);
+    const Rational u_w = (one - t) * (u0 / w0) + t * (u2 / w2);
+    const Rational one_w = (one - t) * (one / w0) + t * (one / w2);
+    return u_w / one_w;
+}
+} // namespace
+
+TEST_CASE("Thellier's coefficients equal Pursey's in exact arithmetic" *
+          doctest::description("points: 2; exercise: ch03-quadratic-coefficients")) {
+    std::mt19937 random(3);
+    std::uniform_int_distribution<int> texel(-2000, 2000), depth(1, 1000), steps(1, 512);
+    for (int trial = 0; trial < 2000; ++trial) {
+        const Rational u0(texel(random)), u2(texel(random));
+        const Rational w0(depth(random), depth(random)), w2(depth(random), depth(random));
+        const Rational n(steps(random));
+        const Quadratic<Rational> p = pursey_quadratic(u0, w0, u2, w2, n);
+        const Quadratic<Rational> t = thellier_quadratic(u0, w0, u2, w2, n);
+        INFO("u0 = " << u0 << ", w0 = " << w0 << ", u2 = " << u2 << ", w2 = " << w2
+                     << ", n = " << n);
+        REQUIRE(t.a == p.a);
+        REQUIRE(t.b == p.b);
+        REQUIRE(t.u0 == p.u0);
+    }
+}
+
+TEST_CASE("Thellier's and Pursey's coefficients agree in float within the stated bound") {
+    // Both forms, run in float, are compared with the exact coefficients of the same
+    // float inputs. Pursey's 2 u0 - 4 u1 + 2 u2 cancels: its rounding error is a few ulps
+    // of the largest |u| involved, so a and b are allowed 32 float epsilons of
+    // (|u0| + |u2|) / n^2 and (|u0| + |u2|) / n.
+    std::mt19937 random(7);
+    std::uniform_real_distribution<float> texel(-1000.0f, 1000.0f), depth(0.01f, 100.0f);
+    std::uniform_int_distribution<int> steps(1, 1024);
+    const double eps = std::numeric_limits<float>::epsilon();
+    double worst = 0.0; // largest error as a fraction of the allowance
+    for (int trial = 0; trial < 2000; ++trial) {
+        const float u0 = texel(random), u2 = texel(random), w0 = depth(random),
+                    w2 = depth(random), n = float(steps(random));
+        const auto R = [](float x) { return Rational::from_double(x); };
+        const Quadratic<Rational> exact =
+            pursey_quadratic(R(u0), R(w0), R(u2), R(w2), R(n));
+        const double scale = std::abs(double(u0)) + std::abs(double(u2));
+        for (const Quadratic<float>& q : {pursey_quadratic(u0, w0, u2, w2, n),
+                                          thellier_quadratic(u0, w0, u2, w2, n)}) {
+            const double a_error = std::abs(q.a - exact.a.to_double());
+            const double b_error = std::abs(q.b - exact.b.to_double());
+            const double a_allowed = 32 * eps * scale / (double(n) * n);
+            const double b_allowed = 32 * eps * scale / n;
+            CHECK(a_error <= a_allowed);
+            CHECK(b_error <= b_allowed);
+            worst = std::max({worst, a_error / a_allowed, b_error / b_allowed});
+        }
+    }
+    MESSAGE("largest float error: " << worst << " of the allowance");
+}
+
+TEST_CASE("the parabola passes through the exact values at both ends and the middle") {
+    std::mt19937 random(11);
+    std::uniform_int_distribution<int> texel(-500, 500), depth(1, 200), steps(1, 300);
+    for (int trial = 0; trial < 1000; ++trial) {
+        const Rational u0(texel(random)), u2(texel(random));
+        const Rational w0(depth(random), 7), w2(depth(random), 3);
+        const Rational n(steps(random));
+        const Quadratic<Rational> q = thellier_quadratic(u0, w0, u2, w2, n);
+        CHECK(evaluate(q, Rational(0)) == u0);
+        CHECK(evaluate(q, n / Rational(2)) == exact_u(u0, w0, u2, w2, Rational(1, 2)));
+        CHECK(evaluate(q, n) == u2);
+        CHECK(perspective_midpoint(u0, w0, u2, w2) ==
+              exact_u(u0, w0, u2, w2, Rational(1, 2)));
+    }
+}
+
+TEST_CASE(
+    "forward differences reproduce the parabola exactly in rationals and small doubles") {
+    std::mt19937 random(13);
+    std::uniform_int_distribution<int> small(-4096, 4096);
+    for (int trial = 0; trial < 200; ++trial) {
+        // Exact arithmetic: every step equals a t^2 + b t + u0.
+        const Quadratic<Rational> q{Rational(small(random), 97),
+                                    Rational(small(random), 13), Rational(small(random))};
+        ForwardDifferences<Rational> f = forward_differences(q);
+        for (int t = 0; t <= 64; ++t) {
+            REQUIRE(f.u == evaluate(q, Rational(t)));
+            step(f);
+        }
+        // Double, with coefficients of 12 significant bits (multiples of 2^-10, |.| < 4):
+        // every sum up to t = 64 is a multiple of 2^-10 below 2^22, so exact in double.
+        const Quadratic<double> d{std::ldexp(small(random), -10),
+                                  std::ldexp(small(random), -10), double(small(random))};
+        ForwardDifferences<double> g = forward_differences(d);
+        for (int t = 0; t <= 64; ++t) {
+            REQUIRE(g.u == evaluate(d, double(t)));
+            step(g);
+        }
+    }
+}
+
+TEST_CASE("forward differences in float stay within the stated bound over long spans") {
+    // Each float addition is off by at most half an ulp of its result. After t steps du
+    // has drifted by at most t eps/2 max|du| and u by the sum of those drifts plus its
+    // own roundings: |error(t)| <= eps/2 (t max|u| + t^2 max|du|), eps = 2^-23.
+    const double eps = std::numeric_limits<float>::epsilon();
+    for (const double r : {1.5, 4.0, 16.0}) {
+        for (const int n : {256, 1024, 2047}) {
+            const float w0 = 1.0f, w2 = float(r);
+            const Quadratic<float> q =
+                thellier_quadratic(3.25f, w0, 700.5f, w2, float(n));
+            const Quadratic<Rational> exact{Rational::from_double(q.a),
+                                            Rational::from_double(q.b),
+                                            Rational::from_double(q.u0)};
+            ForwardDifferences<float> f = forward_differences(q);
+            double max_u = 0.0, max_du = 0.0, worst = 0.0;
+            for (int t = 0; t <= n; ++t) {
+                const double truth = evaluate(exact, Rational(t)).to_double();
+                max_u = std::max(max_u, std::abs(truth));
+                max_du = std::max(max_du, std::abs(double(f.du)));
+                const double bound =
+                    eps / 2 * (t * max_u + double(t) * t * max_du) + 1e-12;
+                const double error = std::abs(f.u - truth);
+                REQUIRE(error <= bound);
+                worst = std::max(worst, error);
+                step(f);
+            }
+            MESSAGE("r = " << r << ", n = " << n << ": worst float drift " << worst
+                           << " texels");
+        }
+    }
+}
+
+TEST_CASE("the affine and quadratic errors have the closed forms derived in the text") {
+    // u0 = 0, u2 = 1, w0 = 1, w2 = r, one step (n = 1): the error at t is the mapper's
+    // value minus the exact one, as a fraction of the span's extent.
+    const Rational one(1), half(1, 2);
+    for (const Rational r :
+         {Rational(2), Rational(1, 3), Rational(9), Rational(100), Rational(7, 5)}) {
+        const Quadratic<Rational> q = pursey_quadratic(Rational(0), one, one, r, one);
+        const Rational k = r - one;
+        for (int i = 0; i <= 40; ++i) {
+            const Rational t(i, 40);
+            const Rational exact = exact_u(Rational(0), one, one, r, t);
+            CHECK(exact == t / (r - k * t)); // eq:exact-fraction
+            // eq:affine-error
+            CHECK(t - exact == k * t * (one - t) / (r - k * t));
+            // eq:quadratic-error
+            CHECK(evaluate(q, t) - exact == Rational(2) * k * k * t * (t - half) *
+                                                (one - t) / ((r + one) * (r - k * t)));
+            // The double forms in perspective_error.hpp compute the same functions.
+            CHECK(affine_error(r.to_double(), t.to_double()) ==
+                  doctest::Approx((t - exact).to_double()).epsilon(1e-12).scale(1.0));
+            CHECK(quadratic_error(r.to_double(), t.to_double()) ==
+                  doctest::Approx((evaluate(q, t) - exact).to_double()).scale(1.0));
+        }
+    }
+}
+
+TEST_CASE("the affine error peaks at sqrt r / (sqrt r + 1) with the derived bound") {
+    // r = (p/q)^2 makes sqrt r rational, so the peak and the bound are exact rationals.
+    const Rational one(1);
+    for (const auto& [p, q] :
+         {std::pair{2, 1}, {3, 1}, {10, 1}, {5, 2}, {1, 3}, {7, 4}}) {
+        const Rational s(p, q), r = s * s, k = r - one;
+        const auto error = [&](Rational t) { return t - t / (r - k * t); };
+        const Rational t_star = s / (s + one);
+        const Rational bound = (s - one) / (s + one); // eq:affine-bound (signed)
+        CHECK(error(t_star) == bound);
+        for (int i = 0; i <= 200; ++i) {
+            const Rational t(i, 200);
+            CHECK(abs(error(t)) <= abs(bound)); // the peak is the largest error
+        }
+        CHECK(affine_error_bound(r.to_double()) ==
+              doctest::Approx(abs(bound).to_double()));
+        CHECK(affine_worst_t(r.to_double()) == doctest::Approx(t_star.to_double()));
+    }
+}
+
+TEST_CASE("quadratic_error_max is the largest quadratic error over the span") {
+    for (const double r : {1.1, 2.0, 4.0, 10.0, 100.0, 0.25}) {
+        const double peak = quadratic_error_max(r);
+        double sampled = 0.0;
+        for (int i = 0; i <= 100000; ++i) {
+            sampled = std::max(sampled, std::abs(quadratic_error(r, i / 100000.0)));
+        }
+        CHECK(peak >= sampled);
+        CHECK(peak <= sampled * (1 + 1e-6));
+        // The quadratic is always better than affine, by a wide margin for mild r.
+        CHECK(peak < affine_error_bound(r));
+    }
+    // A span seen from its other end has the same worst error.
+    CHECK(quadratic_error_max(0.2) == doctest::Approx(quadratic_error_max(5.0)));
+}
