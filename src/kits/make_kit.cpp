@@ -1,0 +1,848 @@
+// make-kit: a chapter's course-assignment kit, generated from the book's own tested code.
+//
+// Usage:
+//   make-kit kit --source ROOT --template DIR --chapter NN --out DIR [--version V]
+//   make-kit restore --source ROOT --kit DIR
+//   make-kit list --source ROOT
+//
+// `kit` writes DIR as a self-contained CMake project: the library (src/), the command-line
+// program (src/cli/, if any), chapter NN's example folder, its tests (tests/chNN_*,
+// tests/fixtures/chNN*) and the test support files (tests/support/). Every exercise region
+// of chapter NN (see book/AUTHORING.md, "Exercise regions") is replaced by its stub between
+// two plain comments,
+//     // EXERCISE ch02-edge-bias: one-line hint
+//     ...stub...
+//     // END EXERCISE ch02-edge-bias
+// while every other chapter keeps its solution; every marker line (`//>`, `//<`, `//|`) is
+// removed. The template folder supplies the kit's CMakeLists.txt, README.md and grade.cmake
+// (with @CHAPTER@-style placeholders). DIR is deleted first if it holds an earlier kit.
+//
+// `restore` puts the solution of every exercise back between those comments in a kit
+// (the teacher's copy; the kit tests use it to prove the stubs are the only difference).
+// `list` prints every exercise region and the tests that declare points for it.
+//
+// The kit is checked while it is made: every exercise region of chapter NN must be named by
+// a test of chapter NN with points > 0, and every exercise a test names must exist.
+// Errors name file and line and make the program exit with status 1.
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct KitError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// ---------------------------------------------------------------------------------------
+// Text helpers
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw KitError("cannot read " + path.string());
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+void write_text(const fs::path& path, const std::string& text) {
+    fs::create_directories(path.parent_path());
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    if (!out) {
+        throw KitError("cannot write " + path.string());
+    }
+}
+
+std::vector<std::string> split_lines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::string::size_type start = 0;
+    while (start < text.size()) {
+        const auto end = text.find('\n', start);
+        if (end == std::string::npos) {
+            lines.push_back(text.substr(start));
+            break;
+        }
+        lines.push_back(text.substr(start, end - start));
+        start = end + 1;
+    }
+    return lines;
+}
+
+std::string join_lines(const std::vector<std::string>& lines) {
+    std::string text;
+    for (const auto& line : lines) {
+        text += line;
+        text += '\n';
+    }
+    return text;
+}
+
+std::string_view trim(std::string_view text) {
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) {
+        text.remove_prefix(1);
+    }
+    while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) {
+        text.remove_suffix(1);
+    }
+    return text;
+}
+
+bool starts_with(std::string_view text, std::string_view prefix) {
+    return text.substr(0, prefix.size()) == prefix;
+}
+
+std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+    std::string::size_type at = 0;
+    while ((at = text.find(from, at)) != std::string::npos) {
+        text.replace(at, from.size(), to);
+        at += to.size();
+    }
+    return text;
+}
+
+std::string where(const fs::path& file, std::size_t line) {
+    return file.generic_string() + ":" + std::to_string(line);
+}
+
+/// "chNN-name": the prefix ch, two digits, a dash, then lower-case letters, digits, dashes.
+bool valid_exercise_id(std::string_view id) {
+    if (id.size() < 6 || !starts_with(id, "ch") || !std::isdigit(id[2]) ||
+        !std::isdigit(id[3]) || id[4] != '-') {
+        return false;
+    }
+    return std::all_of(id.begin() + 5, id.end(), [](char c) {
+        return std::islower(static_cast<unsigned char>(c)) ||
+               std::isdigit(static_cast<unsigned char>(c)) || c == '-';
+    });
+}
+
+bool is_code_file(const fs::path& path) {
+    static const std::set<std::string> extensions = {".cpp", ".hpp", ".h", ".cc", ".inl",
+                                                     ".ipp"};
+    return extensions.count(path.extension().string()) != 0;
+}
+
+// ---------------------------------------------------------------------------------------
+// Exercise regions
+
+/// One `//> exercise ID: hint` ... `//< exercise ID` region of solution code.
+struct Region {
+    std::string id;                     // e.g. "ch02-edge-bias"
+    std::string hint;                   // the one-line hint after the colon
+    fs::path file;                      // relative to the source root
+    std::size_t line = 0;               // of the opening marker, 1-based
+    std::vector<std::string> solution;  // the code lines, markers removed
+    std::vector<std::string> stub;      // the uncommented stub lines
+    std::size_t kit_line = 0;           // of the EXERCISE comment in the kit, if stubbed
+    std::string chapter() const { return id.substr(0, 4); }
+};
+
+const std::string kit_begin = "// EXERCISE ";
+const std::string kit_end = "// END EXERCISE ";
+
+/// A file after the region markers have been interpreted.
+struct Processed {
+    std::vector<std::string> lines; // the kit's text of the file
+    std::vector<Region> regions;    // every exercise region found in it
+};
+
+/// Reads the markers of one file. Regions of `stub_chapter` ("ch02") are replaced by their
+/// stubs between the kit's EXERCISE comments; all other regions keep their solution.
+Processed process_file(const fs::path& rel, const std::string& text,
+                       const std::string& stub_chapter) {
+    Processed result;
+    std::optional<Region> open;
+    const auto lines = split_lines(text);
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        const std::string& line = lines[i];
+        const auto first = line.find_first_not_of(" \t");
+        const std::string indent = line.substr(0, first == std::string::npos ? 0 : first);
+        const std::string_view rest =
+            first == std::string::npos ? std::string_view{} : std::string_view(line).substr(first);
+        const bool stubbing = open && open->chapter() == stub_chapter;
+        if (starts_with(rest, "//>") || starts_with(rest, "//<")) {
+            const std::string_view body = trim(rest.substr(3));
+            const bool exercise = starts_with(body, "exercise ") || body == "exercise";
+            if (!exercise) {
+                continue; // a snippet marker: never part of a kit
+            }
+            if (rest[2] == '>') {
+                if (open) {
+                    throw KitError(where(rel, i + 1) + ": exercise region inside region " +
+                                   open->id + " (opened at line " +
+                                   std::to_string(open->line) + ")");
+                }
+                const std::string_view spec = trim(body.substr(8));
+                const auto colon = spec.find(':');
+                const std::string id(trim(spec.substr(0, colon)));
+                std::string hint(colon == std::string_view::npos ? std::string_view{}
+                                                                 : trim(spec.substr(colon + 1)));
+                const std::size_t open_line = i + 1;
+                // A hint too long for one line, as clang-format reflows it: the next lines
+                // at the same indent read "//word" (no space after the slashes).
+                while (i + 1 < lines.size() && starts_with(lines[i + 1], indent + "//") &&
+                       lines[i + 1].size() > indent.size() + 2 &&
+                       std::string_view(" /<>|!").find(lines[i + 1][indent.size() + 2]) ==
+                           std::string_view::npos) {
+                    hint += " " + std::string(trim(
+                                      std::string_view(lines[++i]).substr(indent.size() + 2)));
+                }
+                if (!valid_exercise_id(id)) {
+                    throw KitError(where(rel, open_line) + ": exercise ID '" + id +
+                                   "' is not of the form chNN-name");
+                }
+                if (hint.empty()) {
+                    throw KitError(where(rel, open_line) + ": exercise " + id +
+                                   " has no hint ('//> exercise " + id + ": hint')");
+                }
+                open = Region{id, hint, rel, open_line, {}, {}, 0};
+                if (open->chapter() == stub_chapter) {
+                    result.lines.push_back(indent + kit_begin + id + ": " + hint);
+                    open->kit_line = result.lines.size();
+                }
+            } else {
+                const std::string id(trim(body.substr(8)));
+                if (!open || open->id != id) {
+                    throw KitError(where(rel, i + 1) + ": '//< exercise " + id +
+                                   "' closes no open region" +
+                                   (open ? " (open: " + open->id + ")" : std::string{}));
+                }
+                if (stubbing) {
+                    result.lines.push_back(indent + kit_end + id);
+                }
+                result.regions.push_back(std::move(*open));
+                open.reset();
+            }
+        } else if (starts_with(rest, "//|")) {
+            if (!open) {
+                throw KitError(where(rel, i + 1) + ": stub line '//|' outside any exercise region");
+            }
+            std::string_view stub = rest.substr(3);
+            if (starts_with(stub, " ")) {
+                stub.remove_prefix(1);
+            }
+            open->stub.push_back(indent + std::string(stub));
+            if (stubbing) {
+                result.lines.push_back(open->stub.back());
+            }
+        } else {
+            if (open) {
+                open->solution.push_back(line);
+            }
+            if (!stubbing) {
+                result.lines.push_back(line);
+            }
+        }
+    }
+    if (open) {
+        throw KitError(where(rel, open->line) + ": exercise region " + open->id +
+                       " is never closed ('//< exercise " + open->id + "')");
+    }
+    return result;
+}
+
+/// Every code file under src/, chapters/ and tests/ (test fixtures excluded), relative to
+/// the root, sorted so that the output never depends on directory order.
+std::vector<fs::path> code_files(const fs::path& root) {
+    std::vector<fs::path> files;
+    for (const char* top : {"src", "chapters", "tests"}) {
+        if (!fs::is_directory(root / top)) {
+            continue;
+        }
+        for (const auto& entry : fs::recursive_directory_iterator(root / top)) {
+            const fs::path rel = fs::relative(entry.path(), root);
+            if (entry.is_regular_file() && is_code_file(rel) &&
+                !starts_with(rel.generic_string(), "tests/fixtures/")) {
+                files.push_back(rel);
+            }
+        }
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+/// Every exercise region in the tree, by ID (IDs are unique across the tree).
+std::map<std::string, Region> all_regions(const fs::path& root) {
+    std::map<std::string, Region> regions;
+    for (const auto& rel : code_files(root)) {
+        for (auto& region : process_file(rel, read_text(root / rel), "").regions) {
+            const auto [it, fresh] = regions.emplace(region.id, region);
+            if (!fresh) {
+                throw KitError(where(rel, region.line) + ": exercise " + region.id +
+                               " is also defined at " + where(it->second.file, it->second.line));
+            }
+        }
+    }
+    return regions;
+}
+
+// ---------------------------------------------------------------------------------------
+// Tests and their declared points
+
+/// A TEST_CASE with the points and exercise its description declares.
+struct TestDecl {
+    std::string name;
+    fs::path file;
+    std::size_t line = 0;
+    int points = 0;
+    std::string exercise; // empty for none
+};
+
+std::size_t line_of(const std::string& text, std::size_t offset) {
+    return 1 + static_cast<std::size_t>(
+                   std::count(text.begin(), text.begin() + static_cast<long>(offset), '\n'));
+}
+
+/// The string literal starting at text[at] == '"' (escapes kept as written).
+std::string literal_at(const std::string& text, std::size_t at, std::size_t* end) {
+    std::string value;
+    std::size_t i = at + 1;
+    for (; i < text.size() && text[i] != '"'; ++i) {
+        if (text[i] == '\\' && i + 1 < text.size()) {
+            value += text[i++];
+        }
+        value += text[i];
+    }
+    *end = i + 1;
+    return value;
+}
+
+/// Finds every TEST_CASE* in a test file and reads `doctest::description("points: N;
+/// exercise: ID")` among its decorators (between the name and the opening brace).
+std::vector<TestDecl> test_declarations(const fs::path& root, const fs::path& rel) {
+    const std::string text = read_text(root / rel);
+    std::vector<TestDecl> tests;
+    std::size_t at = 0;
+    while ((at = text.find("TEST_CASE", at)) != std::string::npos) {
+        const std::size_t start = at;
+        at += 9;
+        // Skip mentions inside identifiers and the DOCTEST_ prefixed forms' definitions.
+        if (start > 0 && (std::isalnum(static_cast<unsigned char>(text[start - 1])) ||
+                          text[start - 1] == '_')) {
+            continue;
+        }
+        // TEST_CASE, TEST_CASE_FIXTURE, TEST_CASE_TEMPLATE, ... then "(" and the name.
+        while (at < text.size() && (std::isupper(static_cast<unsigned char>(text[at])) ||
+                                    text[at] == '_' || text[at] == ' ')) {
+            ++at;
+        }
+        if (at >= text.size() || text[at] != '(') {
+            continue;
+        }
+        const auto quote = text.find('"', at);
+        if (quote == std::string::npos || text.find_first_of(");", at) < quote) {
+            continue;
+        }
+        TestDecl test;
+        std::size_t after = 0;
+        test.name = literal_at(text, quote, &after);
+        const auto brace = std::min(text.find('{', after), text.size());
+        test.file = rel;
+        test.line = line_of(text, start);
+        const std::string decorators = text.substr(after, brace - after);
+        const auto desc = decorators.find("description");
+        if (desc != std::string::npos) {
+            const auto q = decorators.find('"', desc);
+            std::size_t unused = 0;
+            const std::string description =
+                q == std::string::npos ? "" : literal_at(decorators, q, &unused);
+            std::string_view rest = description;
+            while (!rest.empty()) {
+                const auto semi = rest.find(';');
+                const std::string_view item = trim(rest.substr(0, semi));
+                rest = semi == std::string_view::npos ? std::string_view{} : rest.substr(semi + 1);
+                const auto colon = item.find(':');
+                if (colon == std::string_view::npos) {
+                    continue;
+                }
+                const std::string_view key = trim(item.substr(0, colon));
+                const std::string value(trim(item.substr(colon + 1)));
+                if (key == "points") {
+                    const bool digits =
+                        !value.empty() && std::all_of(value.begin(), value.end(), [](char c) {
+                            return std::isdigit(static_cast<unsigned char>(c));
+                        });
+                    if (!digits) {
+                        throw KitError(where(rel, test.line) + ": test \"" + test.name +
+                                       "\": points '" + value + "' is not a whole number");
+                    }
+                    test.points = std::stoi(value);
+                } else if (key == "exercise") {
+                    test.exercise = value;
+                }
+            }
+        }
+        tests.push_back(test);
+        at = after;
+    }
+    return tests;
+}
+
+// ---------------------------------------------------------------------------------------
+// The kit
+
+/// "2", "02" or "ch02" -> "02".
+std::string chapter_number(std::string text) {
+    if (starts_with(text, "ch")) {
+        text = text.substr(2);
+    }
+    if (text.size() == 1) {
+        text = "0" + text;
+    }
+    if (text.size() != 2 || !std::isdigit(static_cast<unsigned char>(text[0])) ||
+        !std::isdigit(static_cast<unsigned char>(text[1]))) {
+        throw KitError("--chapter wants a chapter number such as 02, got '" + text + "'");
+    }
+    return text;
+}
+
+/// chapters/NN-slug, if the chapter has a folder.
+std::optional<fs::path> chapter_folder(const fs::path& root, const std::string& number) {
+    if (!fs::is_directory(root / "chapters")) {
+        return std::nullopt;
+    }
+    std::vector<fs::path> found;
+    for (const auto& entry : fs::directory_iterator(root / "chapters")) {
+        if (entry.is_directory() &&
+            starts_with(entry.path().filename().string(), number + "-")) {
+            found.push_back(fs::relative(entry.path(), root));
+        }
+    }
+    if (found.size() > 1) {
+        throw KitError("chapters/ has more than one folder for chapter " + number);
+    }
+    return found.empty() ? std::nullopt : std::optional<fs::path>(found.front());
+}
+
+/// The relative paths of every file the kit of chapter NN takes from the source tree.
+std::vector<fs::path> kit_files(const fs::path& root, const std::string& number) {
+    std::vector<fs::path> files;
+    auto add_tree = [&](const fs::path& rel, auto&& keep) {
+        if (!fs::exists(root / rel)) {
+            return;
+        }
+        if (fs::is_regular_file(root / rel)) {
+            files.push_back(rel);
+            return;
+        }
+        for (const auto& entry : fs::recursive_directory_iterator(root / rel)) {
+            const fs::path file = fs::relative(entry.path(), root);
+            if (entry.is_regular_file() && keep(file)) {
+                files.push_back(file);
+            }
+        }
+    };
+    const auto everything = [](const fs::path&) { return true; };
+    add_tree("src/exactpixels", everything);
+    add_tree("src/cli", everything);
+    add_tree("tests/support", everything);
+    add_tree(".clang-format", everything);
+    if (const auto folder = chapter_folder(root, number)) {
+        // The example and whatever it reads; the chapter text belongs to the book.
+        add_tree(*folder, [](const fs::path& file) { return file.extension() != ".md"; });
+    }
+    const std::string prefix = "ch" + number;
+    for (const char* top : {"tests", "tests/fixtures"}) {
+        if (!fs::is_directory(root / top)) {
+            continue;
+        }
+        for (const auto& entry : fs::directory_iterator(root / top)) {
+            const std::string name = entry.path().filename().string();
+            // Headers shared by the tests (e.g. a grid helper) come along in every kit.
+            const bool header = std::string(top) == "tests" && entry.is_regular_file() &&
+                                (entry.path().extension() == ".hpp" ||
+                                 entry.path().extension() == ".h");
+            if (header || starts_with(name, prefix + "_") || starts_with(name, prefix + "-") ||
+                name == prefix ||
+                (starts_with(name, prefix + ".") && entry.is_regular_file())) {
+                add_tree(fs::relative(entry.path(), root), everything);
+            }
+        }
+    }
+    std::sort(files.begin(), files.end());
+    files.erase(std::unique(files.begin(), files.end()), files.end());
+    return files;
+}
+
+/// The text of `chapter.md` between `## Exercises` and the next `## ` heading, with the
+/// book-only span attributes reduced to plain text.
+std::string book_exercises(const fs::path& chapter_md) {
+    if (!fs::exists(chapter_md)) {
+        return "";
+    }
+    std::vector<std::string> kept;
+    bool inside = false;
+    for (const auto& line : split_lines(read_text(chapter_md))) {
+        if (starts_with(line, "## ")) {
+            inside = starts_with(line, "## Exercises");
+            continue;
+        }
+        if (inside) {
+            std::string text = line;
+            // [name]{.test file="..."} -> "name"
+            for (auto at = text.find("]{.test"); at != std::string::npos;
+                 at = text.find("]{.test")) {
+                const auto open = text.rfind('[', at);
+                const auto close = text.find('}', at);
+                if (open == std::string::npos || close == std::string::npos) {
+                    break;
+                }
+                text = text.substr(0, open) + "\"" + text.substr(open + 1, at - open - 1) +
+                       "\"" + text.substr(close + 1);
+            }
+            kept.push_back(text);
+        }
+    }
+    while (!kept.empty() && trim(kept.back()).empty()) {
+        kept.pop_back();
+    }
+    while (!kept.empty() && trim(kept.front()).empty()) {
+        kept.erase(kept.begin());
+    }
+    return join_lines(kept);
+}
+
+std::string chapter_title(const fs::path& chapter_md) {
+    if (fs::exists(chapter_md)) {
+        for (const auto& line : split_lines(read_text(chapter_md))) {
+            if (starts_with(line, "# ")) {
+                std::string title(trim(std::string_view(line).substr(2)));
+                const auto attributes = title.find(" {");
+                return attributes == std::string::npos ? title : title.substr(0, attributes);
+            }
+        }
+    }
+    return "chapter";
+}
+
+struct Options {
+    std::string command;
+    fs::path source, template_dir, out, kit;
+    std::string chapter, version = "0.0.0";
+};
+
+/// The kit's manifest: the files make-kit wrote, one per line after a comment line.
+const std::string kit_stamp = ".exactpixels-kit";
+
+/// Makes folder `out` hold exactly `files` (relative path -> content). Only files whose
+/// content changes are written, so a build of an earlier kit in the same place rebuilds
+/// only what changed; only files an earlier make-kit wrote (listed in its manifest) are
+/// ever deleted, and a non-empty folder without a manifest is refused.
+void sync_folder(const fs::path& out, const std::map<fs::path, std::string>& files) {
+    if (fs::exists(out) && !fs::is_empty(out)) {
+        if (!fs::exists(out / kit_stamp)) {
+            throw KitError(out.string() + " exists and is not a kit made by make-kit; "
+                                          "refusing to write into it");
+        }
+        const auto old = split_lines(read_text(out / kit_stamp));
+        for (std::size_t i = 1; i < old.size(); ++i) {
+            const fs::path rel = old[i];
+            if (!rel.empty() && files.count(rel) == 0 && rel.is_relative() &&
+                !starts_with(rel.generic_string(), "..")) {
+                fs::remove(out / rel);
+                // Remove the folders this leaves empty, up to the kit's root.
+                for (fs::path dir = (out / rel).parent_path();
+                     dir != out && fs::exists(dir) && fs::is_empty(dir);
+                     dir = dir.parent_path()) {
+                    fs::remove(dir);
+                }
+            }
+        }
+    }
+    std::string manifest = "# Files written by make-kit (safe to delete the folder).\n";
+    for (const auto& [rel, text] : files) {
+        const fs::path path = out / rel;
+        if (!fs::exists(path) || read_text(path) != text) {
+            write_text(path, text);
+        }
+        manifest += rel.generic_string() + "\n";
+    }
+    write_text(out / kit_stamp, manifest);
+}
+
+void make_kit(const Options& options) {
+    const fs::path root = fs::canonical(options.source);
+    const std::string number = chapter_number(options.chapter);
+    const std::string chapter = "ch" + number;
+    const auto regions = all_regions(root);
+
+    // The tests of chapter NN and what they declare.
+    std::vector<TestDecl> tests;
+    const auto files = kit_files(root, number);
+    for (const auto& rel : files) {
+        if (rel.parent_path() == "tests" && is_code_file(rel)) {
+            const auto found = test_declarations(root, rel);
+            tests.insert(tests.end(), found.begin(), found.end());
+        }
+    }
+    std::map<std::string, int> points_for;
+    std::map<std::string, std::vector<std::string>> tests_for;
+    for (const auto& test : tests) {
+        if (test.exercise.empty()) {
+            continue;
+        }
+        if (regions.count(test.exercise) == 0) {
+            throw KitError(where(test.file, test.line) + ": test \"" + test.name +
+                           "\" names exercise " + test.exercise +
+                           ", but no region '//> exercise " + test.exercise +
+                           ": ...' exists");
+        }
+        if (test.points <= 0) {
+            throw KitError(where(test.file, test.line) + ": test \"" + test.name +
+                           "\" checks exercise " + test.exercise + " but declares no points");
+        }
+        points_for[test.exercise] += test.points;
+        tests_for[test.exercise].push_back(test.name);
+    }
+    for (const auto& [id, region] : regions) {
+        if (region.chapter() == chapter && points_for.count(id) == 0) {
+            throw KitError(where(region.file, region.line) + ": exercise " + id +
+                           " is checked by no test of chapter " + number +
+                           " (add doctest::description(\"points: N; exercise: " + id +
+                           "\") to one)");
+        }
+    }
+
+    // Every file of the kit, by relative path.
+    std::map<fs::path, std::string> kit;
+    std::vector<Region> stubbed;
+    for (const auto& rel : files) {
+        if (!is_code_file(rel)) {
+            kit[rel] = read_text(root / rel);
+            continue;
+        }
+        auto processed = process_file(rel, read_text(root / rel), chapter);
+        kit[rel] = join_lines(processed.lines);
+        for (auto& region : processed.regions) {
+            if (region.chapter() == chapter) {
+                stubbed.push_back(std::move(region));
+            }
+        }
+    }
+    // A chapter-NN region outside the kit's files could not be stubbed: refuse.
+    for (const auto& [id, region] : regions) {
+        const bool in_kit = std::any_of(stubbed.begin(), stubbed.end(),
+                                        [&](const Region& r) { return r.id == id; });
+        if (region.chapter() == chapter && !in_kit) {
+            throw KitError(where(region.file, region.line) + ": exercise " + id +
+                           " lies in a file the kit does not contain");
+        }
+    }
+
+    // Template files.
+    const auto folder = chapter_folder(root, number);
+    const fs::path chapter_md = folder ? root / *folder / "chapter.md" : fs::path{};
+    std::string table;
+    if (stubbed.empty()) {
+        table = "This chapter has no implementation exercises yet: the kit builds the "
+                "chapter's code, example and tests as they are in the book.\n";
+    } else {
+        table = "| exercise | where | points | hint |\n|---|---|---|---|\n";
+        for (const auto& region : stubbed) {
+            table += "| `" + region.id + "` | `" + where(region.file, region.kit_line) +
+                     "` | " + std::to_string(points_for[region.id]) + " | " +
+                     replace_all(region.hint, "|", "\\|") + " |\n";
+        }
+        table += "\nThe tests that check them (each passes only when the exercise is "
+                 "solved):\n\n";
+        for (const auto& region : stubbed) {
+            for (const auto& name : tests_for[region.id]) {
+                table += "- `" + region.id + "`: \"" + name + "\"\n";
+            }
+        }
+    }
+    int total = 0;
+    for (const auto& test : tests) {
+        total += test.points;
+    }
+    std::string book = book_exercises(chapter_md);
+    if (book.empty()) {
+        book = "(The chapter text has no exercise section yet.)\n";
+    }
+    const bool has_example = folder && fs::exists(root / *folder / "example.cpp");
+    const std::map<std::string, std::string> values = {
+        {"@CHAPTER@", number},
+        {"@TITLE@", chapter_title(chapter_md)},
+        {"@VERSION@", options.version},
+        {"@EXERCISE_TABLE@", table},
+        {"@BOOK_EXERCISES@", book},
+        {"@TOTAL_POINTS@", std::to_string(total)},
+        {"@EXAMPLE_NOTE@", has_example ? "mkdir -p out && build/bin/ch" + number +
+                                             "-example out  # the example's figures"
+                                       : "# (this chapter has no example program)"},
+    };
+    for (const char* name : {"CMakeLists.txt", "README.md", "grade.cmake"}) {
+        std::string text = read_text(options.template_dir / (std::string(name) + ".in"));
+        for (const auto& [key, value] : values) {
+            text = replace_all(text, key, value);
+        }
+        kit[name] = text;
+    }
+    const fs::path out = fs::absolute(options.out);
+    sync_folder(out, kit);
+
+    std::cout << "make-kit: wrote " << out.string() << " (chapter " << number << ", "
+              << stubbed.size() << " exercise" << (stubbed.size() == 1 ? "" : "s") << ", "
+              << tests.size() << " test cases, " << total << " points)\n";
+    for (const auto& region : stubbed) {
+        std::cout << "  " << region.id << "  " << where(region.file, region.kit_line) << "  "
+                  << points_for[region.id] << " points\n";
+    }
+}
+
+/// Puts each region's solution back between the kit's EXERCISE comments; rewrites only
+/// the files that change, so an existing build recompiles only those.
+void restore_kit(const Options& options) {
+    const auto regions = all_regions(fs::canonical(options.source));
+    const fs::path kit = options.kit;
+    if (!fs::exists(kit / kit_stamp)) {
+        throw KitError(kit.string() + " is not a kit made by make-kit");
+    }
+    int restored = 0;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(kit)) {
+        const fs::path rel = fs::relative(entry.path(), kit);
+        if (entry.is_regular_file() && is_code_file(rel) &&
+            (starts_with(rel.generic_string(), "src/") ||
+             starts_with(rel.generic_string(), "chapters/") ||
+             starts_with(rel.generic_string(), "tests/"))) {
+            files.push_back(rel);
+        }
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& rel : files) {
+        const std::string text = read_text(kit / rel);
+        const auto lines = split_lines(text);
+        std::vector<std::string> out;
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+            out.push_back(lines[i]);
+            const std::string_view body = trim(lines[i]);
+            if (!starts_with(body, kit_begin)) {
+                continue;
+            }
+            const std::string_view spec = body.substr(kit_begin.size());
+            const std::string id(trim(spec.substr(0, spec.find(':'))));
+            const auto region = regions.find(id);
+            if (region == regions.end()) {
+                throw KitError(where(rel, i + 1) + ": the source tree has no exercise " + id);
+            }
+            std::size_t end = i + 1;
+            while (end < lines.size() && trim(lines[end]) != kit_end + id) {
+                ++end;
+            }
+            if (end == lines.size()) {
+                throw KitError(where(rel, i + 1) + ": no '" + kit_end + id + "' after it");
+            }
+            out.insert(out.end(), region->second.solution.begin(),
+                       region->second.solution.end());
+            out.push_back(lines[end]);
+            i = end;
+            ++restored;
+        }
+        const std::string restored_text = join_lines(out);
+        if (restored_text != text) {
+            write_text(kit / rel, restored_text);
+        }
+    }
+    std::cout << "make-kit: restored " << restored << " exercise solution"
+              << (restored == 1 ? "" : "s") << " in " << kit.string() << "\n";
+}
+
+void list_regions(const Options& options) {
+    const fs::path root = fs::canonical(options.source);
+    const auto regions = all_regions(root);
+    std::map<std::string, std::vector<TestDecl>> tests_for;
+    for (const auto& rel : code_files(root)) {
+        if (rel.parent_path() == "tests") {
+            for (const auto& test : test_declarations(root, rel)) {
+                tests_for[test.exercise].push_back(test);
+            }
+        }
+    }
+    for (const auto& [id, region] : regions) {
+        std::cout << id << " " << where(region.file, region.line) << " " << region.hint
+                  << "\n";
+        for (const auto& test : tests_for[id]) {
+            std::cout << "  " << test.points << " points: \"" << test.name << "\" ("
+                      << where(test.file, test.line) << ")\n";
+        }
+    }
+}
+
+Options parse(int argc, char** argv) {
+    if (argc < 2) {
+        throw KitError("usage: make-kit kit|restore|list --source ROOT [options]; see the "
+                       "top of src/kits/make_kit.cpp");
+    }
+    Options options;
+    options.command = argv[1];
+    for (int i = 2; i < argc; ++i) {
+        const std::string flag = argv[i];
+        if (i + 1 >= argc) {
+            throw KitError(flag + " wants a value");
+        }
+        const std::string value = argv[++i];
+        if (flag == "--source") {
+            options.source = value;
+        } else if (flag == "--template") {
+            options.template_dir = value;
+        } else if (flag == "--chapter") {
+            options.chapter = value;
+        } else if (flag == "--out") {
+            options.out = value;
+        } else if (flag == "--kit") {
+            options.kit = value;
+        } else if (flag == "--version") {
+            options.version = value;
+        } else {
+            throw KitError("unknown option " + flag);
+        }
+    }
+    if (options.source.empty()) {
+        throw KitError("--source ROOT is required");
+    }
+    if (options.command == "kit" &&
+        (options.template_dir.empty() || options.chapter.empty() || options.out.empty())) {
+        throw KitError("make-kit kit wants --template, --chapter and --out");
+    }
+    if (options.command == "restore" && options.kit.empty()) {
+        throw KitError("make-kit restore wants --kit");
+    }
+    return options;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    try {
+        const Options options = parse(argc, argv);
+        if (options.command == "kit") {
+            make_kit(options);
+        } else if (options.command == "restore") {
+            restore_kit(options);
+        } else if (options.command == "list") {
+            list_regions(options);
+        } else {
+            throw KitError("unknown command '" + options.command + "' (kit, restore, list)");
+        }
+    } catch (const std::exception& error) {
+        std::cerr << "make-kit: " << error.what() << "\n";
+        return 1;
+    }
+    return 0;
+}

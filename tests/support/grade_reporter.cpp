@@ -1,0 +1,142 @@
+// grade_reporter.cpp: the doctest reporter behind the assignment kits' `grade` command.
+//
+// Every test executable of the project (and of every assignment kit) links this file, so
+// any of them can be run as
+//
+//     test_ch02 --reporters=grade            (add --out=grade.txt to write a file)
+//
+// Points are declared next to the test, in its description, never in a separate list:
+//
+//     TEST_CASE("name" * doctest::description("points: 2; exercise: ch02-edge-bias"))
+//
+// Output, one line per test case in the order doctest runs them (by file, then line),
+// then one total line; nothing else, no timings, no colours, so that a course can collect
+// it:
+//
+//     PASS 2/2 ch02-edge-bias the top-left rule covers shared edges once
+//     FAIL 0/3 ch02-block-walk 8x8 blocks visit the same pixels as the box walk
+//     PASS 0/0 - edge functions are exact in fixed point
+//     SKIP 0/1 - a test that was filtered out or marked doctest::skip
+//     TOTAL 2/5 points; 2/3 test cases passed
+//
+// Fields are separated by single spaces: STATUS EARNED/DECLARED EXERCISE NAME, where
+// EXERCISE is "-" for a test that checks no exercise and NAME runs to the end of the
+// line. A test case earns all of its points when it passes (every subcase included) and
+// none otherwise. A skipped test case counts in neither number of the TOTAL line.
+#include <doctest/doctest.h>
+
+#include <cstdlib>
+#include <ostream>
+#include <string>
+#include <string_view>
+
+namespace exactpixels::testing {
+
+namespace {
+
+/// What a test case's description declares: "points: N; exercise: ID" (either may be
+/// missing; unknown keys are ignored).
+struct Declared {
+    int points = 0;             ///< points earned when the test case passes
+    std::string exercise = "-"; ///< the exercise region it checks, "-" for none
+};
+
+std::string_view trim(std::string_view text) {
+    while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) {
+        text.remove_prefix(1);
+    }
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) {
+        text.remove_suffix(1);
+    }
+    return text;
+}
+
+Declared parse_description(const char* description) {
+    Declared declared;
+    if (description == nullptr) {
+        return declared;
+    }
+    std::string_view rest = description;
+    while (!rest.empty()) {
+        const auto end = rest.find(';');
+        const std::string_view item = trim(rest.substr(0, end));
+        rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
+        const auto colon = item.find(':');
+        if (colon == std::string_view::npos) {
+            continue;
+        }
+        const std::string_view key = trim(item.substr(0, colon));
+        const std::string value(trim(item.substr(colon + 1)));
+        if (key == "points") {
+            declared.points = std::atoi(value.c_str());
+        } else if (key == "exercise" && !value.empty()) {
+            declared.exercise = value;
+        }
+    }
+    return declared;
+}
+
+/// Prints one line per test case and a total; see the top of this file.
+class GradeReporter : public doctest::IReporter {
+  public:
+    explicit GradeReporter(const doctest::ContextOptions& options)
+        : out_(*options.cout) {}
+
+    void report_query(const doctest::QueryData& query) override {
+        // With --list-test-cases: every test case with its declared points.
+        for (unsigned i = 0; i < query.num_data; ++i) {
+            const Declared d = parse_description(query.data[i]->m_description);
+            out_ << "TEST " << d.points << ' ' << d.exercise << ' '
+                 << query.data[i]->m_name << '\n';
+        }
+    }
+
+    void test_run_start() override {}
+
+    void test_run_end(const doctest::TestRunStats&) override {
+        out_ << "TOTAL " << earned_ << '/' << declared_ << " points; " << passed_ << '/'
+             << cases_ << " test cases passed" << std::endl;
+    }
+
+    void test_case_start(const doctest::TestCaseData& test) override { current_ = &test; }
+    void test_case_reenter(const doctest::TestCaseData&) override {}
+
+    void test_case_end(const doctest::CurrentTestCaseStats& stats) override {
+        line(stats.testCaseSuccess ? "PASS" : "FAIL", *current_, stats.testCaseSuccess);
+    }
+
+    void test_case_exception(const doctest::TestCaseException&) override {}
+    void subcase_start(const doctest::SubcaseSignature&) override {}
+    void subcase_end() override {}
+    void log_assert(const doctest::AssertData&) override {}
+    void log_message(const doctest::MessageData&) override {}
+
+    void test_case_skipped(const doctest::TestCaseData& test) override {
+        line("SKIP", test, false);
+    }
+
+  private:
+    void line(const char* status, const doctest::TestCaseData& test, bool passed) {
+        const Declared d = parse_description(test.m_description);
+        const int earned = passed ? d.points : 0;
+        if (status[0] != 'S') { // a skipped test case counts in neither total
+            earned_ += earned;
+            declared_ += d.points;
+            passed_ += passed ? 1 : 0;
+            ++cases_;
+        }
+        // Flushed per line, so that a crash later in the run keeps the lines before it.
+        out_ << status << ' ' << earned << '/' << d.points << ' ' << d.exercise << ' '
+             << test.m_name << std::endl;
+    }
+
+    std::ostream& out_;
+    const doctest::TestCaseData* current_ = nullptr;
+    int earned_ = 0, declared_ = 0, passed_ = 0, cases_ = 0;
+};
+
+} // namespace
+
+REGISTER_REPORTER("grade", 1, GradeReporter);
+
+} // namespace exactpixels::testing
