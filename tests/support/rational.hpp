@@ -21,12 +21,13 @@
 
 namespace exactpixels::testing {
 
-/// A signed 128-bit integer (a GCC/Clang extension; __extension__ keeps -Wpedantic quiet).
+/// A signed 128-bit integer (a GCC/Clang extension; __extension__ keeps -Wpedantic
+/// quiet).
 __extension__ typedef __int128 Int128;
 
 /// An exact rational number num/den over __int128, always reduced, den > 0.
 class Rational {
-public:
+  public:
     /// The integer 128-bit type both parts are stored in.
     using Int = Int128;
 
@@ -50,17 +51,22 @@ public:
         int exponent = 0;
         const double mantissa = std::frexp(value, &exponent); // value = m * 2^exponent
         // 53 bits of mantissa as an integer: value = M * 2^(exponent - 53), exactly.
-        const auto m = static_cast<std::int64_t>(std::ldexp(mantissa, 53));
+        auto m = static_cast<std::int64_t>(std::ldexp(mantissa, 53));
         int shift = exponent - 53;
-        Rational r(m);
-        const Rational two(2);
-        for (; shift > 0; --shift) {
-            r = r * two;
+        while (m != 0 && m % 2 == 0 && shift < 0) { // drop factors of 2 both sides share
+            m /= 2;
+            ++shift;
         }
-        for (; shift < 0; ++shift) {
-            r = r / two;
+        if (m == 0) {
+            return Rational();
         }
-        return r;
+        if (shift > 62 || shift < -126) {
+            throw std::overflow_error("Rational::from_double: exponent out of range");
+        }
+        if (shift >= 0) {
+            return {mul(m, Int(1) << shift), 1};
+        }
+        return {m, Int(1) << -shift};
     }
 
     /// The numerator (carries the sign).
@@ -135,7 +141,7 @@ public:
         return out;
     }
 
-private:
+  private:
     static Int mul(Int a, Int b) {
         Int r = 0;
         if (__builtin_mul_overflow(a, b, &r)) {
