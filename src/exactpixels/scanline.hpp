@@ -165,15 +165,6 @@ inline void check_scanline_input(const std::array<FixedPoint2, 3>& v,
     }
 }
 
-/// floor(n / d) for d > 0, exact for negative n too.
-constexpr std::int64_t floor_div(std::int64_t n, std::int64_t d) {
-    return n / d - ((n % d != 0) && (n < 0));
-}
-/// ceil(n / d) for d > 0, exact for negative n too.
-constexpr std::int64_t ceil_div(std::int64_t n, std::int64_t d) {
-    return -floor_div(-n, d);
-}
-
 //> fixed-edge-walker
 /// One edge of a snapped triangle walked down the rows, in integers only. On every row
 /// it holds x_first = ceil((x_edge - 1/2) / 1 px) exactly, the first column whose centre
@@ -213,6 +204,15 @@ struct FixedEdgeWalker {
         step_whole = floor_div(subpixel_scale * dx, denominator);
         step_part = subpixel_scale * dx - step_whole * denominator;
     }
+    /// floor(n / d) for d > 0, exact for negative n too (C++ division truncates).
+    static constexpr std::int64_t floor_div(std::int64_t n, std::int64_t d) {
+        return n / d - ((n % d != 0) && (n < 0));
+    }
+    /// ceil(n / d) for d > 0, exact for negative n too.
+    static constexpr std::int64_t ceil_div(std::int64_t n, std::int64_t d) {
+        return -floor_div(-n, d);
+    }
+
     /// Moves to the next row, keeping x_first exact.
     void step() {
         x_first += step_whole;
