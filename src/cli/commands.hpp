@@ -17,4 +17,7 @@ void add_pattern_command(CLI::App& app, int& exit_code);
 /// input and prints how many triangles cover each pixel centre (chapter 2).
 void add_coverage_command(CLI::App& app, int& exit_code);
 
+/// Registers `exactpixels render`: renders a chapter 7 scene file to a PNG.
+void add_render_command(CLI::App& app, int& exit_code);
+
 } // namespace exactpixels::cli

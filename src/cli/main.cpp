@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
     int exit_code = 0;
     exactpixels::cli::add_pattern_command(app, exit_code);
     exactpixels::cli::add_coverage_command(app, exit_code);
+    exactpixels::cli::add_render_command(app, exit_code);
 
     CLI11_PARSE(app, argc, argv);
     if (app.get_subcommands().empty()) {

@@ -1,0 +1,65 @@
+#include "commands.hpp"
+
+#include "exactpixels/error.hpp"
+#include "exactpixels/png.hpp"
+#include "exactpixels/scene_loader.hpp"
+#include "exactpixels/scene_renderer.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+namespace exactpixels::cli {
+
+//> render-command
+void add_render_command(CLI::App& app, int& exit_code) {
+    struct Options {
+        std::string scene;  // empty: the first shipped scene
+        std::string output; // empty: the scene's name with .png
+        bool report = false;
+        bool check = false;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App* command = app.add_subcommand(
+        "render", "Render a TOML scene file (chapter 7) to a PNG, running only the "
+                  "stages the scene calls for");
+    command->add_option("scene", options->scene,
+                        "Scene file (default: the first scene shipped with chapter 7)");
+    command->add_option("-o,--output", options->output,
+                        "PNG file to write (default: SCENE-NAME.png)");
+    command->add_flag("--report", options->report,
+                      "Print what ran: triangles, pixels, divides and time per stage");
+    command->add_flag("--check", options->check,
+                      "Also render the exact reference and print the texel error");
+    command->callback([options, &exit_code] {
+        try {
+            const std::filesystem::path scene_path =
+                options->scene.empty() ? shipped_scenes().front()
+                                       : std::filesystem::path(options->scene);
+            const Scene scene = load_scene(scene_path); // Error: file:line:column: key
+            const RenderResult result = render_scene(scene);
+            if (options->report) {
+                std::fputs(format_report(result.report).c_str(), stdout);
+            }
+            if (options->check) {
+                const TexelError e = check_against_exact(scene);
+                fmt::print("texel error against exact: worst {:.6f}, mean {:.6f} over {} "
+                           "pixels\n",
+                           e.worst, e.mean, e.pixels);
+            }
+            const std::filesystem::path output =
+                options->output.empty() ? std::filesystem::path(scene_path.stem().string() + ".png")
+                                        : std::filesystem::path(options->output);
+            write_png(output, result.image); // all or nothing
+            fmt::print("wrote {}\n", output.string());
+        } catch (const Error& error) {
+            fmt::print(stderr, "exactpixels render: {}\n", error.what());
+            exit_code = exit_bad_input;
+        }
+    });
+}
+//< render-command
+
+} // namespace exactpixels::cli

@@ -1,0 +1,124 @@
+#include "exactpixels/scene_pipeline.hpp"
+
+#include "exactpixels/perspective_error.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace exactpixels {
+
+MeshStages plan_mesh(const SceneMesh& mesh) {
+    MeshStages stages;
+    stages.texture = mesh.texture.has_value();
+    stages.colour = mesh.vertex_colours;
+    stages.tint = !mesh.vertex_colours && mesh.colour != Colour{1.0, 1.0, 1.0};
+    return stages;
+}
+
+bool constant_depth(double w0, double w1, double w2) {
+    return w0 == w1 && w1 == w2;
+}
+
+//> quadratic-bound
+double quadratic_error_bound(double r) {
+    assert(r > 0.0);
+    // |t (t - 1/2) (1 - t)| <= sqrt 3 / 36 on [0, 1], and r - (r - 1) t >= min(r, 1).
+    const double peak = std::sqrt(3.0) / 36.0;
+    return 2.0 * peak * (r - 1.0) * (r - 1.0) / ((r + 1.0) * std::min(r, 1.0));
+}
+//< quadratic-bound
+
+namespace {
+
+/// The exact values at both ends, the depth ratio r = w(k1) / w(k0) and the extent.
+struct Piece {
+    double r;      // depth ratio, > 0
+    double extent; // the larger of |u(k1) - u(k0)| and |v(k1) - v(k0)|, texels
+};
+
+Piece piece(const PerspectiveSpan<double>& s, int k0, int k1) {
+    const UV<double> a = exact_at(s, k0), b = exact_at(s, k1);  // two divides
+    const double q0 = s.one_w + k0 * s.done_w, q1 = s.one_w + k1 * s.done_w;
+    return {q0 / q1, std::max(std::abs(b.u - a.u), std::abs(b.v - a.v))}; // one more
+}
+
+constexpr long long divides_per_bound = 3;
+
+} // namespace
+
+double chord_error_bound(const PerspectiveSpan<double>& s, int k0, int k1) {
+    const Piece p = piece(s, k0, k1);
+    return affine_error_bound(p.r) * p.extent;
+}
+
+double parabola_error_bound(const PerspectiveSpan<double>& s, int k0, int k1) {
+    const Piece p = piece(s, k0, k1);
+    return quadratic_error_bound(p.r) * p.extent;
+}
+
+//> choose-span-mapper
+AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget) {
+    assert(budget > 0.0 && s.count >= 1);
+    const int last = s.count - 1;
+    AutoChoice choice{{MapperKind::exact, 2}, 0};
+    // Subdivided pieces of n pixels: the worst piece is at one end of the span, where
+    // the depth ratio and the texel extent are both largest (@eq:worst-piece).
+    const auto pieces_fit = [&](int n) {
+        choice.divides += divides_per_bound;
+        if (n >= last) {
+            return chord_error_bound(s, 0, last) <= budget;
+        }
+        choice.divides += divides_per_bound;
+        return chord_error_bound(s, 0, n) <= budget &&
+               chord_error_bound(s, last - n, last) <= budget;
+    };
+    const long long exact_cost = mapper_divides({MapperKind::exact, 2}, s.count);
+    bool quadratic_tried = false;
+    for (int n = std::max(s.count, 2); n >= 2; n = (n + 1) / 2) {
+        const SpanMapper subdivided{MapperKind::subdivided, n};
+        const SpanMapper quadratic{MapperKind::quadratic, 2};
+        if (mapper_divides(subdivided, s.count) >= exact_cost) {
+            break;
+        }
+        if (!quadratic_tried &&
+            mapper_divides(quadratic, s.count) <= mapper_divides(subdivided, s.count)) {
+            quadratic_tried = true;
+            choice.divides += divides_per_bound;
+            if (parabola_error_bound(s, 0, last) <= budget) {
+                choice.mapper = quadratic;
+                return choice;
+            }
+        }
+        if (pieces_fit(n)) {
+            choice.mapper = subdivided;
+            return choice;
+        }
+        if (n == 2) {
+            break;
+        }
+    }
+    return choice; // exact: nothing cheaper is within the budget
+}
+//< choose-span-mapper
+
+//> mapper-divides
+long long mapper_divides(SpanMapper mapper, int count) {
+    const long long pieces = (count + mapper.span - 1) / mapper.span;
+    switch (mapper.kind) {
+    case MapperKind::exact:
+        return count; // one per pixel
+    case MapperKind::affine:
+        return 0;
+    case MapperKind::subdivided:
+        return 1 + 3 * pieces; // the first pixel, then each piece's end and 2 slopes
+    case MapperKind::quadratic:
+        return 10; // 2 ends, 2 depths, 3 per coefficient pair (u and v)
+    case MapperKind::quadratic_subdivided:
+        return 10 * pieces;
+    }
+    return 0;
+}
+//< mapper-divides
+
+} // namespace exactpixels

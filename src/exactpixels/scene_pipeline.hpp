@@ -1,0 +1,77 @@
+// scene_pipeline.hpp: which stages a mesh needs, and which mapper `auto` picks for a span.
+//
+// Usage:
+//   MeshStages stages = plan_mesh(scene, mesh);          // what this mesh pays for
+//   SpanMapper m = choose_span_mapper(span, 0.5);        // auto: cheapest within 0.5 texel
+//   long long d = mapper_divides(m, span.count);         // divides the mapper performs
+//
+// A stage runs only when the mesh calls for it (chapter 7, @sec:only-what-is-needed):
+// no texture, no texture coordinates and no sampling; no vertex colours, no colour
+// interpolation; depth w constant over a triangle, the affine mapper, which is exact
+// there and divides nothing; every corner in front of the near plane, no clipping.
+// Spans are chapter 3's PerspectiveSpan: u/w, v/w and 1/w at the first pixel centre and
+// their change per pixel; errors are in texels of texture coordinate.
+#pragma once
+
+#include "exactpixels/scene.hpp"
+#include "exactpixels/span_mappers.hpp"
+#include "exactpixels/texture_mapper.hpp"
+
+namespace exactpixels {
+
+/// The stages a mesh's pipeline is built from.
+struct MeshStages {
+    bool texture = false; ///< texture coordinates are interpolated and sampled
+    bool colour = false;  ///< vertex colours are interpolated
+    bool tint = false;    ///< a flat colour other than white multiplies the texels
+};
+
+/// The stages `mesh` calls for (the per-triangle choices, perspective or not and
+/// clipping or not, are made per triangle by the renderer).
+MeshStages plan_mesh(const SceneMesh& mesh);
+
+/// A mapper for one span: chapter 3's kind and its piece length.
+struct SpanMapper {
+    MapperKind kind = MapperKind::exact; ///< which mapper
+    int span = 16;                       ///< pixels per piece (subdivided kinds)
+    /// Mappers are equal when kind and piece length are.
+    friend bool operator==(const SpanMapper&, const SpanMapper&) = default;
+};
+
+/// True when the three depths are equal: u and v are then linear on screen and the
+/// affine mapper is exact (@eq:constant-w).
+bool constant_depth(double w0, double w1, double w2);
+
+/// The worst error of the quadratic mapper over a span of depth ratio r, as a fraction
+/// of the span's texel extent: the bound of @eq:quadratic-bound,
+/// (2 sqrt 3 / 36) (r - 1)^2 / ((r + 1) min(r, 1)). r > 0. Never below the true worst
+/// error (quadratic_error_max of chapter 3).
+double quadratic_error_bound(double r);
+
+/// The worst texel error of the chord from pixel k0 to pixel k1 of the span (the exact
+/// values at both ends joined by a straight line), from chapter 3's affine bound
+/// (@eq:affine-bound): the larger of the bounds for u and for v.
+double chord_error_bound(const PerspectiveSpan<double>& s, int k0, int k1);
+
+/// The same for Pursey's parabola from pixel k0 to pixel k1 (@eq:quadratic-bound).
+double parabola_error_bound(const PerspectiveSpan<double>& s, int k0, int k1);
+
+/// The result of the auto choice for one span: the mapper and the divides spent
+/// choosing it (the bounds need the exact values at the ends).
+struct AutoChoice {
+    SpanMapper mapper;         ///< the cheapest mapper within the budget
+    long long divides = 0;     ///< divides the choice itself performed
+};
+
+/// `auto` for one span whose depth varies: the mapper with the fewest divides whose
+/// derived error bound is within `budget` texels, trying in order the chord (one
+/// subdivided piece), the quadratic, subdivided pieces of halving length, and exact.
+/// budget > 0.
+AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget);
+
+/// How many divides chapter 3's mapper performs on a span of `count` pixels (the same
+/// for every precision): exact count; affine 0; subdivided 1 + 3 P; quadratic 10;
+/// quadratic subdivided 10 P; P = ceil(count / span) pieces (@eq:divides).
+long long mapper_divides(SpanMapper mapper, int count);
+
+} // namespace exactpixels

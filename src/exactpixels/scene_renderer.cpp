@@ -1,0 +1,439 @@
+#include "exactpixels/scene_renderer.hpp"
+
+#include "exactpixels/error.hpp"
+#include "exactpixels/fixed_point.hpp"
+#include "exactpixels/gradients.hpp"
+#include "exactpixels/rounding.hpp"
+#include "exactpixels/scanline.hpp"
+#include "exactpixels/scene_pipeline.hpp"
+#include "exactpixels/span_mappers.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+namespace exactpixels {
+
+long long RenderReport::divides() const {
+    long long total = auto_choice.divides;
+    for (const StageCounter& m : mappers) {
+        total += m.divides;
+    }
+    return total;
+}
+
+const char* mapper_name(MapperKind kind) {
+    switch (kind) {
+    case MapperKind::exact:
+        return "exact";
+    case MapperKind::affine:
+        return "affine";
+    case MapperKind::subdivided:
+        return "subdivided";
+    case MapperKind::quadratic:
+        return "quadratic";
+    case MapperKind::quadratic_subdivided:
+        return "quadratic:N";
+    }
+    return "?";
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The camera's axes in world space (@eq:look-at).
+struct CameraFrame {
+    glm::dvec3 eye, right, up, forward;
+};
+
+CameraFrame camera_frame(const SceneCamera& camera) {
+    const glm::dvec3 forward = glm::normalize(camera.target - camera.position);
+    const glm::dvec3 right = glm::normalize(glm::cross(camera.up, forward));
+    return {camera.position, right, glm::cross(forward, right), forward};
+}
+
+/// A corner in view space with what it carries.
+struct ViewVertex {
+    glm::dvec3 position; // x right, y up, z depth
+    TexCoord uv;
+    Colour colour;
+};
+
+//> project-vertex
+/// View space to screen: pixels (origin top-left, y down) and the depth w.
+TexturedVertex project_vertex(const Scene& scene, const ViewVertex& v) {
+    const Point2 centre{0.5 * scene.width, 0.5 * scene.height};
+    if (scene.camera.projection == Projection::orthographic) {
+        const double scale = scene.height / scene.camera.view_height; // px per unit
+        return {centre + scale * Point2{v.position.x, -v.position.y}, 1.0, v.uv};
+    }
+    const double half_angle = 0.5 * scene.camera.fov_degrees * std::acos(-1.0) / 180.0;
+    const double focal = 0.5 * scene.height / std::tan(half_angle); // px per unit x/z
+    const double z = v.position.z;
+    return {centre + focal * Point2{v.position.x / z, -v.position.y / z}, z, v.uv};
+}
+//< project-vertex
+
+/// A value linear on screen: its value at the first corner and its gradient.
+struct Plane {
+    Point2 origin;
+    double value;
+    Gradient<double> g;
+    double at(double x, double y) const {
+        return value + g.dx * (x - origin.x) + g.dy * (y - origin.y);
+    }
+};
+
+Plane plane(const std::array<Point2, 3>& p, const std::array<double, 3>& c) {
+    return {p[0], c[0], gradient_closed_form<double>(p, c)};
+}
+
+template <class Real> PerspectiveSpan<Real> as_real(const PerspectiveSpan<double>& s) {
+    return {Real(s.u_w),  Real(s.v_w),    Real(s.one_w), Real(s.du_w),
+            Real(s.dv_w), Real(s.done_w), s.count};
+}
+template <class Real> AffineSpan<Real> as_real(const AffineSpan<double>& s) {
+    return {Real(s.u), Real(s.v), Real(s.du), Real(s.dv), s.count};
+}
+
+/// Runs chapter 3's mapper `m` on one span in Real arithmetic.
+template <class Real, class Emit>
+void run_real(SpanMapper m, const PerspectiveSpan<Real>& ps, const AffineSpan<Real>& as,
+              Emit&& emit) {
+    switch (m.kind) {
+    case MapperKind::exact:
+        return map_span_exact(ps, emit);
+    case MapperKind::affine:
+        return map_span_affine(as, emit);
+    case MapperKind::subdivided:
+        return map_span_subdivided(ps, m.span, emit);
+    case MapperKind::quadratic:
+        return map_span_quadratic(ps, emit);
+    case MapperKind::quadratic_subdivided:
+        return map_span_quadratic_subdivided(ps, m.span, emit);
+    }
+}
+
+/// Runs chapter 3's mapper `m` on one span with a 16.16 inner loop.
+template <class Emit>
+void run_fixed(SpanMapper m, const PerspectiveSpan<double>& ps,
+               const AffineSpan<double>& as, Emit&& emit) {
+    switch (m.kind) {
+    case MapperKind::exact:
+        return map_span_exact_fixed(ps, emit);
+    case MapperKind::affine:
+        return map_span_affine_fixed(as, emit);
+    case MapperKind::subdivided:
+        return map_span_subdivided_fixed(ps, m.span, emit);
+    case MapperKind::quadratic:
+        return map_span_quadratic_fixed(ps, emit);
+    case MapperKind::quadratic_subdivided:
+        return map_span_quadratic_subdivided_fixed(ps, m.span, emit);
+    }
+}
+
+Rgba8 multiply(Rgba8 texel, const Colour& c) {
+    return to_rgba8(Colour{texel.r / 255.0 * c.r, texel.g / 255.0 * c.g, texel.b / 255.0 * c.b});
+}
+
+/// Everything the per-triangle code needs about the mesh and the frame.
+struct MeshContext {
+    const Scene& scene;
+    const SceneMesh& mesh;
+    MeshStages stages;
+    const Texture* texture;
+    Framebuffer& frame;
+    TexelMap* coordinates;
+    RenderReport& report;
+    std::vector<Rgba8> row; // one span of shaded pixels
+};
+
+//> draw-triangle
+/// Rasterizes one projected triangle and runs the mesh's stages on its spans.
+void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
+                   const std::array<Colour, 3>& colours) {
+    RenderReport& report = m.report;
+    const Clock::time_point start = Clock::now();
+    std::array<FixedPoint2, 3> snapped{};
+    std::array<Point2, 3> p{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        snapped[k] = snap_in_range(tv[k].position); // Error beyond +-2^20 px
+        p[k] = to_pixels(snapped[k]); // the planes run through the snapped corners
+    }
+    const auto plane_of = [&](auto value) {
+        return plane(p, {value(tv[0], 0), value(tv[1], 1), value(tv[2], 2)});
+    };
+    // Texture stage setup: only for textured meshes.
+    const bool affine_exact = constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:constant-w
+    const RenderOptions& options = m.scene.options;
+    MapperSettings settings{.kind = options.mapper.kind,
+                            .span = options.mapper.span,
+                            .precision = options.precision,
+                            .rounding = {},
+                            .wrap = m.mesh.wrap};
+    Plane u_w{}, v_w{}, one_w{}, u{}, v{};
+    TexelRounding perspective_rounding{}, affine_rounding{};
+    if (m.stages.texture) {
+        check_textured_triangle(tv, settings); // ranges of chapter 3's mappers
+        u_w = plane_of([](const TexturedVertex& t, int) { return t.uv.x / t.w; });
+        v_w = plane_of([](const TexturedVertex& t, int) { return t.uv.y / t.w; });
+        one_w = plane_of([](const TexturedVertex& t, int) { return 1.0 / t.w; });
+        u = plane_of([](const TexturedVertex& t, int) { return t.uv.x; });
+        v = plane_of([](const TexturedVertex& t, int) { return t.uv.y; });
+        if (options.rounding) { // chapter 4: ties go right, or down
+            perspective_rounding = choose_rounding(tv, MapperKind::exact);
+            affine_rounding = choose_rounding(tv, MapperKind::affine);
+        }
+        report.texture.triangles += 1;
+    }
+    // Colour stage setup: only for meshes with vertex colours.
+    std::array<Plane, 3> rgb{};
+    if (m.stages.colour) {
+        for (int c = 0; c < 3; ++c) {
+            rgb[static_cast<std::size_t>(c)] = plane_of(
+                [&](const TexturedVertex&, int k) { return colours[std::size_t(k)][c]; });
+        }
+        report.colour.triangles += 1;
+    }
+    const Rgba8 flat = to_rgba8(m.mesh.colour);
+    if (!m.stages.texture && !m.stages.colour) {
+        report.flat.triangles += 1;
+    }
+    std::array<bool, 5> mapper_used{};
+    double shading_seconds = 0.0;
+    report.raster.triangles += 1;
+
+    scanline_spans(snapped, Viewport{m.frame.width(), m.frame.height()}, [&](Span s) {
+        const int count = s.x_end - s.x_begin;
+        const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
+        report.raster.spans += 1;
+        report.raster.pixels += count;
+        m.row.assign(static_cast<std::size_t>(count), flat);
+        //> texture-stage
+        if (m.stages.texture) {
+            const Clock::time_point t0 = Clock::now();
+            const PerspectiveSpan<double> ps{u_w.at(x, y),  v_w.at(x, y),   one_w.at(x, y),
+                                             u_w.g.dx,      v_w.g.dx,       one_w.g.dx,
+                                             count};
+            const AffineSpan<double> as{u.at(x, y), v.at(x, y), u.g.dx, v.g.dx, count};
+            SpanMapper mapper{options.mapper.kind, options.mapper.span};
+            if (affine_exact && (options.mapper.automatic ||
+                                 options.mapper.kind == MapperKind::affine)) {
+                mapper = {MapperKind::affine, 2}; // exact here, and no divide
+            } else if (options.mapper.automatic) {
+                const AutoChoice choice = choose_span_mapper(ps, options.budget);
+                mapper = choice.mapper;
+                report.auto_choice.spans += 1;
+                report.auto_choice.pixels += count;
+                report.auto_choice.divides += choice.divides;
+            }
+            const TexelRounding r =
+                mapper.kind == MapperKind::affine ? affine_rounding : perspective_rounding;
+            const auto texel = [&](int k, int i, int j, double uu, double vv) {
+                m.row[static_cast<std::size_t>(k)] = fetch_texel(*m.texture, i, j, m.mesh.wrap);
+                if (m.coordinates != nullptr) {
+                    const std::size_t at = static_cast<std::size_t>(s.y) *
+                                               static_cast<std::size_t>(m.frame.width()) +
+                                           static_cast<std::size_t>(s.x_begin + k);
+                    m.coordinates->covered[at] = true;
+                    m.coordinates->i[at] = i;
+                    m.coordinates->j[at] = j;
+                    m.coordinates->u[at] = uu;
+                    m.coordinates->v[at] = vv;
+                }
+            };
+            const auto real = [&](int k, auto uu, auto vv) {
+                texel(k, real_texel_index(uu, r.u_bias), real_texel_index(vv, r.v_bias),
+                      double(uu), double(vv));
+            };
+            switch (options.precision) {
+            case Precision::float32:
+                run_real(mapper, as_real<float>(ps), as_real<float>(as), real);
+                break;
+            case Precision::float64:
+                run_real(mapper, ps, as, real);
+                break;
+            case Precision::fixed:
+                run_fixed(mapper, ps, as, [&](int k, std::int32_t U, std::int32_t V) {
+                    texel(k, fixed_texel_index(U, r.u_bias), fixed_texel_index(V, r.v_bias),
+                          double(U) / texel_scale, double(V) / texel_scale);
+                });
+                break;
+            }
+            StageCounter& used = report.mappers[static_cast<std::size_t>(mapper.kind)];
+            const long long divides = mapper_divides(mapper, count);
+            used.triangles += mapper_used[static_cast<std::size_t>(mapper.kind)] ? 0 : 1;
+            mapper_used[static_cast<std::size_t>(mapper.kind)] = true;
+            used.spans += 1;
+            used.pixels += count;
+            used.divides += divides;
+            const double spent = seconds_since(t0);
+            used.seconds += spent;
+            report.texture.spans += 1;
+            report.texture.pixels += count;
+            report.texture.divides += divides;
+            report.texture.seconds += spent;
+            shading_seconds += spent;
+        }
+        //< texture-stage
+        //> colour-stage
+        if (m.stages.colour) { // colours are linear on screen: one add per channel
+            const Clock::time_point t0 = Clock::now();
+            Colour c{rgb[0].at(x, y), rgb[1].at(x, y), rgb[2].at(x, y)};
+            const Colour dc{rgb[0].g.dx, rgb[1].g.dx, rgb[2].g.dx};
+            for (Rgba8& pixel : m.row) {
+                pixel = m.stages.texture ? multiply(pixel, c) : to_rgba8(c);
+                c += dc;
+            }
+            report.colour.spans += 1;
+            report.colour.pixels += count;
+            const double spent = seconds_since(t0);
+            report.colour.seconds += spent;
+            shading_seconds += spent;
+        } else if (m.stages.texture && m.stages.tint) {
+            for (Rgba8& pixel : m.row) {
+                pixel = multiply(pixel, m.mesh.colour);
+            }
+        } else if (!m.stages.texture) {
+            report.flat.spans += 1;
+            report.flat.pixels += count;
+        }
+        //< colour-stage
+        for (int k = 0; k < count; ++k) {
+            m.frame.at(s.x_begin + k, s.y) = m.row[static_cast<std::size_t>(k)];
+        }
+        if (m.coordinates != nullptr && !m.stages.texture) {
+            for (int k = 0; k < count; ++k) { // an untextured pixel now
+                m.coordinates->covered[static_cast<std::size_t>(s.y) *
+                                           static_cast<std::size_t>(m.frame.width()) +
+                                       static_cast<std::size_t>(s.x_begin + k)] = false;
+            }
+        }
+    });
+    report.raster.seconds += seconds_since(start) - shading_seconds;
+}
+//< draw-triangle
+
+/// Twice the signed screen area of the triangle; negative when it faces the camera
+/// (its corners run counter-clockwise as seen from its front).
+double screen_area2(const std::array<TexturedVertex, 3>& t) {
+    const Point2 a = t[1].position - t[0].position, b = t[2].position - t[0].position;
+    return a.x * b.y - a.y * b.x;
+}
+
+} // namespace
+
+//> render-scene
+RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
+    const Clock::time_point start = Clock::now();
+    RenderResult result{Framebuffer(scene.width, scene.height, to_rgba8(scene.background)),
+                        {}};
+    RenderReport& report = result.report;
+    const CameraFrame camera = camera_frame(scene.camera);
+    const bool perspective = scene.camera.projection == Projection::perspective;
+    for (const SceneMesh& mesh : scene.meshes) {
+        MeshContext m{scene,        mesh,        plan_mesh(mesh),
+                      mesh.texture ? &scene.textures[*mesh.texture].texture : nullptr,
+                      result.image, coordinates, report,
+                      {}};
+        try {
+            for (const std::array<SceneVertex, 3>& triangle : mesh.triangles) {
+                const Clock::time_point t0 = Clock::now();
+                std::array<ViewVertex, 3> view{};
+                bool in_front = true;
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const glm::dvec3 d = triangle[k].position - camera.eye;
+                    view[k] = {{glm::dot(d, camera.right), glm::dot(d, camera.up),
+                                glm::dot(d, camera.forward)},
+                               triangle[k].uv,
+                               triangle[k].colour};
+                    in_front = in_front && view[k].position.z >= scene.camera.near;
+                }
+                report.geometry.triangles += 1;
+                if (perspective && !in_front) {
+                    // Chapter 6's near-plane clipping belongs here; until it is
+                    // integrated, a triangle that crosses the near plane is skipped.
+                    report.clipping.triangles += 1;
+                    report.geometry.seconds += seconds_since(t0);
+                    continue;
+                }
+                std::array<TexturedVertex, 3> tv{};
+                for (std::size_t k = 0; k < 3; ++k) {
+                    tv[k] = project_vertex(scene, view[k]);
+                }
+                report.geometry.seconds += seconds_since(t0);
+                if (mesh.cull_back && screen_area2(tv) >= 0.0) {
+                    report.culling.triangles += 1;
+                    continue;
+                }
+                draw_triangle(m, tv, {view[0].colour, view[1].colour, view[2].colour});
+            }
+        } catch (const Error& error) {
+            throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
+        }
+    }
+    report.seconds = seconds_since(start);
+    return result;
+}
+//< render-scene
+
+std::string format_report(const RenderReport& r) {
+    std::string out = fmt::format("{:<18} {:>10} {:>8} {:>10} {:>10} {:>10}\n", "stage",
+                                  "triangles", "spans", "pixels", "divides", "ms");
+    const auto line = [&](const std::string& name, const StageCounter& c, bool always) {
+        if (always || c.triangles > 0 || c.spans > 0) {
+            out += fmt::format("{:<18} {:>10} {:>8} {:>10} {:>10} {:>10.3f}\n", name,
+                               c.triangles, c.spans, c.pixels, c.divides, 1e3 * c.seconds);
+        }
+    };
+    line("geometry", r.geometry, true);
+    line("clipping", r.clipping, true);
+    line("culling", r.culling, false);
+    line("raster", r.raster, true);
+    line("flat colour", r.flat, true);
+    line("vertex colour", r.colour, true);
+    line("texture", r.texture, true);
+    line("auto choice", r.auto_choice, false);
+    for (std::size_t k = 0; k < r.mappers.size(); ++k) {
+        line(fmt::format("  mapper {}", mapper_name(static_cast<MapperKind>(k))),
+             r.mappers[k], false);
+    }
+    out += fmt::format("total: {} divides, {:.3f} ms\n", r.divides(), 1e3 * r.seconds);
+    return out;
+}
+
+TexelError compare_texel_maps(const TexelMap& map, const TexelMap& reference) {
+    assert(map.width == reference.width && map.height == reference.height);
+    TexelError e;
+    double sum = 0.0;
+    for (std::size_t k = 0; k < map.covered.size(); ++k) {
+        if (map.covered[k] && reference.covered[k]) {
+            const double d = std::max(std::abs(map.u[k] - reference.u[k]),
+                                      std::abs(map.v[k] - reference.v[k]));
+            e.worst = std::max(e.worst, d);
+            sum += d;
+            e.pixels += 1;
+        }
+    }
+    e.mean = e.pixels > 0 ? sum / double(e.pixels) : 0.0;
+    return e;
+}
+
+TexelError check_against_exact(const Scene& scene) {
+    TexelMap map(scene.width, scene.height), reference(scene.width, scene.height);
+    render_scene(scene, &map);
+    Scene exact = scene;
+    exact.options.mapper = {false, MapperKind::exact, 16};
+    exact.options.precision = Precision::float64;
+    render_scene(exact, &reference);
+    return compare_texel_maps(map, reference);
+}
+
+} // namespace exactpixels
