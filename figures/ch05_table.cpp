@@ -1,0 +1,233 @@
+// Chapter 5's tables and plot data, from the benchmark run of bench_ch05_mappers.
+// Usage: fig_ch05_table FIGURE_DIR
+// Reads FIGURE_DIR/bench_ch05_mappers.csv (written by the book build's quick benchmark
+// run, or by a full run) and writes into FIGURE_DIR:
+//   ch05_table.md          one table per scene: time per pixel, ratio to the affine
+//                          fixed-point mapper of the same run, worst and mean texel error,
+//                          share of differing texels, and whether it is on the front
+//   ch05_table_picks.md    the floor split by the depth ratio of each pixel's span: the
+//                          cheapest mapper whose worst error stays under half a texel
+//   ch05_table_targets.md  the two speed targets of the chapter, checked
+//   ch05_table_SCENE.dat   ratio, worst, mean error, front flag, name (for gnuplot)
+// Times come from the CSV; every error is deterministic (the benchmark's counters, or
+// recomputed here for the picks table).
+#include "exactpixels/accuracy_scenes.hpp"
+#include "exactpixels/error.hpp"
+#include "exactpixels/mapper_error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace exactpixels;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Row {
+    std::string mapper;   // display name
+    double ns_per_px = 0; // cpu time per pixel write
+    double ratio = 0;     // ns_per_px / the affine fixed mapper's
+    double worst = 0, mean = 0, differing = 0;
+    bool front = false; // on the Pareto front of (ratio, worst)
+};
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> fields;
+    std::string field;
+    std::istringstream in(line);
+    while (std::getline(in, field, ',')) {
+        field.erase(std::remove(field.begin(), field.end(), '"'), field.end());
+        fields.push_back(field);
+    }
+    return fields;
+}
+
+/// name -> column -> value, from Google Benchmark's CSV (context lines skipped).
+std::map<std::string, std::map<std::string, std::string>> read_csv(const fs::path& path) {
+    std::ifstream in(path);
+    if (!in) {
+        throw Error(fmt::format("{}: cannot read the benchmark results (run the "
+                                "bench-quick target first)",
+                                path.string()));
+    }
+    std::map<std::string, std::map<std::string, std::string>> rows;
+    std::vector<std::string> header;
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("name,", 0) == 0) {
+            header = split(line);
+            continue;
+        }
+        if (header.empty()) {
+            continue;
+        }
+        const std::vector<std::string> f = split(line);
+        for (std::size_t k = 1; k < f.size() && k < header.size(); ++k) {
+            rows[f[0]][header[k]] = f[k];
+        }
+    }
+    if (rows.empty()) {
+        throw Error(fmt::format("{}: no benchmark rows", path.string()));
+    }
+    return rows;
+}
+
+double number(const std::map<std::string, std::string>& row, const std::string& column,
+              const std::string& name) {
+    const auto at = row.find(column);
+    if (at == row.end() || at->second.empty()) {
+        throw Error(fmt::format("bench_ch05_mappers.csv: run {} has no column {}", name,
+                                column));
+    }
+    return std::stod(at->second);
+}
+
+//> pareto-front
+/// Marks the rows no other row beats in both time and worst error.
+void mark_front(std::vector<Row>& rows) {
+    for (Row& a : rows) {
+        a.front = std::none_of(rows.begin(), rows.end(), [&](const Row& b) {
+            return b.ratio <= a.ratio && b.worst <= a.worst &&
+                   (b.ratio < a.ratio || b.worst < a.worst);
+        });
+    }
+}
+//< pareto-front
+
+std::string texels(double e) {
+    return e == 0.0 ? "0" : e < 1e-3 ? fmt::format("{:.1e}", e) : fmt::format("{:.3f}", e);
+}
+
+void write(const fs::path& path, const std::string& text) {
+    std::ofstream out(path);
+    out << text;
+    if (!out) {
+        throw Error(fmt::format("{}: cannot write", path.string()));
+    }
+}
+
+} // namespace
+
+int main(int argc, char** argv) try {
+    const fs::path folder = argc > 1 ? argv[1] : ".";
+    const auto csv = read_csv(folder / "bench_ch05_mappers.csv");
+    const std::vector<AccuracyScene> scenes = accuracy_scenes();
+    const std::vector<MapperConfig> mappers = accuracy_mappers();
+    std::map<std::string, std::vector<Row>> by_scene;
+    std::string table, targets;
+    for (const AccuracyScene& scene : scenes) {
+        std::vector<Row>& rows = by_scene[scene.name];
+        for (const MapperConfig& m : mappers) {
+            const std::string name = benchmark_name(scene, m);
+            const auto at = csv.find(name);
+            if (at == csv.end()) {
+                throw Error(fmt::format("bench_ch05_mappers.csv: no run named {}", name));
+            }
+            rows.push_back({m.name, number(at->second, "ns_per_px", name), 0,
+                            number(at->second, "worst_texels", name),
+                            number(at->second, "mean_texels", name),
+                            number(at->second, "differing_share", name), false});
+        }
+        const double baseline = rows.front().ns_per_px; // affine fixed, same run
+        for (Row& r : rows) {
+            r.ratio = r.ns_per_px / baseline;
+        }
+        mark_front(rows);
+        const auto ratios = span_depth_ratios(scene);
+        table += fmt::format("\n: Scene \"{}\" ({} pixel writes per drawing, span depth "
+                             "ratios {:.2f} to {:.2f}).\n\n",
+                             scene.name, pixel_writes(scene), ratios[0], ratios[1]);
+        table += "| mapper | ns/px | × affine | worst (texels) | mean (texels) | "
+                 "differing | front |\n|:--|--:|--:|--:|--:|--:|:-:|\n";
+        std::string dat = "# ratio worst mean front name\n";
+        for (std::size_t k = 0; k < rows.size(); ++k) {
+            const Row& r = rows[k];
+            table += fmt::format("| {} | {:.2f} | {:.2f} | {} | {} | {:.2f} % | {} |\n",
+                                 r.mapper, r.ns_per_px, r.ratio, texels(r.worst),
+                                 texels(r.mean), 100.0 * r.differing,
+                                 r.front ? "yes" : "");
+            dat += fmt::format("{:.4f} {:.6g} {:.6g} {} \"{}\"\n", r.ratio,
+                               std::max(r.worst, 1e-6), std::max(r.mean, 1e-6),
+                               int(r.front), r.mapper);
+        }
+        write(folder / ("ch05_table_" + scene.name + ".dat"), dat);
+    }
+    write(folder / "ch05_table.md", table);
+
+    // The speed targets, on the floor: the cheapest mapper under half a texel, and the
+    // exact mapper with a float divide.
+    const std::vector<Row>& floor = by_scene.at("floor");
+    const Row* best = nullptr;
+    for (const Row& r : floor) {
+        if (r.worst < 0.5 && (best == nullptr || r.ratio < best->ratio)) {
+            best = &r;
+        }
+    }
+    const auto exact_float = std::find_if(floor.begin(), floor.end(),
+                                          [](const Row& r) { return r.mapper == "exact float"; });
+    targets += fmt::format(
+        "| target | mapper | × affine | met |\n|:--|:--|--:|:-:|\n"
+        "| cheapest with worst error under 1/2 texel on the floor: at most 1.5 | {} | "
+        "{:.2f} | {} |\n| exact mapper with a float divide: at most 3 | exact float | "
+        "{:.2f} | {} |\n",
+        best->mapper, best->ratio, best->ratio <= 1.5 ? "yes" : "no", exact_float->ratio,
+        exact_float->ratio <= 3.0 ? "yes" : "no");
+    std::string never;
+    for (std::size_t k = 0; k < mappers.size(); ++k) {
+        bool on_a_front = false;
+        for (const auto& [name, rows] : by_scene) {
+            on_a_front = on_a_front || rows[k].front;
+        }
+        if (!on_a_front) {
+            never += (never.empty() ? "" : ", ") + mappers[k].name;
+        }
+    }
+    targets += fmt::format("\nOn no scene's front in this run: {}.\n", never);
+    write(folder / "ch05_table_targets.md", targets);
+
+    // The floor split by the depth ratio of each pixel's span.
+    const AccuracyScene& floor_scene = scenes[1];
+    const std::vector<double> ratio = span_ratio_map(floor_scene);
+    TexelMap reference(floor_scene.width, floor_scene.height);
+    map_with(reference, floor_scene, reference_mapper());
+    const double bins[][2] = {{1.0, 2.0}, {2.0, 5.0}, {5.0, 10.0}, {10.0, 30.0}};
+    std::vector<TexelMap> maps;
+    for (const MapperConfig& m : mappers) {
+        maps.emplace_back(floor_scene.width, floor_scene.height);
+        map_with(maps.back(), floor_scene, m);
+    }
+    std::string picks = "| span depth ratio | pixels | cheapest under 1/2 texel | × affine "
+                        "| its worst (texels) |\n|:--|--:|:--|--:|--:|\n";
+    for (const auto& bin : bins) {
+        std::vector<char> include(ratio.size());
+        for (std::size_t k = 0; k < ratio.size(); ++k) {
+            include[k] = ratio[k] >= bin[0] && ratio[k] < bin[1];
+        }
+        std::size_t pick = mappers.size();
+        TexelError pick_error;
+        for (std::size_t k = 0; k < mappers.size(); ++k) {
+            const TexelError e = compare_texel_maps(reference, maps[k], include);
+            if (e.worst < 0.5 &&
+                (pick == mappers.size() || floor[k].ratio < floor[pick].ratio)) {
+                pick = k;
+                pick_error = e;
+            }
+        }
+        picks += fmt::format("| {:.0f} to {:.0f} | {} | {} | {:.2f} | {} |\n", bin[0],
+                             bin[1], pick_error.pixels, floor[pick].mapper,
+                             floor[pick].ratio, texels(pick_error.worst));
+    }
+    write(folder / "ch05_table_picks.md", picks);
+    std::printf("wrote ch05_table.md, ch05_table_picks.md, ch05_table_targets.md\n");
+} catch (const Error& error) {
+    std::fprintf(stderr, "fig_ch05_table: %s\n", error.what());
+    return 1;
+}
