@@ -1,0 +1,127 @@
+// Chapter 2 tests: `exactpixels coverage`, every rasterizer/precision pair, and the
+// messages and exit code for malformed input.
+#include "support/process.hpp"
+
+#include <doctest/doctest.h>
+
+#include <string>
+
+using exactpixels::testing::cli_path;
+using exactpixels::testing::run_command;
+
+namespace {
+
+// The two triangles of the absolute convention (15 and 10 pixels) and a third one
+// overlapping them, partly outside the 8 x 6 frame: its outside part is not drawn.
+const std::string input = "8 6\n"
+                          "0.5 0.5 5.5 0.5 5.5 5.5\n"
+                          "\n"
+                          "0.5 5.5 0.5 0.5 5.5 5.5\n"
+                          "3 -2 12 3 3 7.2\n";
+
+// Counted by hand (exact fractions): the square [0, 5) x [0, 5) once, plus the third
+// triangle (7.2 snaps to 1843/256): the columns x = 3 .. 7 between its upper edge
+// y = -2 + (x - 3) 5/9 and its lower edge. The centre (7.5, 0.5) lies exactly on the
+// upper edge, a right edge, so it stays out.
+const std::string expected = "1 1 1 2 2 1 1 0\n"
+                             "1 1 1 2 2 1 1 1\n"
+                             "1 1 1 2 2 1 1 1\n"
+                             "1 1 1 2 2 1 1 1\n"
+                             "1 1 1 2 2 1 1 1\n"
+                             "0 0 0 1 1 1 1 0\n";
+
+void check_pair(const std::string& options) {
+    const auto result = run_command(cli_path() + " coverage " + options, input);
+    INFO("options: " << options << "\nstderr: " << result.err);
+    CHECK(result.exit_code == 0);
+    CHECK(result.out == expected);
+    CHECK(result.err.empty());
+}
+
+void check_malformed(const std::string& text, const std::string& message) {
+    const auto result = run_command(cli_path() + " coverage", text);
+    INFO("input: " << text);
+    CHECK(result.exit_code == 2);
+    CHECK(result.out.empty());
+    CHECK(result.err.find(message) != std::string::npos);
+}
+
+} // namespace
+
+TEST_CASE("coverage: default options (edge8x8, fixed)" *
+          doctest::description("points: 1; exercise: ch02-edge-bias")) {
+    check_pair("");
+}
+
+TEST_CASE("coverage: --rasterizer scanline --precision fixed") {
+    check_pair("--rasterizer scanline --precision fixed");
+}
+
+TEST_CASE("coverage: --rasterizer scanline --precision float") {
+    check_pair("--rasterizer scanline --precision float");
+}
+
+TEST_CASE("coverage: --rasterizer edge --precision fixed" *
+          doctest::description("points: 1; exercise: ch02-edge-bias")) {
+    check_pair("--rasterizer edge --precision fixed");
+}
+
+TEST_CASE("coverage: --rasterizer edge --precision float" *
+          doctest::description("points: 1; exercise: ch02-edge-bias")) {
+    check_pair("--rasterizer edge --precision float");
+}
+
+TEST_CASE("coverage: --rasterizer edge8x8 --precision fixed" *
+          doctest::description("points: 1; exercise: ch02-edge-bias")) {
+    check_pair("--rasterizer edge8x8 --precision fixed");
+}
+
+TEST_CASE("coverage: --rasterizer edge8x8 --precision float" *
+          doctest::description("points: 1; exercise: ch02-edge-bias")) {
+    check_pair("--rasterizer edge8x8 --precision float");
+}
+
+TEST_CASE("coverage: an unknown option value is refused") {
+    const auto result = run_command(cli_path() + " coverage --rasterizer zbuffer", input);
+    CHECK(result.exit_code != 0);
+    CHECK(result.err.find("zbuffer") != std::string::npos);
+}
+
+TEST_CASE("coverage: malformed input names the line and exits with 2") {
+    SUBCASE("missing numbers") {
+        check_malformed("4 4\n0 0 3 0 3\n", "line 2: expected 6 numbers");
+    }
+    SUBCASE("too many numbers") {
+        check_malformed("4 4\n0 0 3 0 3 3 1\n", "line 2: expected 6 numbers");
+    }
+    SUBCASE("text") {
+        check_malformed("4 4\n0 0 3 0 3 3\n0 0 three 0 3 3\n", "line 3: expected a number, "
+                                                               "found 'three'");
+    }
+    SUBCASE("NaN") {
+        check_malformed("4 4\n\n0 0 3 nan 3 3\n", "line 3: 'nan' is not a finite number");
+    }
+    SUBCASE("infinity") {
+        check_malformed("4 4\n0 0 3 0 inf 3\n", "line 2: 'inf' is not a finite number");
+    }
+    SUBCASE("a short header") {
+        check_malformed("4\n0 0 3 0 3 3\n", "line 1: expected the frame size 'W H'");
+    }
+    SUBCASE("a header that is not a size") {
+        check_malformed("4 2.5\n", "line 1: frame size '2.5'");
+        check_malformed("0 3\n", "line 1: frame size '0'");
+    }
+    SUBCASE("no input at all") {
+        check_malformed("", "line 1: expected the frame size 'W H'");
+    }
+    SUBCASE("a coordinate beyond the exact range") {
+        check_malformed("4 4\n0 0 3 0 3 2000000\n",
+                        "line 2: vertex 2: coordinate 2000000 px is outside");
+    }
+}
+
+TEST_CASE("coverage: a frame with no triangles prints zeros") {
+    const auto result = run_command(cli_path() + " coverage", "3 2\n");
+    CHECK(result.exit_code == 0);
+    CHECK(result.out == "0 0 0\n0 0 0\n");
+}
