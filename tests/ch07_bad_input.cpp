@@ -1,0 +1,168 @@
+// Chapter 7 tests: every kind of bad scene is rejected with a message naming the file,
+// the line and column, and the key path; the CLI exits with 2 and writes no file.
+#include "exactpixels/error.hpp"
+#include "exactpixels/png.hpp"
+#include "exactpixels/scene_loader.hpp"
+#include "support/process.hpp"
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+using namespace exactpixels;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A scene that loads, plus one case's bad lines: `extra_image` (one line or none) goes
+/// at line 4, then the mesh, whose `extra_mesh` line is line 7 (or 8 after an extra
+/// image line).
+std::string scene_with(const std::string& extra_image, const std::string& extra_mesh) {
+    return "[image]\n"
+           "width = 16\n"
+           "height = 12\n" +
+           extra_image +
+           "[[mesh]]\n"
+           "primitive = \"triangles\"\n"
+           "positions = [[0, 0, 1], [1, 0, 1], [0, 1, 1]]\n" +
+           extra_mesh;
+}
+
+/// One bad scene: its text, and where and what the message must name.
+struct BadScene {
+    const char* what;
+    std::string text;
+    std::string where;    // "LINE:COLUMN"
+    std::string key_path; // the key path the message names
+    std::string reason;   // a word of the explanation
+};
+
+std::vector<BadScene> bad_scenes() {
+    return {
+        {"a syntax error", scene_with("width = = 3\n", ""), "4:9", "(syntax)", ""},
+        {"an unknown key", scene_with("widht = 16\n", ""), "4:1", "image.widht",
+         "unknown key"},
+        {"an unknown key in a mesh", scene_with("", "radius = 3\n"), "7:1", "mesh[0].radius",
+         "unknown key"},
+        {"a wrong type", scene_with("background = \"blue\"\n", ""), "4:14",
+         "image.background", "expected an array"},
+        {"a string for a number", scene_with("", "colour = [1, \"0\", 1]\n"), "7:14",
+         "mesh[0].colour[1]", "expected a number"},
+        {"a negative size", "[image]\nwidth = -4\n[[mesh]]\nprimitive = \"quad\"\n", "2:9",
+         "image.width", "out of range"},
+        {"a zero field of view",
+         scene_with("[camera]\nfov = 0\n", ""), "5:7", "camera.fov", "greater than 0"},
+        {"a huge image", "[image]\nwidth = 99999\n[[mesh]]\nprimitive = \"quad\"\n", "2:9",
+         "image.width",
+         "out of range"},
+        {"an image of too many pixels",
+         "[image]\nwidth = 8192\nheight = 8192\n[[mesh]]\nprimitive = \"quad\"\n", "1:1",
+         "image", "more than"},
+        {"a missing texture file",
+         scene_with("[textures.wood]\nkind = \"png\"\nfile = \"no-such-file.png\"\n", ""),
+         "6:8", "textures.wood.file", "no-such-file.png"},
+        {"a corrupt texture file",
+         scene_with("[textures.wood]\nkind = \"png\"\nfile = \"corrupt.png\"\n", ""), "6:8",
+         "textures.wood.file", "corrupt.png"},
+        {"an unknown texture name", scene_with("", "texture = \"wood\"\n"), "7:11",
+         "mesh[0].texture", "no texture named"},
+        {"a degenerate triangle",
+         "[[mesh]]\nprimitive = \"triangles\"\n"
+         "positions = [[0, 0, 1], [1, 1, 1], [2, 2, 1]]\n",
+         "1:1", "mesh[0]", "degenerate"},
+        {"a fan of zero radius",
+         "[[mesh]]\nprimitive = \"fan\"\ncentre = [0, 0, 0]\nradius = 0.0\nsegments = 8\n",
+         "4:10", "mesh[0].radius", "greater than 0"},
+        {"a NaN", scene_with("", "colour = [1, nan, 1]\n"), "7:14", "mesh[0].colour[1]",
+         "not a finite number"},
+        {"an infinity",
+         "[camera]\nposition = [0, -inf, 0]\n[[mesh]]\nprimitive = \"quad\"\n", "2:16",
+         "camera.position[1]", "not a finite number"},
+        {"a camera looking along up",
+         scene_with("[camera]\nposition = [0, -5, 0]\ntarget = [0, 0, 0]\n", ""), "4:1",
+         "camera", "up direction"},
+        {"no mesh at all", "[image]\nwidth = 8\n", "1:1", "mesh", "nothing to draw"},
+    };
+}
+
+fs::path scratch_folder(const std::string& name) {
+    auto folder = fs::temp_directory_path() /
+                  ("exactpixels-ch07-" + name + "-" + std::to_string(::getpid()));
+    fs::remove_all(folder);
+    fs::create_directories(folder);
+    std::ofstream(folder / "corrupt.png") << "\x89PNG\r\n\x1a\nthis is not a PNG";
+    return folder;
+}
+
+} // namespace
+
+TEST_CASE("every bad scene names the file, line, column and key path" *
+          doctest::description("points: 2")) {
+    const fs::path folder = scratch_folder("loader");
+    for (const BadScene& bad : bad_scenes()) {
+        INFO(bad.what);
+        try {
+            (void)parse_scene(bad.text, "bad.toml", folder);
+            FAIL("the scene loaded: ", bad.what);
+        } catch (const Error& error) {
+            const std::string message = error.what();
+            INFO(message);
+            CHECK(message.rfind("bad.toml:" + bad.where + ": " + bad.key_path + ":", 0) ==
+                  0);
+            CHECK(message.find(bad.reason) != std::string::npos);
+        }
+    }
+    fs::remove_all(folder);
+}
+
+TEST_CASE("the render command rejects each bad scene with exit code 2 and writes nothing") {
+    const fs::path folder = scratch_folder("cli");
+    int k = 0;
+    for (const BadScene& bad : bad_scenes()) {
+        INFO(bad.what);
+        const fs::path scene = folder / ("bad" + std::to_string(k) + ".toml");
+        const fs::path output = folder / ("bad" + std::to_string(k++) + ".png");
+        std::ofstream(scene) << bad.text;
+        const auto result = testing::run_command(testing::cli_path() + " render '" +
+                                                 scene.string() + "' -o '" +
+                                                 output.string() + "'");
+        INFO(result.err);
+        CHECK(result.exit_code == 2);
+        CHECK(result.err.find(scene.string() + ":" + bad.where + ": " + bad.key_path) !=
+              std::string::npos);
+        CHECK_FALSE(fs::exists(output));
+    }
+    fs::remove_all(folder);
+}
+
+TEST_CASE("a missing scene file is named, exit code 2, no output") {
+    const fs::path folder = scratch_folder("missing");
+    const auto result = testing::run_command(testing::cli_path() + " render '" +
+                                             (folder / "nowhere.toml").string() +
+                                             "' -o '" + (folder / "out.png").string() + "'");
+    CHECK(result.exit_code == 2);
+    CHECK(result.err.find("nowhere.toml") != std::string::npos);
+    CHECK_FALSE(fs::exists(folder / "out.png"));
+    fs::remove_all(folder);
+}
+
+TEST_CASE("a triangle beyond the rasterizer's range is an error naming its mesh") {
+    const fs::path folder = scratch_folder("range");
+    // 1e6 units at depth 9 with a focal length of 6 / tan 5 degrees = 68.6 px: 7.6e6 px
+    // from the centre, beyond the 2^20 px of chapter 2's exact range.
+    const std::string text = "[image]\nwidth = 12\nheight = 12\n[camera]\nfov = 10\n"
+                             "[[mesh]]\nprimitive = \"triangles\"\n"
+                             "positions = [[0, 0, 5], [1000000, 0, 5], [0, 1, 5]]\n";
+    std::ofstream(folder / "far.toml") << text;
+    const auto result = testing::run_command(
+        testing::cli_path() + " render '" + (folder / "far.toml").string() + "' -o '" +
+        (folder / "far.png").string() + "'");
+    CHECK(result.exit_code == 2);
+    CHECK(result.err.find("far.toml:6:1: mesh[0]:") != std::string::npos);
+    CHECK_FALSE(fs::exists(folder / "far.png"));
+    fs::remove_all(folder);
+}
