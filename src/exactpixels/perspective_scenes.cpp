@@ -3,6 +3,7 @@
 #include "exactpixels/perspective.hpp"
 
 #include <cassert>
+#include <cmath>
 
 namespace exactpixels {
 
@@ -23,8 +24,12 @@ std::vector<std::array<TexturedVertex, 3>> quad(TexturedVertex a, TexturedVertex
 PerspectiveScene floor_scene(int width, int height) {
     const Pinhole eye = camera_for(width, height);
     constexpr double near = 1.2, far = 40.0, half_width = 4.0, texels_per_unit = 16.0;
+    constexpr double roll = 0.35; // radians: the camera banks 20 degrees
+    const double c = std::cos(roll), s = std::sin(roll);
     const auto corner = [&](double x, double z) { // a floor point, one unit below the eye
-        return project(eye, {x, -1.0, z},
+        const glm::dvec3 seen{c * x + s, -s * x - c,
+                              z}; // (x, -1, z) rolled about the view axis
+        return project(eye, seen,
                        {(x + half_width) * texels_per_unit, (far - z) * texels_per_unit});
     };
     return {quad(corner(-half_width, near), corner(half_width, near),

@@ -8,10 +8,12 @@
 // Both scenes are seen through a pinhole camera (perspective.hpp) whose focal length is
 // 0.625 times the frame width, looking at the frame's centre. The floor is a plane one
 // unit below the eye running from depth 1.2 to depth 40 (depth ratio 33 along its long
-// edges), textured with a 64 x 64 checkerboard of 8-texel squares, 16 texels per unit.
-// The wall stands 1.5 units to the right of the eye from depth 1 to depth 60 and is seen
-// almost edge-on, textured with the "F" (4 texels per glyph cell), repeated.
-// Each is two triangles, so that a row span crosses the whole surface.
+// edges), seen with the camera banked by 20 degrees (a level camera sees the floor at one
+// depth along each row, where every span mapper is exact), textured with a 64 x 64
+// checkerboard of 8-texel squares, 16 texels per unit. The wall stands 1.5 units to the
+// right of the eye from depth 1 to depth 60 and is seen almost edge-on, textured with the
+// "F" (4 texels per glyph cell), repeated. Each is two triangles, so that a row span
+// crosses the whole surface.
 #pragma once
 
 #include "exactpixels/framebuffer.hpp"
