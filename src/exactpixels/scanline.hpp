@@ -14,8 +14,10 @@
 // Either winding is drawn; a triangle of zero area draws nothing.
 //
 // Two coverage forms:
-//   - Point2 vertices (double): edges are walked in floating point. Exact whenever the
-//     numbers are (e.g. vertices on multiples of 1/2 with slopes of +-1, 0 or infinity).
+//   - Point2 vertices (double): edges are walked in floating point, so a centre lying
+//     exactly on an edge can be decided either way by rounding (not when the edge's
+//     dx/dy and the vertices are short binary fractions). Shared edges are walked
+//     identically by both triangles, so meshes stay watertight all the same.
 //   - FixedPoint2 vertices (1/256 px, already snapped): the span ends are found with
 //     exact integer arithmetic, so the result is the exact top-left coverage of the
 //     snapped triangle, pixel for pixel the same as chapter 2's edge functions.

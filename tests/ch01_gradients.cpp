@@ -1,0 +1,353 @@
+// Chapter 1 tests, part 1: the gradient identities. Where the claim is exact algebra the
+// test runs the library's own templates in exact rational arithmetic; where it is a
+// floating-point claim it states its tolerance and why.
+#include "exactpixels/gradient_stability.hpp"
+#include "exactpixels/gradients.hpp"
+#include "support/rational.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+
+using namespace exactpixels;
+using exactpixels::testing::Rational;
+
+namespace {
+
+#ifdef NDEBUG
+constexpr int trials = 20000;
+#else
+constexpr int trials = 2000; // sanitizer builds: fewer, same properties
+#endif
+
+// A triangle with small integer coordinates and values, as exact rationals.
+PlaneSamples<Rational> random_integer_triangle(std::mt19937_64& random, int range) {
+    std::uniform_int_distribution<int> coordinate(-range, range);
+    PlaneSamples<Rational> s{};
+    for (int i = 0; i < 3; ++i) {
+        s.x[i] = Rational(coordinate(random));
+        s.y[i] = Rational(coordinate(random));
+        s.c[i] = Rational(coordinate(random));
+    }
+    return s;
+}
+
+Rational twice_area(const PlaneSamples<Rational>& s) {
+    return (s.x[2] - s.x[0]) * (s.y[1] - s.y[0]) - (s.x[1] - s.x[0]) * (s.y[2] - s.y[0]);
+}
+
+template <class T> PlaneSamples<T> permuted(const PlaneSamples<T>& s, std::array<int, 3> o) {
+    return {{s.x[o[0]], s.x[o[1]], s.x[o[2]]},
+            {s.y[o[0]], s.y[o[1]], s.y[o[2]]},
+            {s.c[o[0]], s.c[o[1]], s.c[o[2]]}};
+}
+
+// Random double triangles: vertices in [0, 1000)^2, values in [0, 1).
+PlaneSamples<double> random_triangle(std::mt19937_64& random) {
+    std::uniform_real_distribution<double> coordinate(0.0, 1000.0), value(0.0, 1.0);
+    PlaneSamples<double> s{};
+    for (int i = 0; i < 3; ++i) {
+        s.x[i] = coordinate(random);
+        s.y[i] = coordinate(random);
+        s.c[i] = value(random);
+    }
+    return s;
+}
+
+// How badly shaped the triangle is: (longest edge)^2 / (twice the area). About 1 for
+// an equilateral triangle, large for a sliver. Rounding errors of any gradient formula
+// are amplified by up to this factor (chapter 1, "How accurate are they?").
+double shape_factor(const PlaneSamples<double>& s) {
+    double longest = 0;
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3;
+        longest = std::max(longest, std::hypot(s.x[j] - s.x[i], s.y[j] - s.y[i]));
+    }
+    const double area2 =
+        (s.x[2] - s.x[0]) * (s.y[1] - s.y[0]) - (s.x[1] - s.x[0]) * (s.y[2] - s.y[0]);
+    return longest * longest / std::abs(area2);
+}
+
+// The size of the terms a gradient formula adds up: (largest |c_i - c_j|) / (longest
+// edge) + |g|. Rounding errors are about eps kappa times this (chapter 1, eq. 1.13).
+double term_size(const PlaneSamples<double>& s, double gradient_norm) {
+    double longest = 0, c_range = 0;
+    for (int i = 0; i < 3; ++i) {
+        const int j = (i + 1) % 3;
+        longest = std::max(longest, std::hypot(s.x[j] - s.x[i], s.y[j] - s.y[i]));
+        c_range = std::max(c_range, std::abs(s.c[j] - s.c[i]));
+    }
+    return c_range / longest + gradient_norm;
+}
+
+template <class T> double norm(Gradient<T> g) {
+    return std::hypot(static_cast<double>(g.dx), static_cast<double>(g.dy));
+}
+
+} // namespace
+
+TEST_CASE("split edge and closed form are the same number in exact arithmetic" *
+          doctest::description("points: 2; exercise: ch01-closed-form")) {
+    std::mt19937_64 random(11);
+    int checked = 0;
+    for (int trial = 0; trial < trials / 10; ++trial) {
+        const PlaneSamples<Rational> s = random_integer_triangle(random, 50);
+        if (twice_area(s) == Rational(0)) {
+            continue;
+        }
+        const Gradient<Rational> a = split_edge_gradient(s);
+        const Gradient<Rational> b = closed_form_gradient(s);
+        INFO("dc/dx: split " << a.dx << ", closed " << b.dx);
+        INFO("dc/dy: split " << a.dy << ", closed " << b.dy);
+        REQUIRE(a.dx == b.dx);
+        REQUIRE(a.dy == b.dy);
+        // And the plane through the gradient reproduces c at all three vertices.
+        for (int i = 0; i < 3; ++i) {
+            CHECK(s.c[0] + b.dx * (s.x[i] - s.x[0]) + b.dy * (s.y[i] - s.y[0]) == s.c[i]);
+        }
+        ++checked;
+    }
+    CHECK(checked > trials / 20);
+}
+
+TEST_CASE("closed form is unchanged by every vertex order" *
+          doctest::description("points: 1; exercise: ch01-closed-form")) {
+    const std::array<std::array<int, 3>, 6> orders{
+        {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
+    std::mt19937_64 random(12);
+    for (int trial = 0; trial < trials / 20; ++trial) {
+        const PlaneSamples<Rational> s = random_integer_triangle(random, 100);
+        const Gradient<Rational> first = closed_form_gradient(s);
+        for (const auto& order : orders) {
+            const Gradient<Rational> g = closed_form_gradient(permuted(s, order));
+            REQUIRE(g.dx == first.dx); // exactly, not within a tolerance
+            REQUIRE(g.dy == first.dy);
+        }
+    }
+    // In double the six orders round differently, but only by a few units in the last
+    // place times the shape factor: the bound of "split edge and closed form agree".
+    for (int trial = 0; trial < trials / 10; ++trial) {
+        const PlaneSamples<double> s = random_triangle(random);
+        const double kappa = shape_factor(s);
+        if (!(kappa < 1e6)) {
+            continue;
+        }
+        const Gradient<double> first = closed_form_gradient(s);
+        for (const auto& order : orders) {
+            const Gradient<double> g = closed_form_gradient(permuted(s, order));
+            const double difference = norm(Gradient<double>{g.dx - first.dx, g.dy - first.dy});
+            REQUIRE(difference <= 64 * kappa * 0x1p-52 * term_size(s, norm(first)));
+        }
+    }
+}
+
+TEST_CASE("split edge and closed form agree on random triangles" *
+          doctest::description("points: 2; exercise: ch01-closed-form")) {
+    // Both formulas divide a difference of products by a difference of products. The
+    // products round by eps relative, so the error is about eps kappa times the size
+    // of the terms (eq. 1.13): the test allows 32 eps kappa (|delta c| / L + |g|) for
+    // each method against the exact gradient of the same input, in float and double
+    // (the worst seen over these trials is about 11; the test reports it).
+    std::mt19937_64 random(13);
+    double worst_double = 0, worst_float = 0;
+    int checked = 0;
+    for (int trial = 0; trial < trials; ++trial) {
+        PlaneSamples<double> s = random_triangle(random);
+        for (int i = 0; i < 3; ++i) { // on the 2^-40 grid, float-exact: see exact_gradient
+            s.x[i] = static_cast<float>(std::nearbyint(s.x[i] * 0x1p12) * 0x1p-12);
+            s.y[i] = static_cast<float>(std::nearbyint(s.y[i] * 0x1p12) * 0x1p-12);
+            s.c[i] = static_cast<float>(std::nearbyint(s.c[i] * 0x1p20) * 0x1p-20);
+        }
+        const double kappa = shape_factor(s);
+        const Gradient<long double> exact = exact_gradient(s);
+        if (!(kappa < 1e5)) {
+            continue; // near-degenerate: the error bound grows without limit
+        }
+        const double size = term_size(s, std::hypot(double(exact.dx), double(exact.dy)));
+        const auto error = [&](auto g) {
+            return std::hypot(double(g.dx - exact.dx), double(g.dy - exact.dy)) / size;
+        };
+        PlaneSamples<float> f{};
+        for (int i = 0; i < 3; ++i) {
+            f.x[i] = float(s.x[i]), f.y[i] = float(s.y[i]), f.c[i] = float(s.c[i]);
+        }
+        const double eps_d = std::numeric_limits<double>::epsilon();
+        const double eps_f = std::numeric_limits<float>::epsilon();
+        const double errors_d[] = {error(split_edge_gradient(s)), error(closed_form_gradient(s))};
+        const double errors_f[] = {error(split_edge_gradient(f)), error(closed_form_gradient(f))};
+        for (const double e : errors_d) {
+            REQUIRE(e <= 32 * kappa * eps_d);
+            worst_double = std::max(worst_double, e / (kappa * eps_d));
+        }
+        for (const double e : errors_f) {
+            REQUIRE(e <= 32 * kappa * eps_f);
+            worst_float = std::max(worst_float, e / (kappa * eps_f));
+        }
+        ++checked;
+    }
+    MESSAGE("worst error / (kappa eps): double " << worst_double << ", float " << worst_float);
+    CHECK(checked > trials / 2);
+}
+
+TEST_CASE("both edge slopes are the same number in exact arithmetic") {
+    std::mt19937_64 random(14);
+    for (int trial = 0; trial < trials / 10; ++trial) {
+        const PlaneSamples<Rational> s = random_integer_triangle(random, 50);
+        if (twice_area(s) == Rational(0)) {
+            continue;
+        }
+        const Gradient<Rational> g = closed_form_gradient(s);
+        for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3;
+            const Rational direct =
+                edge_slope_direct(s.x[a], s.y[a], s.c[a], s.x[b], s.y[b], s.c[b]);
+            const Rational via = edge_slope_from_gradient(g, s.x[a], s.y[a], s.x[b], s.y[b]);
+            REQUIRE(direct == via);
+            // The slope is the same walked either way along the edge.
+            REQUIRE(edge_slope_direct(s.x[b], s.y[b], s.c[b], s.x[a], s.y[a], s.c[a]) ==
+                    direct);
+        }
+    }
+}
+
+TEST_CASE("both edge slopes agree in floating point") {
+    // The form from the gradient inherits the gradient's error (32 eps kappa times the
+    // term size, see above) times (1 + |dx/dy|); the direct form rounds twice. The
+    // tolerance is the sum.
+    std::mt19937_64 random(15);
+    for (int trial = 0; trial < trials; ++trial) {
+        const PlaneSamples<double> s = random_triangle(random);
+        const double kappa = shape_factor(s);
+        if (!(kappa < 1e5)) {
+            continue;
+        }
+        const Gradient<double> g = closed_form_gradient(s);
+        for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3;
+            const glm::dvec2 pa{s.x[a], s.y[a]}, pb{s.x[b], s.y[b]};
+            const double direct = edge_slope_direct(pa, s.c[a], pb, s.c[b]);
+            const double via = edge_slope_from_gradient(g, pa, pb);
+            const double dxdy = (pb.x - pa.x) / (pb.y - pa.y);
+            const double eps = 0x1p-52;
+            const double tolerance = 32 * kappa * eps * term_size(s, norm(g)) *
+                                         (1 + std::abs(dxdy)) +
+                                     4 * eps * std::abs(direct);
+            REQUIRE(std::abs(direct - via) <= tolerance);
+        }
+    }
+}
+
+TEST_CASE("flat-top and flat-bottom triangles need no special case") {
+    // c = 1 + 2x + 3y sampled at integer vertices: every formula is exact in double.
+    const auto plane = [](double x, double y) { return 1 + 2 * x + 3 * y; };
+    const std::array<std::array<glm::dvec2, 3>, 4> triangles{{
+        {{{0, 0}, {8, 0}, {3, 5}}}, // flat top (y down: the third vertex below)
+        {{{3, 0}, {0, 5}, {8, 5}}}, // flat bottom
+        {{{8, 0}, {3, 5}, {0, 0}}}, // flat top, other order
+        {{{0, 5}, {3, 0}, {8, 5}}}, // flat bottom, other order
+    }};
+    for (const auto& p : triangles) {
+        const std::array<double, 3> c{plane(p[0].x, p[0].y), plane(p[1].x, p[1].y),
+                                      plane(p[2].x, p[2].y)};
+        const Gradient<double> closed = gradient_closed_form(p, c);
+        CHECK(closed.dx == 2.0);
+        CHECK(closed.dy == 3.0);
+        const Gradient<double> split = gradient_split_edge(p, c);
+        CHECK(split.dx == 2.0);
+        CHECK(std::abs(split.dy - 3.0) <= 4 * std::numeric_limits<double>::epsilon() * 3);
+        const std::array<glm::vec2, 3> pf{glm::vec2(p[0]), glm::vec2(p[1]), glm::vec2(p[2])};
+        const std::array<float, 3> cf{float(c[0]), float(c[1]), float(c[2])};
+        const Gradient<float> closed_f = gradient_closed_form(pf, cf);
+        CHECK(closed_f.dx == 2.0f); // integer products, one division: exact
+        CHECK(closed_f.dy == 3.0f);
+        // The split edge's dc/dy subtracts two rounded quotients (c3 - c1)/(y3 - y1)
+        // and dc/dx (x3 - x1)/(y3 - y1): within a few float ulps of 3, not exactly 3.
+        const Gradient<float> split_f = gradient_split_edge(pf, cf);
+        CHECK(split_f.dx == 2.0f);
+        CHECK(std::abs(split_f.dy - 3.0f) <= 4 * std::numeric_limits<float>::epsilon() * 3);
+    }
+}
+
+TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
+    const std::array<std::array<glm::dvec2, 3>, 5> degenerate{{
+        {{{1, 1}, {1, 1}, {1, 1}}},   // one point
+        {{{0, 0}, {2, 2}, {5, 5}}},   // collinear, slanted
+        {{{0, 3}, {4, 3}, {9, 3}}},   // collinear on one row: no y-delta at all
+        {{{2, 0}, {2, 4}, {2, 9}}},   // collinear in one column
+        {{{0, 0}, {4, 4}, {0, 0}}},   // two vertices coincide
+    }};
+    const std::array<double, 3> c{0.25, 1.0, -3.0};
+    for (const auto& p : degenerate) {
+        for (const Gradient<double> g : {gradient_closed_form(p, c), gradient_split_edge(p, c)}) {
+            CHECK(g.dx == 0.0);
+            CHECK(g.dy == 0.0);
+        }
+        const std::array<glm::vec2, 3> pf{glm::vec2(p[0]), glm::vec2(p[1]), glm::vec2(p[2])};
+        const std::array<float, 3> cf{0.25f, 1.0f, -3.0f};
+        for (const Gradient<float> g : {gradient_closed_form(pf, cf), gradient_split_edge(pf, cf)}) {
+            CHECK(g.dx == 0.0f);
+            CHECK(g.dy == 0.0f);
+        }
+        // A horizontal edge has no slope down it: 0, not a division by zero.
+        CHECK(edge_slope_direct(glm::dvec2{0, 3}, 1.0, glm::dvec2{4, 3}, 2.0) == 0.0);
+        CHECK(edge_slope_from_gradient(Gradient<double>{1, 1}, glm::dvec2{0, 3},
+                                       glm::dvec2{4, 3}) == 0.0);
+    }
+}
+
+TEST_CASE("the stability study's reference is exact") {
+    // exact_gradient computes eq. 1.5 in 128-bit integers; check it against the
+    // library's closed form run in Rational arithmetic on the same inputs.
+    for (const double delta : {1e-2, 1e-9, 0.0}) {
+        for (const PlaneSamples<double>& s : stability_triangles(delta, 50, 7, false)) {
+            // In units of 2^-40 every input is an integer below 2^50; scaling x, y and
+            // c alike leaves dc/dx and dc/dy unchanged. Subtracting vertex 0 keeps the
+            // products below 2^101.
+            PlaneSamples<Rational> shifted{};
+            for (int i = 0; i < 3; ++i) {
+                const auto units = [](double v) { return std::int64_t(v * 0x1p40); };
+                shifted.x[i] = Rational(units(s.x[i]) - units(s.x[0]));
+                shifted.y[i] = Rational(units(s.y[i]) - units(s.y[0]));
+                shifted.c[i] = Rational(units(s.c[i]) - units(s.c[0]));
+            }
+            const Gradient<Rational> g = closed_form_gradient(shifted);
+            const Gradient<long double> e = exact_gradient(s);
+            const auto close = [](long double approx, const Rational& truth) {
+                const long double t = static_cast<long double>(truth.num()) /
+                                      static_cast<long double>(truth.den());
+                return std::abs(approx - t) <= 0x1p-60L * std::abs(t);
+            };
+            REQUIRE(close(e.dx, g.dx));
+            REQUIRE(close(e.dy, g.dy));
+        }
+    }
+}
+
+TEST_CASE("neither gradient loses accuracy as the y-delta shrinks") {
+    // The chapter's stability table, re-measured on fewer triangles. What it claims:
+    // on typical triangles (the median) both methods are accurate to within one
+    // machine epsilon at every y-delta down to 1e-12 px and at exactly 0; 99% of
+    // triangles are within 64 eps. In double with a non-zero y-delta the closed form is
+    // the more accurate one (smaller median, wins more trials); at y-delta exactly 0
+    // the split edge is (its point 4 is then a vertex, computed without rounding).
+    const auto rows = gradient_stability_study(trials / 4, 1);
+    for (const StabilityRow& r : rows) {
+        INFO("y-delta " << r.y_delta << ", " << r.precision);
+        CHECK(r.split_median <= 1.0);
+        CHECK(r.closed_median <= 1.0);
+        CHECK(r.split_p99 <= 64.0);
+        CHECK(r.closed_p99 <= 64.0);
+        if (r.precision == "double" && r.y_delta > 0) {
+            CHECK(r.closed_median < r.split_median);
+            CHECK(r.closed_better > r.split_better);
+        }
+        if (r.y_delta == 0) {
+            CHECK(r.split_better > r.closed_better);
+        }
+    }
+}
