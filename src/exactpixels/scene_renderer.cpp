@@ -1,8 +1,10 @@
 #include "exactpixels/scene_renderer.hpp"
 
+#include "exactpixels/clipping.hpp"
 #include "exactpixels/error.hpp"
 #include "exactpixels/fixed_point.hpp"
 #include "exactpixels/gradients.hpp"
+#include "exactpixels/perspective.hpp"
 #include "exactpixels/rounding.hpp"
 #include "exactpixels/scanline.hpp"
 #include "exactpixels/scene_pipeline.hpp"
@@ -11,6 +13,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cassert>
 #include <cmath>
 #include <vector>
 
@@ -59,25 +62,23 @@ CameraFrame camera_frame(const SceneCamera& camera) {
     return {camera.position, right, glm::cross(forward, right), forward};
 }
 
-/// A corner in view space with what it carries.
-struct ViewVertex {
-    glm::dvec3 position; // x right, y up, z depth
-    TexCoord uv;
-    Colour colour;
-};
-
 //> project-vertex
-/// View space to screen: pixels (origin top-left, y down) and the depth w.
-TexturedVertex project_vertex(const Scene& scene, const ViewVertex& v) {
-    const Point2 centre{0.5 * scene.width, 0.5 * scene.height};
-    if (scene.camera.projection == Projection::orthographic) {
-        const double scale = scene.height / scene.camera.view_height; // px per unit
-        return {centre + scale * Point2{v.position.x, -v.position.y}, 1.0, v.uv};
-    }
+/// Chapter 3's pinhole for a perspective camera: the focal length in pixels from the
+/// vertical field of view, the view axis through the image centre (@eq:focal).
+Pinhole pinhole(const Scene& scene) {
     const double half_angle = 0.5 * scene.camera.fov_degrees * std::acos(-1.0) / 180.0;
-    const double focal = 0.5 * scene.height / std::tan(half_angle); // px per unit x/z
-    const double z = v.position.z;
-    return {centre + focal * Point2{v.position.x / z, -v.position.y / z}, z, v.uv};
+    return {0.5 * scene.height / std::tan(half_angle), {0.5 * scene.width, 0.5 * scene.height}};
+}
+
+/// View space to screen: pixels (origin top-left, y down) and the depth w. The
+/// orthographic camera keeps x and y (scaled) and gives every point w = 1.
+TexturedVertex project_vertex(const Scene& scene, const Pinhole& camera,
+                              const ViewVertex& v) {
+    if (scene.camera.projection == Projection::perspective) {
+        return project(camera, v.position, v.uv); // w = z >= near > 0
+    }
+    const double scale = scene.height / scene.camera.view_height; // pixels per unit
+    return {camera.centre + scale * Point2{v.position.x, -v.position.y}, 1.0, v.uv};
 }
 //< project-vertex
 
@@ -321,6 +322,43 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
 }
 //< draw-triangle
 
+/// A triangle in view space with the colour of each corner.
+struct ClippedCorners {
+    std::array<ViewVertex, 3> view;
+    std::array<Colour, 3> colours;
+};
+
+/// Chapter 6's near-plane clipping of a triangle and its vertex colours. clip_near
+/// carries the texture coordinate; colours are linear along view-space edges too, so a
+/// second and third pass with the colour channels in place of uv cut them at the same
+/// parameter (the cut depends only on the positions).
+std::vector<ClippedCorners> clip_corners(const std::array<ViewVertex, 3>& view,
+                                         const std::array<Colour, 3>& colours, double near,
+                                         bool with_colours) {
+    const ClippedTriangles uv = clip_near(view, near);
+    std::vector<ClippedCorners> pieces(static_cast<std::size_t>(uv.count));
+    for (std::size_t t = 0; t < pieces.size(); ++t) {
+        pieces[t].view = uv.triangles[t];
+        pieces[t].colours = colours; // unused unless with_colours
+    }
+    if (with_colours) {
+        std::array<ViewVertex, 3> rg = view, b = view;
+        for (std::size_t k = 0; k < 3; ++k) {
+            rg[k].uv = {colours[k].r, colours[k].g};
+            b[k].uv = {colours[k].b, 0.0};
+        }
+        const ClippedTriangles crg = clip_near(rg, near), cb = clip_near(b, near);
+        for (std::size_t t = 0; t < pieces.size(); ++t) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                assert(crg.triangles[t][k].position == pieces[t].view[k].position);
+                pieces[t].colours[k] = {crg.triangles[t][k].uv.x, crg.triangles[t][k].uv.y,
+                                        cb.triangles[t][k].uv.x};
+            }
+        }
+    }
+    return pieces;
+}
+
 /// Twice the signed screen area of the triangle; negative when it faces the camera
 /// (its corners run counter-clockwise as seen from its front).
 double screen_area2(const std::array<TexturedVertex, 3>& t) {
@@ -338,6 +376,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
     RenderReport& report = result.report;
     const CameraFrame camera = camera_frame(scene.camera);
     const bool perspective = scene.camera.projection == Projection::perspective;
+    const Pinhole lens = pinhole(scene);
     for (const SceneMesh& mesh : scene.meshes) {
         MeshContext m{scene,        mesh,        plan_mesh(mesh),
                       mesh.texture ? &scene.textures[*mesh.texture].texture : nullptr,
@@ -347,33 +386,43 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
             for (const std::array<SceneVertex, 3>& triangle : mesh.triangles) {
                 const Clock::time_point t0 = Clock::now();
                 std::array<ViewVertex, 3> view{};
+                std::array<Colour, 3> colours{};
                 bool in_front = true;
                 for (std::size_t k = 0; k < 3; ++k) {
                     const glm::dvec3 d = triangle[k].position - camera.eye;
                     view[k] = {{glm::dot(d, camera.right), glm::dot(d, camera.up),
                                 glm::dot(d, camera.forward)},
-                               triangle[k].uv,
-                               triangle[k].colour};
+                               triangle[k].uv};
+                    colours[k] = triangle[k].colour;
                     in_front = in_front && view[k].position.z >= scene.camera.near;
                 }
                 report.geometry.triangles += 1;
-                if (perspective && !in_front) {
-                    // Chapter 6's near-plane clipping belongs here; until it is
-                    // integrated, a triangle that crosses the near plane is skipped.
+                //> clip-only-when-needed
+                std::vector<ClippedCorners> pieces{{view, colours}};
+                if (perspective && !in_front) { // the only triangles that pay for it
+                    const Clock::time_point c0 = Clock::now();
+                    pieces = clip_corners(view, colours, scene.camera.near,
+                                          m.stages.colour);
                     report.clipping.triangles += 1;
-                    report.geometry.seconds += seconds_since(t0);
-                    continue;
+                    report.clipping.seconds += seconds_since(c0);
                 }
-                std::array<TexturedVertex, 3> tv{};
-                for (std::size_t k = 0; k < 3; ++k) {
-                    tv[k] = project_vertex(scene, view[k]);
+                //< clip-only-when-needed
+                std::vector<std::array<TexturedVertex, 3>> projected;
+                for (const ClippedCorners& piece : pieces) {
+                    std::array<TexturedVertex, 3> tv{};
+                    for (std::size_t k = 0; k < 3; ++k) {
+                        tv[k] = project_vertex(scene, lens, piece.view[k]);
+                    }
+                    projected.push_back(tv);
                 }
                 report.geometry.seconds += seconds_since(t0);
-                if (mesh.cull_back && screen_area2(tv) >= 0.0) {
-                    report.culling.triangles += 1;
-                    continue;
+                for (std::size_t k = 0; k < projected.size(); ++k) {
+                    if (mesh.cull_back && screen_area2(projected[k]) >= 0.0) {
+                        report.culling.triangles += 1;
+                        continue;
+                    }
+                    draw_triangle(m, projected[k], pieces[k].colours);
                 }
-                draw_triangle(m, tv, {view[0].colour, view[1].colour, view[2].colour});
             }
         } catch (const Error& error) {
             throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
