@@ -5,9 +5,10 @@
 //   make-kit restore --source ROOT --kit DIR
 //   make-kit list --source ROOT
 //
-// `kit` writes DIR as a self-contained CMake project: the library (src/), the command-line
-// program (src/cli/, if any), chapter NN's example folder, its tests (tests/chNN_*,
-// tests/fixtures/chNN*) and the test support files (tests/support/). Every exercise region
+// `kit` writes DIR as a self-contained CMake project: all of src/ but src/kits/ (the
+// library, the command-line program and their CMakeLists.txt, minus the line that adds
+// src/kits), chapter NN's example folder without its text, its tests (tests/chNN_*,
+// tests/fixtures/chNN*), the test headers (tests/*.hpp) and support files (tests/support/). Every exercise region
 // of chapter NN (see book/AUTHORING.md, "Exercise regions") is replaced by its stub between
 // two plain comments,
 //     // EXERCISE ch02-edge-bias: one-line hint
@@ -301,6 +302,7 @@ struct TestDecl {
     std::size_t line = 0;
     int points = 0;
     std::string exercise; // empty for none
+    bool skipped = false; // doctest::skip: counts in no total
 };
 
 std::size_t line_of(const std::string& text, std::size_t offset) {
@@ -355,6 +357,7 @@ std::vector<TestDecl> test_declarations(const fs::path& root, const fs::path& re
         test.file = rel;
         test.line = line_of(text, start);
         const std::string decorators = text.substr(after, brace - after);
+        test.skipped = decorators.find("doctest::skip") != std::string::npos;
         const auto desc = decorators.find("description");
         if (desc != std::string::npos) {
             const auto q = decorators.find('"', desc);
@@ -448,8 +451,11 @@ std::vector<fs::path> kit_files(const fs::path& root, const std::string& number)
         }
     };
     const auto everything = [](const fs::path&) { return true; };
-    add_tree("src/exactpixels", everything);
-    add_tree("src/cli", everything);
+    // All of src/ but the kit maker itself: the library, the command-line program and
+    // their CMakeLists.txt files, which the kit's top-level CMakeLists.txt includes.
+    add_tree("src", [](const fs::path& file) {
+        return !starts_with(file.generic_string(), "src/kits/");
+    });
     add_tree("tests/support", everything);
     add_tree(".clang-format", everything);
     if (const auto folder = chapter_folder(root, number)) {
@@ -622,6 +628,17 @@ void make_kit(const Options& options) {
     std::map<fs::path, std::string> kit;
     std::vector<Region> stubbed;
     for (const auto& rel : files) {
+        if (rel == "src/CMakeLists.txt") {
+            // The book's own, minus the line that adds the kit maker (not in the kit).
+            std::string text;
+            for (const auto& line : split_lines(read_text(root / rel))) {
+                if (trim(line) != "add_subdirectory(kits)") {
+                    text += line + "\n";
+                }
+            }
+            kit[rel] = text;
+            continue;
+        }
         if (!is_code_file(rel)) {
             kit[rel] = read_text(root / rel);
             continue;
@@ -668,7 +685,7 @@ void make_kit(const Options& options) {
     }
     int total = 0;
     for (const auto& test : tests) {
-        total += test.points;
+        total += test.skipped ? 0 : test.points;
     }
     std::string book = book_exercises(chapter_md);
     if (book.empty()) {
@@ -732,11 +749,14 @@ void restore_kit(const Options& options) {
         for (std::size_t i = 0; i < lines.size(); ++i) {
             out.push_back(lines[i]);
             const std::string_view body = trim(lines[i]);
-            if (!starts_with(body, kit_begin)) {
+            if (!starts_with(body, kit_begin) || body.find(':') == std::string_view::npos) {
                 continue;
             }
             const std::string_view spec = body.substr(kit_begin.size());
             const std::string id(trim(spec.substr(0, spec.find(':'))));
+            if (!valid_exercise_id(id)) {
+                continue; // a comment that merely starts with the same words
+            }
             const auto region = regions.find(id);
             if (region == regions.end()) {
                 throw KitError(where(rel, i + 1) + ": the source tree has no exercise " + id);
