@@ -92,8 +92,7 @@ TEST_CASE("the exact mapper reproduces the perspective projection of a textured 
     }
 }
 
-TEST_CASE(
-    "affine error on a span follows eq:affine-error and peaks at the derived bound") {
+TEST_CASE("affine error on a span matches the formula and peaks at the bound") {
     for (const double r : {1.25, 2.0, 4.0, 10.0, 100.0, 0.25}) {
         for (const double extent : {16.0, 64.0, 256.0}) {
             const int count = 257; // 256 steps: t = k / 256
@@ -127,7 +126,7 @@ TEST_CASE(
     }
 }
 
-TEST_CASE("quadratic error on a span follows eq:quadratic-error and its tabulated peak") {
+TEST_CASE("quadratic error on a span matches the formula and its tabulated peak") {
     for (const double r : {1.25, 2.0, 4.0, 10.0, 100.0, 0.25}) {
         for (const double extent : {16.0, 64.0, 256.0}) {
             const int count = 257;
@@ -260,8 +259,7 @@ TEST_CASE("fixed-point inner loops agree with double within their rounding") {
           [&](int k) { return q + q32 * (1 + k + k * (k - 1) / 2.0); });
 }
 
-TEST_CASE(
-    "texel rounding: rule 1 floors, rule 2 takes ceil - 1, they differ only at ties") {
+TEST_CASE("rule 1 floors, rule 2 takes ceil - 1, and they differ only at ties") {
     const std::int32_t D = texel_scale, rule1 = D / 2, rule2 = D / 2 - 1;
     CHECK(fixed_texel_index(3 * D, rule1) == 3);
     CHECK(fixed_texel_index(3 * D, rule2) == 2);

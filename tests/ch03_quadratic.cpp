@@ -92,8 +92,7 @@ TEST_CASE("the parabola passes through the exact values at both ends and the mid
     }
 }
 
-TEST_CASE(
-    "forward differences reproduce the parabola exactly in rationals and small doubles") {
+TEST_CASE("forward differences reproduce the parabola exactly") {
     std::mt19937 random(13);
     std::uniform_int_distribution<int> small(-4096, 4096);
     for (int trial = 0; trial < 200; ++trial) {

@@ -158,8 +158,7 @@ TEST_CASE("every mapper covers exactly the scanline rasterizer's pixels") {
     }
 }
 
-TEST_CASE(
-    "with constant w every mapper picks the exact mapper's texels, pixel for pixel") {
+TEST_CASE("with constant w every mapper picks the exact texels, pixel for pixel") {
     // u = a x + b y + c with dyadic a, b, c, vertices on 1/4 px and w a power of two:
     // every quantity every mapper forms is a short dyadic number, so all arithmetic is
     // exact and the texel must be floor(u) at the pixel centre, ties (u an integer)
@@ -253,8 +252,7 @@ TEST_CASE("exact float picks exact double's texel everywhere but at counted near
     }
 }
 
-TEST_CASE(
-    "each mapper's disagreement with the exact one falls as the approximation improves") {
+TEST_CASE("disagreement with the exact mapper falls as the approximation improves") {
     const PerspectiveScene scene = wall_scene(320, 240);
     TexelMap exact(320, 240);
     map_scene(exact, scene, {});
