@@ -33,8 +33,9 @@ int main(int argc, char** argv) {
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const bool in = covered.count({x, y}) > 0;
-            d.circle(pixel_centre(x, y), in ? 3.5 : 2.5,
-                     {.stroke = in ? "#1f4e9a" : "#909090", .fill = in ? "#1f4e9a" : "none"});
+            d.circle(
+                pixel_centre(x, y), in ? 3.5 : 2.5,
+                {.stroke = in ? "#1f4e9a" : "#909090", .fill = in ? "#1f4e9a" : "none"});
         }
     }
     // The split edge: point 4 on the long edge 1-3 at the height of vertex 2.
@@ -53,9 +54,12 @@ int main(int argc, char** argv) {
     const Gradient<double> g = gradient_closed_form<double>(v, c);
     const Point2 centroid = (v[0] + v[1] + v[2]) / 3.0;
     const double scale = 3.0 / std::hypot(g.dx, g.dy);
-    d.arrow(centroid, centroid + scale * Point2{g.dx, 0}, {.stroke = "#2a8a2a", .width = 2});
-    d.arrow(centroid, centroid + scale * Point2{0, g.dy}, {.stroke = "#2a8a2a", .width = 2});
-    d.arrow(centroid, centroid + scale * Point2{g.dx, g.dy}, {.stroke = "#b05a00", .width = 2.5});
+    d.arrow(centroid, centroid + scale * Point2{g.dx, 0},
+            {.stroke = "#2a8a2a", .width = 2});
+    d.arrow(centroid, centroid + scale * Point2{0, g.dy},
+            {.stroke = "#2a8a2a", .width = 2});
+    d.arrow(centroid, centroid + scale * Point2{g.dx, g.dy},
+            {.stroke = "#b05a00", .width = 2.5});
     d.text(centroid + scale * Point2{g.dx, 0} + Point2{0.15, 0.1}, "dc/dx", 13,
            SvgAnchor::start, "#2a8a2a");
     d.text(centroid + scale * Point2{0, g.dy} + Point2{0.15, 0.2}, "dc/dy", 13,

@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
         }
     }
     if (!table || !data) {
-        std::fprintf(stderr, "fig_ch01_stability: cannot write into %s\n", folder.c_str());
+        std::fprintf(stderr, "fig_ch01_stability: cannot write into %s\n",
+                     folder.c_str());
         return 1;
     }
 }

@@ -41,7 +41,8 @@ Rational twice_area(const PlaneSamples<Rational>& s) {
     return (s.x[2] - s.x[0]) * (s.y[1] - s.y[0]) - (s.x[1] - s.x[0]) * (s.y[2] - s.y[0]);
 }
 
-template <class T> PlaneSamples<T> permuted(const PlaneSamples<T>& s, std::array<int, 3> o) {
+template <class T>
+PlaneSamples<T> permuted(const PlaneSamples<T>& s, std::array<int, 3> o) {
     return {{s.x[o[0]], s.x[o[1]], s.x[o[2]]},
             {s.y[o[0]], s.y[o[1]], s.y[o[2]]},
             {s.c[o[0]], s.c[o[1]], s.c[o[2]]}};
@@ -74,7 +75,7 @@ double shape_factor(const PlaneSamples<double>& s) {
 }
 
 // The size of the terms a gradient formula adds up: (largest |c_i - c_j|) / (longest
-// edge) + |g|. Rounding errors are about eps kappa times this (chapter 1, eq. 1.13).
+// edge) + |g|. Rounding errors are about eps kappa times this (chapter 1, eq. 1.10).
 double term_size(const PlaneSamples<double>& s, double gradient_norm) {
     double longest = 0, c_range = 0;
     for (int i = 0; i < 3; ++i) {
@@ -140,7 +141,8 @@ TEST_CASE("closed form is unchanged by every vertex order" *
         const Gradient<double> first = closed_form_gradient(s);
         for (const auto& order : orders) {
             const Gradient<double> g = closed_form_gradient(permuted(s, order));
-            const double difference = norm(Gradient<double>{g.dx - first.dx, g.dy - first.dy});
+            const double difference =
+                norm(Gradient<double>{g.dx - first.dx, g.dy - first.dy});
             REQUIRE(difference <= 64 * kappa * 0x1p-52 * term_size(s, norm(first)));
         }
     }
@@ -150,7 +152,7 @@ TEST_CASE("split edge and closed form agree on random triangles" *
           doctest::description("points: 2; exercise: ch01-closed-form")) {
     // Both formulas divide a difference of products by a difference of products. The
     // products round by eps relative, so the error is about eps kappa times the size
-    // of the terms (eq. 1.13): the test allows 32 eps kappa (|delta c| / L + |g|) for
+    // of the terms (eq. 1.10): the test allows 32 eps kappa (|delta c| / L + |g|) for
     // each method against the exact gradient of the same input, in float and double
     // (the worst seen over these trials is about 11; the test reports it).
     std::mt19937_64 random(13);
@@ -158,7 +160,8 @@ TEST_CASE("split edge and closed form agree on random triangles" *
     int checked = 0;
     for (int trial = 0; trial < trials; ++trial) {
         PlaneSamples<double> s = random_triangle(random);
-        for (int i = 0; i < 3; ++i) { // on the 2^-40 grid, float-exact: see exact_gradient
+        for (int i = 0; i < 3;
+             ++i) { // on the 2^-40 grid, float-exact: see exact_gradient
             s.x[i] = static_cast<float>(std::nearbyint(s.x[i] * 0x1p12) * 0x1p-12);
             s.y[i] = static_cast<float>(std::nearbyint(s.y[i] * 0x1p12) * 0x1p-12);
             s.c[i] = static_cast<float>(std::nearbyint(s.c[i] * 0x1p20) * 0x1p-20);
@@ -178,8 +181,10 @@ TEST_CASE("split edge and closed form agree on random triangles" *
         }
         const double eps_d = std::numeric_limits<double>::epsilon();
         const double eps_f = std::numeric_limits<float>::epsilon();
-        const double errors_d[] = {error(split_edge_gradient(s)), error(closed_form_gradient(s))};
-        const double errors_f[] = {error(split_edge_gradient(f)), error(closed_form_gradient(f))};
+        const double errors_d[] = {error(split_edge_gradient(s)),
+                                   error(closed_form_gradient(s))};
+        const double errors_f[] = {error(split_edge_gradient(f)),
+                                   error(closed_form_gradient(f))};
         for (const double e : errors_d) {
             REQUIRE(e <= 32 * kappa * eps_d);
             worst_double = std::max(worst_double, e / (kappa * eps_d));
@@ -190,7 +195,8 @@ TEST_CASE("split edge and closed form agree on random triangles" *
         }
         ++checked;
     }
-    MESSAGE("worst error / (kappa eps): double " << worst_double << ", float " << worst_float);
+    MESSAGE("worst error / (kappa eps): double " << worst_double << ", float "
+                                                 << worst_float);
     CHECK(checked > trials / 2);
 }
 
@@ -206,7 +212,8 @@ TEST_CASE("both edge slopes are the same number in exact arithmetic") {
             const int b = (a + 1) % 3;
             const Rational direct =
                 edge_slope_direct(s.x[a], s.y[a], s.c[a], s.x[b], s.y[b], s.c[b]);
-            const Rational via = edge_slope_from_gradient(g, s.x[a], s.y[a], s.x[b], s.y[b]);
+            const Rational via =
+                edge_slope_from_gradient(g, s.x[a], s.y[a], s.x[b], s.y[b]);
             REQUIRE(direct == via);
             // The slope is the same walked either way along the edge.
             REQUIRE(edge_slope_direct(s.x[b], s.y[b], s.c[b], s.x[a], s.y[a], s.c[a]) ==
@@ -234,9 +241,9 @@ TEST_CASE("both edge slopes agree in floating point") {
             const double via = edge_slope_from_gradient(g, pa, pb);
             const double dxdy = (pb.x - pa.x) / (pb.y - pa.y);
             const double eps = 0x1p-52;
-            const double tolerance = 32 * kappa * eps * term_size(s, norm(g)) *
-                                         (1 + std::abs(dxdy)) +
-                                     4 * eps * std::abs(direct);
+            const double tolerance =
+                32 * kappa * eps * term_size(s, norm(g)) * (1 + std::abs(dxdy)) +
+                4 * eps * std::abs(direct);
             REQUIRE(std::abs(direct - via) <= tolerance);
         }
     }
@@ -260,7 +267,8 @@ TEST_CASE("flat-top and flat-bottom triangles need no special case") {
         const Gradient<double> split = gradient_split_edge(p, c);
         CHECK(split.dx == 2.0);
         CHECK(std::abs(split.dy - 3.0) <= 4 * std::numeric_limits<double>::epsilon() * 3);
-        const std::array<glm::vec2, 3> pf{glm::vec2(p[0]), glm::vec2(p[1]), glm::vec2(p[2])};
+        const std::array<glm::vec2, 3> pf{glm::vec2(p[0]), glm::vec2(p[1]),
+                                          glm::vec2(p[2])};
         const std::array<float, 3> cf{float(c[0]), float(c[1]), float(c[2])};
         const Gradient<float> closed_f = gradient_closed_form(pf, cf);
         CHECK(closed_f.dx == 2.0f); // integer products, one division: exact
@@ -269,27 +277,31 @@ TEST_CASE("flat-top and flat-bottom triangles need no special case") {
         // and dc/dx (x3 - x1)/(y3 - y1): within a few float ulps of 3, not exactly 3.
         const Gradient<float> split_f = gradient_split_edge(pf, cf);
         CHECK(split_f.dx == 2.0f);
-        CHECK(std::abs(split_f.dy - 3.0f) <= 4 * std::numeric_limits<float>::epsilon() * 3);
+        CHECK(std::abs(split_f.dy - 3.0f) <=
+              4 * std::numeric_limits<float>::epsilon() * 3);
     }
 }
 
 TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
     const std::array<std::array<glm::dvec2, 3>, 5> degenerate{{
-        {{{1, 1}, {1, 1}, {1, 1}}},   // one point
-        {{{0, 0}, {2, 2}, {5, 5}}},   // collinear, slanted
-        {{{0, 3}, {4, 3}, {9, 3}}},   // collinear on one row: no y-delta at all
-        {{{2, 0}, {2, 4}, {2, 9}}},   // collinear in one column
-        {{{0, 0}, {4, 4}, {0, 0}}},   // two vertices coincide
+        {{{1, 1}, {1, 1}, {1, 1}}}, // one point
+        {{{0, 0}, {2, 2}, {5, 5}}}, // collinear, slanted
+        {{{0, 3}, {4, 3}, {9, 3}}}, // collinear on one row: no y-delta at all
+        {{{2, 0}, {2, 4}, {2, 9}}}, // collinear in one column
+        {{{0, 0}, {4, 4}, {0, 0}}}, // two vertices coincide
     }};
     const std::array<double, 3> c{0.25, 1.0, -3.0};
     for (const auto& p : degenerate) {
-        for (const Gradient<double> g : {gradient_closed_form(p, c), gradient_split_edge(p, c)}) {
+        for (const Gradient<double> g :
+             {gradient_closed_form(p, c), gradient_split_edge(p, c)}) {
             CHECK(g.dx == 0.0);
             CHECK(g.dy == 0.0);
         }
-        const std::array<glm::vec2, 3> pf{glm::vec2(p[0]), glm::vec2(p[1]), glm::vec2(p[2])};
+        const std::array<glm::vec2, 3> pf{glm::vec2(p[0]), glm::vec2(p[1]),
+                                          glm::vec2(p[2])};
         const std::array<float, 3> cf{0.25f, 1.0f, -3.0f};
-        for (const Gradient<float> g : {gradient_closed_form(pf, cf), gradient_split_edge(pf, cf)}) {
+        for (const Gradient<float> g :
+             {gradient_closed_form(pf, cf), gradient_split_edge(pf, cf)}) {
             CHECK(g.dx == 0.0f);
             CHECK(g.dy == 0.0f);
         }
@@ -301,7 +313,7 @@ TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
 }
 
 TEST_CASE("the stability study's reference is exact") {
-    // exact_gradient computes eq. 1.5 in 128-bit integers; check it against the
+    // exact_gradient computes eq. 1.7 in 128-bit integers; check it against the
     // library's closed form run in Rational arithmetic on the same inputs.
     for (const double delta : {1e-2, 1e-9, 0.0}) {
         for (const PlaneSamples<double>& s : stability_triangles(delta, 50, 7, false)) {

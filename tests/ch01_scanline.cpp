@@ -32,7 +32,8 @@ using Mask = std::vector<std::string>;
 struct Counts {
     int width, height;
     std::vector<int> hits;
-    Counts(int w, int h) : width(w), height(h), hits(static_cast<std::size_t>(w * h), 0) {}
+    Counts(int w, int h)
+        : width(w), height(h), hits(static_cast<std::size_t>(w * h), 0) {}
     int& at(int x, int y) { return hits[static_cast<std::size_t>(y * width + x)]; }
     auto span_counter() {
         return [this](Span s) {
@@ -47,11 +48,14 @@ struct Counts {
         };
     }
     Mask mask() {
-        Mask m(static_cast<std::size_t>(height), std::string(static_cast<std::size_t>(width), '.'));
+        Mask m(static_cast<std::size_t>(height),
+               std::string(static_cast<std::size_t>(width), '.'));
         for (int y = 0; y < height; ++y) {
             for (int x = 0; x < width; ++x) {
                 m[static_cast<std::size_t>(y)][static_cast<std::size_t>(x)] =
-                    at(x, y) == 0 ? '.' : at(x, y) == 1 ? '#' : '2';
+                    at(x, y) == 0   ? '.'
+                    : at(x, y) == 1 ? '#'
+                                    : '2';
             }
         }
         return m;
@@ -83,8 +87,8 @@ void check_mask(std::array<Point2, 3> v, const Mask& expected) {
     std::array<int, 3> order{0, 1, 2};
     do {
         const std::array<Point2, 3> p{v[order[0]], v[order[1]], v[order[2]]};
-        INFO("vertices (" << p[0].x << ", " << p[0].y << "), (" << p[1].x << ", " << p[1].y
-                          << "), (" << p[2].x << ", " << p[2].y << ")");
+        INFO("vertices (" << p[0].x << ", " << p[0].y << "), (" << p[1].x << ", "
+                          << p[1].y << "), (" << p[2].x << ", " << p[2].y << ")");
         CHECK(rasterize(p, w, h) == expected);
         CHECK(rasterize(snapped(p), w, h) == expected);
         for (int y = 0; y < h; ++y) {
@@ -127,7 +131,8 @@ bool top_left_inside(const std::array<FixedPoint2, 3>& v, int px, int py) {
         if (s == 0) {
             const bool top = a.y == b.y && c.y > a.y;
             // c right of the edge: the edge's x at c.y is less than c.x.
-            const std::int64_t right = (c.x - a.x) * (b.y - a.y) - (b.x - a.x) * (c.y - a.y);
+            const std::int64_t right =
+                (c.x - a.x) * (b.y - a.y) - (b.x - a.x) * (c.y - a.y);
             const bool left = a.y != b.y && ((right > 0) == (b.y > a.y));
             if (!top && !left) {
                 return false;
@@ -139,6 +144,8 @@ bool top_left_inside(const std::array<FixedPoint2, 3>& v, int px, int py) {
 
 } // namespace
 
+// The masks below are pictures: one string per row, '#' drawn, '.' not.
+// clang-format off
 TEST_CASE("the absolute convention: a flat-top triangle covers 15 pixels") {
     // Top edge y = 0.5 through six centres (drawn), right edge x = 5.5 (not drawn), the
     // diagonal y = x is a left edge (drawn).
@@ -176,47 +183,53 @@ TEST_CASE("vertices on pixel centres and edges through pixel centres") {
     // left edge (drawn); the apex (6.5, 3.5) lies on two right edges (not drawn); the
     // top and bottom vertices each lie on a right edge (not drawn).
     check_mask({{{1.5, 0.5}, {6.5, 3.5}, {1.5, 6.5}}}, {
-                                                            "........",
-                                                            ".##.....",
-                                                            ".####...",
-                                                            ".#####..",
-                                                            ".####...",
-                                                            ".##.....",
-                                                            "........",
-                                                        });
+        "........",
+        ".##.....",
+        ".####...",
+        ".#####..",
+        ".####...",
+        ".##.....",
+        "........",
+    });
     // Pointing left: the apex (1.5, 3.5) is where two left edges meet (drawn); the
     // vertical edge x = 6.5 is a right edge (not drawn).
     check_mask({{{6.5, 0.5}, {1.5, 3.5}, {6.5, 6.5}}}, {
-                                                            "........",
-                                                            ".....#..",
-                                                            "...###..",
-                                                            ".#####..",
-                                                            "...###..",
-                                                            ".....#..",
-                                                            "........",
-                                                        });
+        "........",
+        ".....#..",
+        "...###..",
+        ".#####..",
+        "...###..",
+        ".....#..",
+        "........",
+    });
     // Vertices between centres: no edge goes through a centre; the plain inside test.
     check_mask({{{0.2, 0.1}, {7.9, 2.3}, {2.6, 5.8}}}, {
-                                                           "##......",
-                                                           ".####...",
-                                                           ".#######",
-                                                           "..####..",
-                                                           "..###...",
-                                                           "..#.....",
-                                                       });
+        "##......",
+        ".####...",
+        ".#######",
+        "..####..",
+        "..###...",
+        "..#.....",
+    });
 }
 
 TEST_CASE("a triangle thinner than a pixel row covers what its centres say") {
     // Between two row centres: no centre inside, nothing drawn.
-    check_mask({{{0.0, 1.6}, {7.0, 1.9}, {3.0, 2.4}}}, {"....", "....", "....", "...."});
+    check_mask({{{0.0, 1.6}, {7.0, 1.9}, {3.0, 2.4}}}, {
+        "....",
+        "....",
+        "....",
+        "....",
+    });
     // Its middle vertex (0.2, 1.5) lies on row 1's centre line; the row is drawn from
     // there to the long edge at x = 4.9: centres 0.5 .. 4.5.
     check_mask({{{0.2, 1.5}, {6.8, 1.4}, {3.0, 1.6}}}, {
-                                                           ".......",
-                                                           "#####..",
-                                                           ".......",
-                                                       });
+        ".......",
+        "#####..",
+        ".......",
+    });
 }
+// clang-format on
 
 TEST_CASE("fixed-point spans are the exact top-left coverage of the snapped triangle") {
     std::mt19937_64 random(21);
@@ -257,7 +270,8 @@ TEST_CASE("floating-point spans agree with the exact coverage except at rounding
                           : Point2{grid(random) * 0.5, grid(random) * 0.5};
         }
         const std::array<FixedPoint2, 3> f = snapped(v);
-        const std::array<Point2, 3> exact{to_pixels(f[0]), to_pixels(f[1]), to_pixels(f[2])};
+        const std::array<Point2, 3> exact{to_pixels(f[0]), to_pixels(f[1]),
+                                          to_pixels(f[2])};
         Counts counts(w, h);
         scanline_spans(exact, Viewport{w, h}, counts.span_counter());
         for (int y = 0; y < h; ++y) {
@@ -270,7 +284,8 @@ TEST_CASE("floating-point spans agree with the exact coverage except at rounding
                 for (int i = 0; i < 3; ++i) {
                     const Point2 a = exact[i], b = exact[(i + 1) % 3];
                     const Point2 c = pixel_centre(x, y);
-                    const double cross = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+                    const double cross =
+                        (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
                     nearest = std::min(nearest, std::abs(cross) / glm::length(b - a));
                 }
                 INFO("trial " << trial << ", pixel (" << x << ", " << y << ")");
@@ -294,9 +309,8 @@ TEST_CASE("zero-area triangles draw nothing") {
         scanline_spans(v, Viewport{8, 8}, [&](Span) { ++calls; });
         scanline_spans(snapped(v), Viewport{8, 8}, [&](Span) { ++calls; });
         const std::array<Attributes<1>, 3> c{{{0.0}, {1.0}, {2.0}}};
-        scanline_interpolate(v, c, Viewport{8, 8}, [&](int, int, const Attributes<1>&) {
-            ++calls;
-        });
+        scanline_interpolate(v, c, Viewport{8, 8},
+                             [&](int, int, const Attributes<1>&) { ++calls; });
         CHECK(calls == 0);
     }
 }
@@ -327,9 +341,10 @@ TEST_CASE("bad coordinates throw an Error naming the value") {
     CHECK_THROWS_WITH_AS(scanline_spans(std::array<Point2, 3>{{{0, 0}, {nan, 1}, {2, 2}}},
                                         Viewport{4, 4}, ignore),
                          doctest::Contains("vertex 1"), Error);
-    CHECK_THROWS_WITH_AS(scanline_spans(std::array<Point2, 3>{{{0, 0}, {1, 1}, {2, 1e30}}},
-                                        Viewport{4, 4}, ignore),
-                         doctest::Contains("1000000000000000019884624838656"), Error);
+    CHECK_THROWS_WITH_AS(
+        scanline_spans(std::array<Point2, 3>{{{0, 0}, {1, 1}, {2, 1e30}}}, Viewport{4, 4},
+                       ignore),
+        doctest::Contains("1000000000000000019884624838656"), Error);
     const std::array<FixedPoint2, 3> far{{{0, 0}, {1 << 29, 0}, {0, 5}}};
     CHECK_THROWS_WITH_AS(scanline_spans(far, Viewport{4, 4}, ignore),
                          doctest::Contains("536870912"), Error);
@@ -357,7 +372,8 @@ TEST_CASE("a jittered grid mesh covers every pixel exactly once") {
         Counts hits(w, h), hits_fixed(w, h);
         for (int j = 0; j < ny; ++j) {
             for (int i = 0; i < nx; ++i) {
-                const Point2 a = points[j * (nx + 1) + i], b = points[j * (nx + 1) + i + 1];
+                const Point2 a = points[j * (nx + 1) + i],
+                             b = points[j * (nx + 1) + i + 1];
                 const Point2 c = points[(j + 1) * (nx + 1) + i];
                 const Point2 d = points[(j + 1) * (nx + 1) + i + 1];
                 const bool flip = (i + j) % 2 == 1;
@@ -458,29 +474,31 @@ TEST_CASE("stepped attributes lie on the plane at every pixel centre" *
         Counts spans(w, h), shaded(w, h);
         scanline_spans(v, Viewport{w, h}, spans.span_counter());
         int rows = 0, columns = 0, last_y = -1, last_x = -1;
-        scanline_interpolate(v, c, Viewport{w, h}, [&](int x, int y, const Attributes<3>& a) {
-            REQUIRE(((y > last_y) || (y == last_y && x > last_x))); // left to right, down
-            rows += y != last_y;
-            last_y = y, last_x = x;
-            ++shaded.at(x, y);
-            ++drawn_total;
-            const Point2 p = pixel_centre(x, y);
-            for (int k = 0; k < 3; ++k) {
-                const double plane =
-                    c[0][k] + g[k].dx * (p.x - v[0].x) + g[k].dy * (p.y - v[0].y);
-                const double size = std::max({std::abs(c[0][k]), std::abs(c[1][k]),
-                                              std::abs(c[2][k])}) +
-                                    (std::abs(g[k].dx) + std::abs(g[k].dy)) * 110;
-                const double bound = 2 * (h + w + 4) * 0x1p-52 * size;
-                REQUIRE(std::abs(a[k] - plane) <= bound);
-                worst = std::max(worst, std::abs(a[k] - plane) / (0x1p-52 * size));
-            }
-            columns = std::max(columns, x);
-        });
+        scanline_interpolate(
+            v, c, Viewport{w, h}, [&](int x, int y, const Attributes<3>& a) {
+                REQUIRE(
+                    ((y > last_y) || (y == last_y && x > last_x))); // left to right, down
+                rows += y != last_y;
+                last_y = y, last_x = x;
+                ++shaded.at(x, y);
+                ++drawn_total;
+                const Point2 p = pixel_centre(x, y);
+                for (int k = 0; k < 3; ++k) {
+                    const double plane =
+                        c[0][k] + g[k].dx * (p.x - v[0].x) + g[k].dy * (p.y - v[0].y);
+                    const double size = std::max({std::abs(c[0][k]), std::abs(c[1][k]),
+                                                  std::abs(c[2][k])}) +
+                                        (std::abs(g[k].dx) + std::abs(g[k].dy)) * 110;
+                    const double bound = 2 * (h + w + 4) * 0x1p-52 * size;
+                    REQUIRE(std::abs(a[k] - plane) <= bound);
+                    worst = std::max(worst, std::abs(a[k] - plane) / (0x1p-52 * size));
+                }
+                columns = std::max(columns, x);
+            });
         CHECK(shaded.hits == spans.hits); // the same pixels as scanline_spans
     }
     MESSAGE("worst |stepped - plane| / (eps S): " << worst << " over " << drawn_total
-                                                   << " pixels");
+                                                  << " pixels");
     CHECK(drawn_total > 0);
 }
 
@@ -495,10 +513,11 @@ TEST_CASE("the first pixel's value is the plane at its centre, not at the vertex
         c[i] = {v[i].x + 10 * v[i].y};
     }
     int drawn = 0;
-    scanline_interpolate(v, c, Viewport{10, 10}, [&](int x, int y, const Attributes<1>& a) {
-        INFO("pixel (" << x << ", " << y << ")");
-        CHECK(a[0] == (x + 0.5) + 10 * (y + 0.5));
-        ++drawn;
-    });
+    scanline_interpolate(v, c, Viewport{10, 10},
+                         [&](int x, int y, const Attributes<1>& a) {
+                             INFO("pixel (" << x << ", " << y << ")");
+                             CHECK(a[0] == (x + 0.5) + 10 * (y + 0.5));
+                             ++drawn;
+                         });
     CHECK(drawn > 8);
 }

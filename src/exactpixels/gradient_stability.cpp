@@ -97,7 +97,9 @@ StabilityRow measure(double y_delta, const std::vector<PlaneSamples<double>>& tr
 
 } // namespace
 
-std::vector<double> stability_y_deltas() { return {1e-2, 1e-4, 1e-6, 1e-9, 1e-12, 0.0}; }
+std::vector<double> stability_y_deltas() {
+    return {1e-2, 1e-4, 1e-6, 1e-9, 1e-12, 0.0};
+}
 
 Gradient<long double> exact_gradient(const PlaneSamples<double>& s) {
     Int128 x[3], y[3], c[3];
@@ -106,7 +108,7 @@ Gradient<long double> exact_gradient(const PlaneSamples<double>& s) {
         y[i] = to_grain_units(s.y[i]);
         c[i] = to_grain_units(s.c[i]);
     }
-    // Eq. 1.5 in integers: each product is below 2^102, each difference below 2^103.
+    // Eq. 1.7 in integers: each product is below 2^102, each difference below 2^103.
     const Int128 dx2 = x[1] - x[0], dy2 = y[1] - y[0], dc2 = c[1] - c[0];
     const Int128 dx3 = x[2] - x[0], dy3 = y[2] - y[0], dc3 = c[2] - c[0];
     const Int128 area2 = dx3 * dy2 - dx2 * dy3;
@@ -127,7 +129,8 @@ std::vector<PlaneSamples<double>> stability_triangles(double y_delta, int count,
         const double y0 = random.uniform(100.0, 900.0);
         const double h = random.uniform(1.0, 64.0) * (random.next() % 2 ? 1.0 : -1.0);
         PlaneSamples<double> s{};
-        s.x = {random.uniform(10, 1000), random.uniform(10, 1000), random.uniform(10, 1000)};
+        s.x = {random.uniform(10, 1000), random.uniform(10, 1000),
+               random.uniform(10, 1000)};
         s.y = {y0, y0 + y_delta, y0 + h};
         s.c = {random.uniform(0, 1), random.uniform(0, 1), random.uniform(0, 1)};
         // Shuffle the vertex order: the closed form starts from vertex 0.
@@ -158,8 +161,8 @@ std::vector<PlaneSamples<double>> stability_triangles(double y_delta, int count,
 std::vector<StabilityRow> gradient_stability_study(int count, std::uint64_t seed) {
     std::vector<StabilityRow> rows;
     for (const double delta : stability_y_deltas()) {
-        rows.push_back(measure<float>(delta, stability_triangles(delta, count, seed, true),
-                                      "float"));
+        rows.push_back(measure<float>(
+            delta, stability_triangles(delta, count, seed, true), "float"));
         rows.push_back(measure<double>(
             delta, stability_triangles(delta, count, seed, false), "double"));
     }
@@ -172,11 +175,12 @@ std::string stability_table_markdown(const std::vector<StabilityRow>& rows) {
                       "|---:|:--|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const StabilityRow& r : rows) {
         const double n = r.triangles / 100.0;
-        out += fmt::format("| {:g} | {} | {:.2f} | {:.1f} | {:.0f} | {:.2f} | {:.1f} | {:.0f} "
-                           "| {:.0f}% | {:.0f}% |\n",
-                           r.y_delta, r.precision, r.split_median, r.split_p99, r.split_max,
-                           r.closed_median, r.closed_p99, r.closed_max,
-                           r.closed_better / n, r.split_better / n);
+        out += fmt::format(
+            "| {:g} | {} | {:.2f} | {:.1f} | {:.0f} | {:.2f} | {:.1f} | {:.0f} "
+            "| {:.0f}% | {:.0f}% |\n",
+            r.y_delta, r.precision, r.split_median, r.split_p99, r.split_max,
+            r.closed_median, r.closed_p99, r.closed_max, r.closed_better / n,
+            r.split_better / n);
     }
     return out;
 }

@@ -11,8 +11,8 @@
 // Coordinates are in pixels (origin top-left, y down); a gradient is "units of c per
 // pixel". Chapter 1 derives both methods:
 //   - gradient_split_edge: sort by y, find the point on the long edge at the middle
-//     vertex's height, dc/dx between it and the middle vertex (eq. 1.2, 1.3);
-//   - gradient_closed_form: the ratio of two cross products, any vertex order (eq. 1.5).
+//     vertex's height, dc/dx between it and the middle vertex (eq. 1.3 to 1.5);
+//   - gradient_closed_form: the ratio of two cross products, any vertex order (eq. 1.7).
 // Every function is a template on the number type: float and double for rasterizers,
 // long double or an exact rational in the chapter's tests (any type with + - * /, < and
 // construction from int works). A triangle of zero area (three collinear or coincident
@@ -41,7 +41,7 @@ template <class T> struct PlaneSamples {
 };
 
 //> closed-form
-/// dc/dx and dc/dy as ratios of two cross products (eq. 1.5): no sorting, any vertex
+/// dc/dx and dc/dy as ratios of two cross products (eq. 1.7): no sorting, any vertex
 /// order, flat tops and bottoms need no special case. Zero area gives {0, 0}.
 template <class T> Gradient<T> closed_form_gradient(const PlaneSamples<T>& s) {
     const T dx2 = s.x[1] - s.x[0], dy2 = s.y[1] - s.y[0], dc2 = s.c[1] - s.c[0];
@@ -68,8 +68,8 @@ template <class T> std::array<int, 3> sorted_by_y(const std::array<T, 3>& y) {
 }
 
 //> split-edge
-/// dc/dx from the point on the long edge at the middle vertex's height (eq. 1.2, 1.3),
-/// dc/dy from the long edge's slope (eq. 1.8). Sorts the vertices by y first. Zero
+/// dc/dx from the point on the long edge at the middle vertex's height (eq. 1.3, 1.4),
+/// dc/dy from the long edge's slope (eq. 1.5). Sorts the vertices by y first. Zero
 /// area gives {0, 0}.
 template <class T> Gradient<T> split_edge_gradient(const PlaneSamples<T>& s) {
     const auto [i1, i2, i3] = sorted_by_y(s.y); // y1 <= y2 <= y3
@@ -93,21 +93,21 @@ template <class T> Gradient<T> split_edge_gradient(const PlaneSamples<T>& s) {
 //< split-edge
 
 //> edge-slopes
-/// dc/dy along the edge a-b, from its end values: (cb - ca) / (yb - ya) (eq. 1.6).
+/// dc/dy along the edge a-b, from its end values: (cb - ca) / (yb - ya) (eq. 1.8).
 /// A horizontal edge is never walked down; it gives 0.
 template <class T> T edge_slope_direct(T xa, T ya, T ca, T xb, T yb, T cb) {
     (void)xa, (void)xb; // the direct form needs no x
     return yb - ya == T(0) ? T(0) : (cb - ca) / (yb - ya);
 }
 
-/// dc/dy along the edge a-b, from the gradient: dc/dx * dx/dy + dc/dy (eq. 1.7). A step
+/// dc/dy along the edge a-b, from the gradient: dc/dx * dx/dy + dc/dy (eq. 1.9). A step
 /// down the edge moves dx/dy pixels right and one pixel down. Horizontal edge: 0.
 template <class T> T edge_slope_from_gradient(Gradient<T> g, T xa, T ya, T xb, T yb) {
     return yb - ya == T(0) ? T(0) : g.dx * ((xb - xa) / (yb - ya)) + g.dy;
 }
 //< edge-slopes
 
-/// The closed-form gradient (eq. 1.5) of c over the triangle p. Zero area: {0, 0}.
+/// The closed-form gradient (eq. 1.7) of c over the triangle p. Zero area: {0, 0}.
 template <class Real>
 Gradient<Real> gradient_closed_form(const std::array<glm::vec<2, Real>, 3>& p,
                                     const std::array<Real, 3>& c) {
@@ -115,7 +115,7 @@ Gradient<Real> gradient_closed_form(const std::array<glm::vec<2, Real>, 3>& p,
         PlaneSamples<Real>{{p[0].x, p[1].x, p[2].x}, {p[0].y, p[1].y, p[2].y}, c});
 }
 
-/// The split-edge gradient (eq. 1.2, 1.3, 1.8) of c over the triangle p, any vertex
+/// The split-edge gradient (eq. 1.3 to 1.5) of c over the triangle p, any vertex
 /// order (it sorts by y itself). Zero area: {0, 0}.
 template <class Real>
 Gradient<Real> gradient_split_edge(const std::array<glm::vec<2, Real>, 3>& p,
@@ -124,15 +124,16 @@ Gradient<Real> gradient_split_edge(const std::array<glm::vec<2, Real>, 3>& p,
         PlaneSamples<Real>{{p[0].x, p[1].x, p[2].x}, {p[0].y, p[1].y, p[2].y}, c});
 }
 
-/// dc/dy along the edge from a (value ca) to b (value cb), from the end values (eq. 1.6).
+/// dc/dy along the edge from a (value ca) to b (value cb), from the end values (eq. 1.8).
 template <class Real>
 Real edge_slope_direct(glm::vec<2, Real> a, Real ca, glm::vec<2, Real> b, Real cb) {
     return edge_slope_direct(a.x, a.y, ca, b.x, b.y, cb);
 }
 
-/// dc/dy along the edge from a to b, from the gradient g (eq. 1.7).
+/// dc/dy along the edge from a to b, from the gradient g (eq. 1.9).
 template <class Real>
-Real edge_slope_from_gradient(Gradient<Real> g, glm::vec<2, Real> a, glm::vec<2, Real> b) {
+Real edge_slope_from_gradient(Gradient<Real> g, glm::vec<2, Real> a,
+                              glm::vec<2, Real> b) {
     return edge_slope_from_gradient(g, a.x, a.y, b.x, b.y);
 }
 

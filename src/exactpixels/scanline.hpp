@@ -26,7 +26,7 @@
 //
 // Attributes: scanline_interpolate steps N values (colour channels, u, v, ...) across the
 // triangle. The value handed out for pixel (x, y) is the triangle's plane evaluated at
-// that pixel's centre (prestepped from the vertices, eq. 1.10 and 1.11), up to the
+// that pixel's centre (eq. 1.1; prestepped from the vertices, eq. 1.13), up to the
 // rounding of the additions that step it.
 #pragma once
 
@@ -56,7 +56,7 @@ inline constexpr std::int64_t fixed_coordinate_limit = std::int64_t{1} << 28;
 template <std::size_t N> using Attributes = std::array<double, N>;
 
 /// The first pixel index i whose centre i + 0.5 is at or after the coordinate v
-/// (ceil(v - 1/2), eq. 1.9), clamped to [lo, hi].
+/// (ceil(v - 1/2), eq. 1.11), clamped to [lo, hi].
 inline int first_centre_at_or_after(double v, int lo, int hi) {
     const double i = std::ceil(v - 0.5);
     return i < lo ? lo : i > hi ? hi : static_cast<int>(i);
@@ -80,14 +80,15 @@ inline void check_scanline_input(const std::array<Point2, 3>& v, const char* fun
 /// One edge being walked down the rows whose centres lie in [top.y, bottom.y).
 struct EdgeWalker {
     double x;    ///< where the edge crosses the current row's centre line
-    double dxdy; ///< x per row (eq. 1.1)
+    double dxdy; ///< x per row (eq. 1.2)
     int y_begin; ///< the first row walked (clipped to the viewport)
     int y_end;   ///< one past the last row walked (clipped to the viewport)
 
     /// Starts walking from `top` to `bottom` (top.y <= bottom.y) at the first row of
     /// the viewport whose centre is at or below top.y: the edge is prestepped there.
     EdgeWalker(Point2 top, Point2 bottom, Viewport viewport)
-        : x(top.x), dxdy(0.0), y_begin(first_centre_at_or_after(top.y, 0, viewport.height)),
+        : x(top.x), dxdy(0.0),
+          y_begin(first_centre_at_or_after(top.y, 0, viewport.height)),
           y_end(first_centre_at_or_after(bottom.y, 0, viewport.height)) {
         if (y_begin < y_end) { // y_begin < y_end implies bottom.y > top.y
             dxdy = (bottom.x - top.x) / (bottom.y - top.y);
@@ -104,15 +105,16 @@ struct EdgeWalker {
 /// the middle vertex lies left of the long edge, zero for a degenerate triangle.
 template <class Vertex> struct SortedTriangle {
     std::array<int, 3> order; ///< indices of top, middle and bottom in the input
-    Vertex top;    ///< smallest y
-    Vertex middle; ///< middle y
-    Vertex bottom; ///< largest y
-    bool middle_on_left; ///< the short edges are the left side
-    bool degenerate;     ///< zero area: nothing to draw
+    Vertex top;               ///< smallest y
+    Vertex middle;            ///< middle y
+    Vertex bottom;            ///< largest y
+    bool middle_on_left;      ///< the short edges are the left side
+    bool degenerate;          ///< zero area: nothing to draw
 };
 
-/// Sorts v by y and classifies it (eq. 1.4 gives the sign test).
-template <class Vertex> SortedTriangle<Vertex> sort_triangle(const std::array<Vertex, 3>& v) {
+/// Sorts v by y and classifies it (eq. 1.6 gives the sign test).
+template <class Vertex>
+SortedTriangle<Vertex> sort_triangle(const std::array<Vertex, 3>& v) {
     const auto order = sorted_by_y(std::array{v[0].y, v[1].y, v[2].y});
     const Vertex a = v[order[0]], b = v[order[1]], c = v[order[2]];
     // (x3 - x1)(y2 - y1) - (x2 - x1)(y3 - y1) = (x4 - x2)(y3 - y1): its sign says
@@ -231,7 +233,8 @@ struct FixedEdgeWalker {
 /// either winding), one Span per non-empty row, top to bottom, never outside the
 /// viewport. Throws Error for a coordinate beyond +-fixed_coordinate_limit.
 template <class SpanFn>
-void scanline_spans(const std::array<FixedPoint2, 3>& v, Viewport viewport, SpanFn&& emit) {
+void scanline_spans(const std::array<FixedPoint2, 3>& v, Viewport viewport,
+                    SpanFn&& emit) {
     check_scanline_input(v, "scanline_spans");
     const SortedTriangle<FixedPoint2> t = sort_triangle(v);
     if (t.degenerate) {
@@ -241,8 +244,9 @@ void scanline_spans(const std::array<FixedPoint2, 3>& v, Viewport viewport, Span
         return static_cast<int>(std::clamp<std::int64_t>(x, 0, viewport.width));
     };
     FixedEdgeWalker long_edge(t.top, t.bottom, viewport);
-    const FixedEdgeWalker short_edges[2] = {FixedEdgeWalker(t.top, t.middle, viewport),
-                                            FixedEdgeWalker(t.middle, t.bottom, viewport)};
+    const FixedEdgeWalker short_edges[2] = {
+        FixedEdgeWalker(t.top, t.middle, viewport),
+        FixedEdgeWalker(t.middle, t.bottom, viewport)};
     for (FixedEdgeWalker short_edge : short_edges) {
         FixedEdgeWalker& left = t.middle_on_left ? short_edge : long_edge;
         FixedEdgeWalker& right = t.middle_on_left ? long_edge : short_edge;
@@ -260,7 +264,7 @@ void scanline_spans(const std::array<FixedPoint2, 3>& v, Viewport viewport, Span
 
 //> prestep
 /// A linear value known at coordinate `from`, moved to coordinate `to` along a line on
-/// which it changes by `slope` per pixel (eq. 1.10): how every walk reaches its first
+/// which it changes by `slope` per pixel (eq. 1.13): how every walk reaches its first
 /// sample point.
 inline double prestep(double value, double slope, double from, double to) {
     //> exercise ch01-prestep: move the value from where it is known to the sample point.
@@ -284,7 +288,7 @@ void scanline_interpolate(const std::array<Point2, 3>& v,
     if (t.degenerate) {
         return;
     }
-    // Setup: one gradient per attribute (eq. 1.5), the same over the whole triangle.
+    // Setup: one gradient per attribute (eq. 1.7), the same over the whole triangle.
     std::array<Gradient<double>, N> g{};
     for (std::size_t k = 0; k < N; ++k) {
         g[k] = gradient_closed_form<double>(v, {c[0][k], c[1][k], c[2][k]});
@@ -293,7 +297,7 @@ void scanline_interpolate(const std::array<Point2, 3>& v,
     struct LeftEdge {
         EdgeWalker edge;
         Attributes<N> value; // at (edge.x, row centre)
-        Attributes<N> slope; // per row down the edge (eq. 1.7)
+        Attributes<N> slope; // per row down the edge (eq. 1.9)
         void step() {
             edge.step();
             for (std::size_t k = 0; k < N; ++k) {

@@ -16,11 +16,20 @@ std::string escape(const std::string& text) {
     std::string out;
     for (const char ch : text) {
         switch (ch) {
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '&': out += "&amp;"; break;
-        case '"': out += "&quot;"; break;
-        default: out += ch;
+        case '<':
+            out += "&lt;";
+            break;
+        case '>':
+            out += "&gt;";
+            break;
+        case '&':
+            out += "&amp;";
+            break;
+        case '"':
+            out += "&quot;";
+            break;
+        default:
+            out += ch;
         }
     }
     return out;
@@ -49,9 +58,9 @@ std::string SvgDiagram::attributes(const SvgStyle& style) {
 }
 
 void SvgDiagram::fill_pixel(int x, int y, const std::string& colour, double opacity) {
-    body_.push_back(fmt::format(
-        R"(<rect x="{:g}" y="{:g}" width="{:g}" height="{:g}" fill="{}" opacity="{:g}"/>)",
-        sx(x), sy(y), scale_, scale_, escape(colour), opacity));
+    body_.push_back(fmt::format(R"(<rect x="{:g}" y="{:g}" width="{:g}" height="{:g}" )"
+                                R"(fill="{}" opacity="{:g}"/>)",
+                                sx(x), sy(y), scale_, scale_, escape(colour), opacity));
 }
 
 void SvgDiagram::grid(const std::string& colour) {
@@ -62,8 +71,9 @@ void SvgDiagram::grid(const std::string& colour) {
     for (int y = 0; y <= height_; ++y) {
         path += fmt::format("M{:g} {:g}H{:g}", sx(0), sy(y), sx(width_));
     }
-    body_.push_back(fmt::format(R"(<path d="{}" stroke="{}" stroke-width="0.75" fill="none"/>)",
-                                path, escape(colour)));
+    body_.push_back(
+        fmt::format(R"(<path d="{}" stroke="{}" stroke-width="0.75" fill="none"/>)", path,
+                    escape(colour)));
 }
 
 void SvgDiagram::grid_labels(double size) {
@@ -126,7 +136,8 @@ std::string SvgDiagram::str() const {
     const double w = 2 * margin_ + scale_ * width_, h = 2 * margin_ + scale_ * height_;
     std::string out = fmt::format(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{:g}\" height=\"{:g}\" "
-        "viewBox=\"0 0 {:g} {:g}\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
+        "viewBox=\"0 0 {:g} {:g}\">\n<rect width=\"100%\" height=\"100%\" "
+        "fill=\"white\"/>\n",
         w, h, w, h);
     for (const std::string& element : body_) {
         out += element;

@@ -40,7 +40,7 @@ enum class SvgAnchor { start, middle, end };
 /// An SVG drawing over a width x height pixel grid; shapes are kept in drawing order
 /// (later shapes on top) and written out by str() or write().
 class SvgDiagram {
-public:
+  public:
     /// A diagram of width x height pixels, `scale` SVG units per pixel (> 0), with a
     /// blank border of `margin` SVG units. Throws Error for a negative size or a scale
     /// that is not positive.
@@ -71,7 +71,7 @@ public:
     /// path on failure.
     void write(const std::filesystem::path& path) const;
 
-private:
+  private:
     double sx(double x) const { return margin_ + scale_ * x; }
     double sy(double y) const { return margin_ + scale_ * y; }
     static std::string attributes(const SvgStyle& style);
