@@ -46,19 +46,18 @@ std::vector<BadScene> bad_scenes() {
         {"a syntax error", scene_with("width = = 3\n", ""), "4:9", "(syntax)", ""},
         {"an unknown key", scene_with("widht = 16\n", ""), "4:1", "image.widht",
          "unknown key"},
-        {"an unknown key in a mesh", scene_with("", "radius = 3\n"), "7:1", "mesh[0].radius",
-         "unknown key"},
+        {"an unknown key in a mesh", scene_with("", "radius = 3\n"), "7:1",
+         "mesh[0].radius", "unknown key"},
         {"a wrong type", scene_with("background = \"blue\"\n", ""), "4:14",
          "image.background", "expected an array"},
         {"a string for a number", scene_with("", "colour = [1, \"0\", 1]\n"), "7:14",
          "mesh[0].colour[1]", "expected a number"},
-        {"a negative size", "[image]\nwidth = -4\n[[mesh]]\nprimitive = \"quad\"\n", "2:9",
-         "image.width", "out of range"},
-        {"a zero field of view",
-         scene_with("[camera]\nfov = 0\n", ""), "5:7", "camera.fov", "greater than 0"},
-        {"a huge image", "[image]\nwidth = 99999\n[[mesh]]\nprimitive = \"quad\"\n", "2:9",
-         "image.width",
-         "out of range"},
+        {"a negative size", "[image]\nwidth = -4\n[[mesh]]\nprimitive = \"quad\"\n",
+         "2:9", "image.width", "out of range"},
+        {"a zero field of view", scene_with("[camera]\nfov = 0\n", ""), "5:7",
+         "camera.fov", "greater than 0"},
+        {"a huge image", "[image]\nwidth = 99999\n[[mesh]]\nprimitive = \"quad\"\n",
+         "2:9", "image.width", "out of range"},
         {"an image of too many pixels",
          "[image]\nwidth = 8192\nheight = 8192\n[[mesh]]\nprimitive = \"quad\"\n", "1:1",
          "image", "more than"},
@@ -66,8 +65,8 @@ std::vector<BadScene> bad_scenes() {
          scene_with("[textures.wood]\nkind = \"png\"\nfile = \"no-such-file.png\"\n", ""),
          "6:8", "textures.wood.file", "no-such-file.png"},
         {"a corrupt texture file",
-         scene_with("[textures.wood]\nkind = \"png\"\nfile = \"corrupt.png\"\n", ""), "6:8",
-         "textures.wood.file", "corrupt.png"},
+         scene_with("[textures.wood]\nkind = \"png\"\nfile = \"corrupt.png\"\n", ""),
+         "6:8", "textures.wood.file", "corrupt.png"},
         {"an unknown texture name", scene_with("", "texture = \"wood\"\n"), "7:11",
          "mesh[0].texture", "no texture named"},
         {"a degenerate triangle",
@@ -75,7 +74,8 @@ std::vector<BadScene> bad_scenes() {
          "positions = [[0, 0, 1], [1, 1, 1], [2, 2, 1]]\n",
          "1:1", "mesh[0]", "degenerate"},
         {"a fan of zero radius",
-         "[[mesh]]\nprimitive = \"fan\"\ncentre = [0, 0, 0]\nradius = 0.0\nsegments = 8\n",
+         "[[mesh]]\nprimitive = \"fan\"\ncentre = [0, 0, 0]\nradius = 0.0\nsegments = "
+         "8\n",
          "4:10", "mesh[0].radius", "greater than 0"},
         {"a NaN", scene_with("", "colour = [1, nan, 1]\n"), "7:14", "mesh[0].colour[1]",
          "not a finite number"},
@@ -119,7 +119,8 @@ TEST_CASE("every bad scene names the file, line, column and key path" *
     fs::remove_all(folder);
 }
 
-TEST_CASE("the render command rejects each bad scene with exit code 2 and writes nothing") {
+TEST_CASE(
+    "the render command rejects each bad scene with exit code 2 and writes nothing") {
     const fs::path folder = scratch_folder("cli");
     int k = 0;
     for (const BadScene& bad : bad_scenes()) {
@@ -127,9 +128,9 @@ TEST_CASE("the render command rejects each bad scene with exit code 2 and writes
         const fs::path scene = folder / ("bad" + std::to_string(k) + ".toml");
         const fs::path output = folder / ("bad" + std::to_string(k++) + ".png");
         std::ofstream(scene) << bad.text;
-        const auto result = testing::run_command(testing::cli_path() + " render '" +
-                                                 scene.string() + "' -o '" +
-                                                 output.string() + "'");
+        const auto result =
+            testing::run_command(testing::cli_path() + " render '" + scene.string() +
+                                 "' -o '" + output.string() + "'");
         INFO(result.err);
         CHECK(result.exit_code == 2);
         CHECK(result.err.find(scene.string() + ":" + bad.where + ": " + bad.key_path) !=
@@ -141,9 +142,9 @@ TEST_CASE("the render command rejects each bad scene with exit code 2 and writes
 
 TEST_CASE("a missing scene file is named, exit code 2, no output") {
     const fs::path folder = scratch_folder("missing");
-    const auto result = testing::run_command(testing::cli_path() + " render '" +
-                                             (folder / "nowhere.toml").string() +
-                                             "' -o '" + (folder / "out.png").string() + "'");
+    const auto result = testing::run_command(
+        testing::cli_path() + " render '" + (folder / "nowhere.toml").string() +
+        "' -o '" + (folder / "out.png").string() + "'");
     CHECK(result.exit_code == 2);
     CHECK(result.err.find("nowhere.toml") != std::string::npos);
     CHECK_FALSE(fs::exists(folder / "out.png"));
@@ -158,9 +159,9 @@ TEST_CASE("a triangle beyond the rasterizer's range is an error naming its mesh"
                              "[[mesh]]\nprimitive = \"triangles\"\n"
                              "positions = [[0, 0, 5], [1000000, 0, 5], [0, 1, 5]]\n";
     std::ofstream(folder / "far.toml") << text;
-    const auto result = testing::run_command(
-        testing::cli_path() + " render '" + (folder / "far.toml").string() + "' -o '" +
-        (folder / "far.png").string() + "'");
+    const auto result = testing::run_command(testing::cli_path() + " render '" +
+                                             (folder / "far.toml").string() + "' -o '" +
+                                             (folder / "far.png").string() + "'");
     CHECK(result.exit_code == 2);
     CHECK(result.err.find("far.toml:6:1: mesh[0]:") != std::string::npos);
     CHECK_FALSE(fs::exists(folder / "far.png"));

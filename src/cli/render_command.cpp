@@ -50,8 +50,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
                            e.worst, e.mean, e.pixels);
             }
             const std::filesystem::path output =
-                options->output.empty() ? std::filesystem::path(scene_path.stem().string() + ".png")
-                                        : std::filesystem::path(options->output);
+                options->output.empty()
+                    ? std::filesystem::path(scene_path.stem().string() + ".png")
+                    : std::filesystem::path(options->output);
             write_png(output, result.image); // all or nothing
             fmt::print("wrote {}\n", output.string());
         } catch (const Error& error) {

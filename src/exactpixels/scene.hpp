@@ -2,7 +2,8 @@
 //
 // Usage:
 //   Scene scene = load_scene("chapters/07-scenes/scenes/corridor.toml"); // scene_loader
-//   RenderResult result = render_scene(scene);                           // scene_renderer
+//   RenderResult result = render_scene(scene);                           //
+//   scene_renderer
 //
 // World space: x right, y up, z forward (away from a camera at the default pose), the
 // same handedness as view space. The camera looks from `position` at `target`; view
@@ -34,8 +35,8 @@ enum class Projection {
 /// The camera of a scene.
 struct SceneCamera {
     Projection projection = Projection::perspective; ///< pinhole or parallel
-    double fov_degrees = 60.0;           ///< perspective: vertical field of view, (0, 180)
-    double view_height = 2.0;            ///< orthographic: world units from top to bottom
+    double fov_degrees = 60.0; ///< perspective: vertical field of view, (0, 180)
+    double view_height = 2.0;  ///< orthographic: world units from top to bottom
     glm::dvec3 position = {0.0, 0.0, -4.0}; ///< the eye, world units
     glm::dvec3 target = {0.0, 0.0, 0.0};    ///< the point seen at the image centre
     glm::dvec3 up = {0.0, 1.0, 0.0};        ///< which way is up on screen
@@ -44,8 +45,8 @@ struct SceneCamera {
 
 /// One corner of a mesh triangle in world space.
 struct SceneVertex {
-    glm::dvec3 position;         ///< world units
-    TexCoord uv = {0.0, 0.0};    ///< texels (used only when the mesh has a texture)
+    glm::dvec3 position;             ///< world units
+    TexCoord uv = {0.0, 0.0};        ///< texels (used only when the mesh has a texture)
     Colour colour = {1.0, 1.0, 1.0}; ///< linear RGB (used only with vertex colours)
 };
 
@@ -60,7 +61,7 @@ struct MapperChoice {
 struct RenderOptions {
     Precision precision = Precision::float64; ///< the mappers' inner-loop arithmetic
     MapperChoice mapper = {};                 ///< which mapper, or auto
-    double budget = 0.5; ///< auto: the largest texel error allowed, texels, > 0
+    double budget = 0.5;  ///< auto: the largest texel error allowed, texels, > 0
     bool rounding = true; ///< chapter 4's rounding modifier (false: rule 1 everywhere)
 };
 
@@ -72,11 +73,11 @@ struct SceneTexture {
 
 /// A mesh: triangles and the effects they call for.
 struct SceneMesh {
-    std::string name;                              ///< for messages and reports
+    std::string name;                                  ///< for messages and reports
     std::vector<std::array<SceneVertex, 3>> triangles; ///< world space, none degenerate
-    std::optional<std::size_t> texture;            ///< index into Scene::textures
-    Wrap wrap = Wrap::repeat;                      ///< how its texture repeats
-    bool vertex_colours = false;                   ///< interpolate SceneVertex::colour
+    std::optional<std::size_t> texture;                ///< index into Scene::textures
+    Wrap wrap = Wrap::repeat;                          ///< how its texture repeats
+    bool vertex_colours = false;     ///< interpolate SceneVertex::colour
     Colour colour = {1.0, 1.0, 1.0}; ///< the flat colour (texels are multiplied by it)
     bool cull_back = false;          ///< skip triangles whose back faces the camera
     std::string origin; ///< "FILE:LINE:COLUMN: mesh[k]", where the mesh was defined
@@ -84,14 +85,14 @@ struct SceneMesh {
 
 /// A loaded, checked scene.
 struct Scene {
-    std::filesystem::path file;           ///< where it was read from (for messages)
-    int width = 320;                      ///< image width, pixels, [1, 8192]
-    int height = 240;                     ///< image height, pixels, [1, 8192]
-    Colour background = {0.0, 0.0, 0.0};  ///< linear RGB of uncovered pixels
-    SceneCamera camera = {};              ///< how the scene is seen
-    RenderOptions options = {};           ///< precision, mapper, budget, rounding
-    std::vector<SceneTexture> textures;   ///< named textures
-    std::vector<SceneMesh> meshes;        ///< drawn in order (later meshes on top)
+    std::filesystem::path file;          ///< where it was read from (for messages)
+    int width = 320;                     ///< image width, pixels, [1, 8192]
+    int height = 240;                    ///< image height, pixels, [1, 8192]
+    Colour background = {0.0, 0.0, 0.0}; ///< linear RGB of uncovered pixels
+    SceneCamera camera = {};             ///< how the scene is seen
+    RenderOptions options = {};          ///< precision, mapper, budget, rounding
+    std::vector<SceneTexture> textures;  ///< named textures
+    std::vector<SceneMesh> meshes;       ///< drawn in order (later meshes on top)
 };
 
 } // namespace exactpixels

@@ -113,7 +113,8 @@ class TableReader {
 double read_number(const Context& c, const toml::node& node, const std::string& path,
                    double lo, double hi) {
     if (!node.is_number()) {
-        c.fail(node.source(), path, fmt::format("expected a number, got {}", type_name(node)));
+        c.fail(node.source(), path,
+               fmt::format("expected a number, got {}", type_name(node)));
     }
     const double value = node.value<double>().value();
     if (!std::isfinite(value)) {
@@ -151,9 +152,11 @@ int read_integer(const Context& c, const toml::node& node, const std::string& pa
     return static_cast<int>(value);
 }
 
-std::string read_string(const Context& c, const toml::node& node, const std::string& path) {
+std::string read_string(const Context& c, const toml::node& node,
+                        const std::string& path) {
     if (!node.is_string()) {
-        c.fail(node.source(), path, fmt::format("expected a string, got {}", type_name(node)));
+        c.fail(node.source(), path,
+               fmt::format("expected a string, got {}", type_name(node)));
     }
     return node.as_string()->get();
 }
@@ -182,7 +185,8 @@ const toml::array& read_array(const Context& c, const toml::node& node,
                               const std::string& path, std::size_t min_size,
                               std::size_t max_size) {
     if (!node.is_array()) {
-        c.fail(node.source(), path, fmt::format("expected an array, got {}", type_name(node)));
+        c.fail(node.source(), path,
+               fmt::format("expected an array, got {}", type_name(node)));
     }
     const toml::array& array = *node.as_array();
     if (array.size() < min_size || array.size() > max_size) {
@@ -227,8 +231,8 @@ std::vector<glm::vec<N, double>> read_vectors(const Context& c, const toml::node
                                               const std::string& path, std::size_t count,
                                               double lo, double hi) {
     const std::size_t max_count = static_cast<std::size_t>(3 * max_scene_triangles);
-    const toml::array& array = read_array(c, node, path, count == 0 ? 1 : count,
-                                          count == 0 ? max_count : count);
+    const toml::array& array =
+        read_array(c, node, path, count == 0 ? 1 : count, count == 0 ? max_count : count);
     std::vector<glm::vec<N, double>> result;
     for (std::size_t k = 0; k < array.size(); ++k) {
         result.push_back(
@@ -268,7 +272,8 @@ void read_camera(const TableReader& t, SceneCamera& camera) {
         camera.fov_degrees = read_positive(c, *n, t.child("fov"), 0.0, 179.0);
     }
     if (const auto* n = t.find("view_height")) {
-        camera.view_height = read_positive(c, *n, t.child("view_height"), 0.0, world_limit);
+        camera.view_height =
+            read_positive(c, *n, t.child("view_height"), 0.0, world_limit);
     }
     if (const auto* n = t.find("near")) {
         camera.near = read_positive(c, *n, t.child("near"), 0.0, world_limit);
@@ -284,8 +289,8 @@ void read_camera(const TableReader& t, SceneCamera& camera) {
     }
     // The view direction and up must span a plane (chapter 7, @eq:look-at).
     const glm::dvec3 forward = camera.target - camera.position;
-    if (glm::length(glm::cross(forward, camera.up)) <= 1e-12 * glm::length(forward) *
-                                                          glm::length(camera.up) ||
+    if (glm::length(glm::cross(forward, camera.up)) <=
+            1e-12 * glm::length(forward) * glm::length(camera.up) ||
         glm::length(forward) == 0.0) {
         c.fail(t.table().source(), t.path(),
                "the camera looks along its up direction, or at its own position");
@@ -293,7 +298,8 @@ void read_camera(const TableReader& t, SceneCamera& camera) {
     t.finish();
 }
 
-MapperChoice read_mapper(const Context& c, const toml::node& node, const std::string& path) {
+MapperChoice read_mapper(const Context& c, const toml::node& node,
+                         const std::string& path) {
     const std::string word = read_string(c, node, path);
     MapperChoice choice{};
     choice.automatic = word == "auto";
@@ -340,10 +346,10 @@ MapperChoice read_mapper(const Context& c, const toml::node& node, const std::st
 void read_render(const TableReader& t, RenderOptions& options) {
     const Context& c = t.context();
     if (const auto* n = t.find("precision")) {
-        const std::size_t k = read_choice(c, *n, t.child("precision"),
-                                          {"float", "double", "fixed"});
-        options.precision = std::array{Precision::float32, Precision::float64,
-                                       Precision::fixed}[k];
+        const std::size_t k =
+            read_choice(c, *n, t.child("precision"), {"float", "double", "fixed"});
+        options.precision =
+            std::array{Precision::float32, Precision::float64, Precision::fixed}[k];
     }
     if (const auto* n = t.find("mapper")) {
         options.mapper = read_mapper(c, *n, t.child("mapper"));
@@ -372,7 +378,8 @@ Texture read_texture(const TableReader& t) {
     if (kind == 0 || kind == 1) { // checkerboard, grid
         const glm::ivec2 s = size();
         const char* key = kind == 0 ? "square" : "spacing";
-        const int cell = read_integer(c, t.require(key), t.child(key), 1, max_texture_side);
+        const int cell =
+            read_integer(c, t.require(key), t.child(key), 1, max_texture_side);
         t.finish();
         if (kind == 0) {
             return checkerboard_texture(s.x, s.y, cell);
@@ -481,8 +488,8 @@ void read_primitive(const TableReader& t, SceneMesh& mesh, std::size_t primitive
             }
         }
     } else if (primitive == 3) { // floor: a horizontal rectangle at height y
-        const double y = read_number(c, t.require("y"), t.child("y"), -world_limit,
-                                     world_limit);
+        const double y =
+            read_number(c, t.require("y"), t.child("y"), -world_limit, world_limit);
         const glm::dvec2 x =
             read_vector<2>(c, t.require("x"), t.child("x"), -world_limit, world_limit);
         const glm::dvec2 z =
@@ -538,11 +545,10 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
     if (kind_node == nullptr) {
         c.fail(table.source(), path, "the required key 'primitive' is missing");
     }
-    const std::size_t primitive =
-        read_choice(c, *kind_node, path + ".primitive",
-                    {"triangles", "quad", "box", "floor", "fan"});
-    std::vector<std::string> allowed{"primitive", "name", "texture", "wrap", "colour",
-                                     "cull"};
+    const std::size_t primitive = read_choice(
+        c, *kind_node, path + ".primitive", {"triangles", "quad", "box", "floor", "fan"});
+    std::vector<std::string> allowed{"primitive", "name",   "texture",
+                                     "wrap",      "colour", "cull"};
     allowed.insert(allowed.end(), primitive_keys[primitive].begin(),
                    primitive_keys[primitive].end());
     const TableReader t(c, table, path, allowed);
@@ -555,8 +561,9 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
     }
     if (const auto* n = t.find("texture")) {
         const std::string name = read_string(c, *n, t.child("texture"));
-        const auto found = std::find_if(scene.textures.begin(), scene.textures.end(),
-                                        [&](const SceneTexture& s) { return s.name == name; });
+        const auto found =
+            std::find_if(scene.textures.begin(), scene.textures.end(),
+                         [&](const SceneTexture& s) { return s.name == name; });
         if (found == scene.textures.end()) {
             c.fail(n->source(), t.child("texture"),
                    fmt::format("no texture named '{}' under [textures]", name));
@@ -593,7 +600,6 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
     return mesh;
 }
 
-
 } // namespace
 
 Scene parse_scene(std::string_view text, const std::filesystem::path& file,
@@ -607,12 +613,12 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
     }
     Scene scene;
     scene.file = file;
-    const TableReader top(c, root, "",
-                          {"image", "camera", "render", "textures", "mesh"});
+    const TableReader top(c, root, "", {"image", "camera", "render", "textures", "mesh"});
     const auto section = [&](const char* key) -> const toml::table* {
         const toml::node* n = top.find(key);
         if (n != nullptr && !n->is_table()) {
-            c.fail(n->source(), key, fmt::format("expected a table, got {}", type_name(*n)));
+            c.fail(n->source(), key,
+                   fmt::format("expected a table, got {}", type_name(*n)));
         }
         return n ? n->as_table() : nullptr;
     };
@@ -626,8 +632,9 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
                     scene.camera);
     }
     if (const toml::table* t = section("render")) {
-        read_render(TableReader(c, *t, "render", {"precision", "mapper", "budget", "rounding"}),
-                    scene.options);
+        read_render(
+            TableReader(c, *t, "render", {"precision", "mapper", "budget", "rounding"}),
+            scene.options);
     }
     if (const toml::table* t = section("textures")) {
         for (auto&& [key, node] : *t) {
@@ -636,8 +643,9 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
                 c.fail(node.source(), path,
                        fmt::format("expected a table, got {}", type_name(node)));
             }
-            const TableReader reader(c, *node.as_table(), path,
-                                     {"kind", "size", "square", "spacing", "cell", "file"});
+            const TableReader reader(
+                c, *node.as_table(), path,
+                {"kind", "size", "square", "spacing", "cell", "file"});
             scene.textures.push_back({std::string(key.str()), read_texture(reader)});
         }
     }
@@ -651,13 +659,15 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
         const std::string path = fmt::format("mesh[{}]", k);
         const toml::node& node = *list.get(k);
         if (!node.is_table()) {
-            c.fail(node.source(), path, fmt::format("expected a table, got {}", type_name(node)));
+            c.fail(node.source(), path,
+                   fmt::format("expected a table, got {}", type_name(node)));
         }
         scene.meshes.push_back(read_mesh(c, *node.as_table(), path, scene));
         triangles += static_cast<long long>(scene.meshes.back().triangles.size());
         if (triangles > max_scene_triangles) {
-            c.fail(node.source(), path,
-                   fmt::format("the scene has more than {} triangles", max_scene_triangles));
+            c.fail(
+                node.source(), path,
+                fmt::format("the scene has more than {} triangles", max_scene_triangles));
         }
     }
     top.finish();

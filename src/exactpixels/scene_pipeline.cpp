@@ -10,9 +10,12 @@ namespace exactpixels {
 
 MeshStages plan_mesh(const SceneMesh& mesh) {
     MeshStages stages;
+    //> exercise ch07-plan-mesh: turn on a stage for each effect the mesh uses, no other.
     stages.texture = mesh.texture.has_value();
     stages.colour = mesh.vertex_colours;
     stages.tint = !mesh.vertex_colours && mesh.colour != Colour{1.0, 1.0, 1.0};
+    //| (void)mesh; // stub: no stage at all, every mesh drawn in white
+    //< exercise ch07-plan-mesh
     return stages;
 }
 
@@ -23,9 +26,15 @@ bool constant_depth(double w0, double w1, double w2) {
 //> quadratic-bound
 double quadratic_error_bound(double r) {
     assert(r > 0.0);
-    // |t (t - 1/2) (1 - t)| <= sqrt 3 / 36 on [0, 1], and r - (r - 1) t >= min(r, 1).
-    const double peak = std::sqrt(3.0) / 36.0;
-    return 2.0 * peak * (r - 1.0) * (r - 1.0) / ((r + 1.0) * std::min(r, 1.0));
+    // The error is the same for r and 1 / r (the span seen from its other end): take
+    // s = max(r, 1/r) >= 1, k = s - 1. Two bounds of the error, each simple:
+    //  (a) |t (t - 1/2) (1 - t)| <= sqrt 3 / 36 and s - k t >= 1;
+    //  (b) |t - 1/2| <= 1/2 and s (1 - t) + t >= 2 sqrt(s t (1 - t)), so
+    //      t (1 - t) / (s - k t) <= 1 / (4 sqrt s).
+    const double s = std::max(r, 1.0 / r), k = s - 1.0;
+    const double a = 2.0 * (std::sqrt(3.0) / 36.0) * k * k / (s + 1.0);
+    const double b = k * k / (4.0 * (s + 1.0) * std::sqrt(s));
+    return std::min(a, b);
 }
 //< quadratic-bound
 
@@ -38,7 +47,7 @@ struct Piece {
 };
 
 Piece piece(const PerspectiveSpan<double>& s, int k0, int k1) {
-    const UV<double> a = exact_at(s, k0), b = exact_at(s, k1);  // two divides
+    const UV<double> a = exact_at(s, k0), b = exact_at(s, k1); // two divides
     const double q0 = s.one_w + k0 * s.done_w, q1 = s.one_w + k1 * s.done_w;
     return {q0 / q1, std::max(std::abs(b.u - a.u), std::abs(b.v - a.v))}; // one more
 }
@@ -73,6 +82,7 @@ AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget) {
         return chord_error_bound(s, 0, n) <= budget &&
                chord_error_bound(s, last - n, last) <= budget;
     };
+    //> exercise ch07-choose-mapper: try mappers cheapest first, keep the first that fits.
     const long long exact_cost = mapper_divides({MapperKind::exact, 2}, s.count);
     bool quadratic_tried = false;
     for (int n = std::max(s.count, 2); n >= 2; n = (n + 1) / 2) {
@@ -98,6 +108,8 @@ AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget) {
             break;
         }
     }
+    //| (void)budget, (void)pieces_fit; // stub: always exact, always within the budget
+    //< exercise ch07-choose-mapper
     return choice; // exact: nothing cheaper is within the budget
 }
 //< choose-span-mapper

@@ -1,9 +1,11 @@
-// scene_pipeline.hpp: which stages a mesh needs, and which mapper `auto` picks for a span.
+// scene_pipeline.hpp: which stages a mesh needs, and which mapper `auto` picks for a
+// span.
 //
 // Usage:
 //   MeshStages stages = plan_mesh(scene, mesh);          // what this mesh pays for
-//   SpanMapper m = choose_span_mapper(span, 0.5);        // auto: cheapest within 0.5 texel
-//   long long d = mapper_divides(m, span.count);         // divides the mapper performs
+//   SpanMapper m = choose_span_mapper(span, 0.5);        // auto: cheapest within 0.5
+//   texel long long d = mapper_divides(m, span.count);         // divides the mapper
+//   performs
 //
 // A stage runs only when the mesh calls for it (chapter 7, @sec:only-what-is-needed):
 // no texture, no texture coordinates and no sampling; no vertex colours, no colour
@@ -43,9 +45,10 @@ struct SpanMapper {
 bool constant_depth(double w0, double w1, double w2);
 
 /// The worst error of the quadratic mapper over a span of depth ratio r, as a fraction
-/// of the span's texel extent: the bound of @eq:quadratic-bound,
-/// (2 sqrt 3 / 36) (r - 1)^2 / ((r + 1) min(r, 1)). r > 0. Never below the true worst
-/// error (quadratic_error_max of chapter 3).
+/// of the span's texel extent: the bound of @eq:quadratic-bound, the smaller of
+/// (sqrt 3 / 18) (s - 1)^2 / (s + 1) and (s - 1)^2 / (4 (s + 1) sqrt s), s = max(r, 1/r).
+/// r > 0. Never below the true worst error (quadratic_error_max of chapter 3), and
+/// within a factor 3.1 of it for r in [1/64, 64].
 double quadratic_error_bound(double r);
 
 /// The worst texel error of the chord from pixel k0 to pixel k1 of the span (the exact
@@ -59,8 +62,8 @@ double parabola_error_bound(const PerspectiveSpan<double>& s, int k0, int k1);
 /// The result of the auto choice for one span: the mapper and the divides spent
 /// choosing it (the bounds need the exact values at the ends).
 struct AutoChoice {
-    SpanMapper mapper;         ///< the cheapest mapper within the budget
-    long long divides = 0;     ///< divides the choice itself performed
+    SpanMapper mapper;     ///< the cheapest mapper within the budget
+    long long divides = 0; ///< divides the choice itself performed
 };
 
 /// `auto` for one span whose depth varies: the mapper with the fewest divides whose

@@ -12,8 +12,8 @@
 
 #include <fmt/format.h>
 
-#include <chrono>
 #include <cassert>
+#include <chrono>
 #include <cmath>
 #include <vector>
 
@@ -67,7 +67,8 @@ CameraFrame camera_frame(const SceneCamera& camera) {
 /// vertical field of view, the view axis through the image centre (@eq:focal).
 Pinhole pinhole(const Scene& scene) {
     const double half_angle = 0.5 * scene.camera.fov_degrees * std::acos(-1.0) / 180.0;
-    return {0.5 * scene.height / std::tan(half_angle), {0.5 * scene.width, 0.5 * scene.height}};
+    return {0.5 * scene.height / std::tan(half_angle),
+            {0.5 * scene.width, 0.5 * scene.height}};
 }
 
 /// View space to screen: pixels (origin top-left, y down) and the depth w. The
@@ -141,7 +142,8 @@ void run_fixed(SpanMapper m, const PerspectiveSpan<double>& ps,
 }
 
 Rgba8 multiply(Rgba8 texel, const Colour& c) {
-    return to_rgba8(Colour{texel.r / 255.0 * c.r, texel.g / 255.0 * c.g, texel.b / 255.0 * c.b});
+    return to_rgba8(
+        Colour{texel.r / 255.0 * c.r, texel.g / 255.0 * c.g, texel.b / 255.0 * c.b});
 }
 
 /// Everything the per-triangle code needs about the mesh and the frame.
@@ -220,13 +222,13 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
         //> texture-stage
         if (m.stages.texture) {
             const Clock::time_point t0 = Clock::now();
-            const PerspectiveSpan<double> ps{u_w.at(x, y),  v_w.at(x, y),   one_w.at(x, y),
-                                             u_w.g.dx,      v_w.g.dx,       one_w.g.dx,
+            const PerspectiveSpan<double> ps{u_w.at(x, y), v_w.at(x, y), one_w.at(x, y),
+                                             u_w.g.dx,     v_w.g.dx,     one_w.g.dx,
                                              count};
             const AffineSpan<double> as{u.at(x, y), v.at(x, y), u.g.dx, v.g.dx, count};
             SpanMapper mapper{options.mapper.kind, options.mapper.span};
-            if (affine_exact && (options.mapper.automatic ||
-                                 options.mapper.kind == MapperKind::affine)) {
+            if (affine_exact &&
+                (options.mapper.automatic || options.mapper.kind == MapperKind::affine)) {
                 mapper = {MapperKind::affine, 2}; // exact here, and no divide
             } else if (options.mapper.automatic) {
                 const AutoChoice choice = choose_span_mapper(ps, options.budget);
@@ -235,10 +237,12 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
                 report.auto_choice.pixels += count;
                 report.auto_choice.divides += choice.divides;
             }
-            const TexelRounding r =
-                mapper.kind == MapperKind::affine ? affine_rounding : perspective_rounding;
+            const TexelRounding r = mapper.kind == MapperKind::affine
+                                        ? affine_rounding
+                                        : perspective_rounding;
             const auto texel = [&](int k, int i, int j, double uu, double vv) {
-                m.row[static_cast<std::size_t>(k)] = fetch_texel(*m.texture, i, j, m.mesh.wrap);
+                m.row[static_cast<std::size_t>(k)] =
+                    fetch_texel(*m.texture, i, j, m.mesh.wrap);
                 if (m.coordinates != nullptr) {
                     const std::size_t at = static_cast<std::size_t>(s.y) *
                                                static_cast<std::size_t>(m.frame.width()) +
@@ -263,8 +267,9 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
                 break;
             case Precision::fixed:
                 run_fixed(mapper, ps, as, [&](int k, std::int32_t U, std::int32_t V) {
-                    texel(k, fixed_texel_index(U, r.u_bias), fixed_texel_index(V, r.v_bias),
-                          double(U) / texel_scale, double(V) / texel_scale);
+                    texel(k, fixed_texel_index(U, r.u_bias),
+                          fixed_texel_index(V, r.v_bias), double(U) / texel_scale,
+                          double(V) / texel_scale);
                 });
                 break;
             }
@@ -333,8 +338,8 @@ struct ClippedCorners {
 /// second and third pass with the colour channels in place of uv cut them at the same
 /// parameter (the cut depends only on the positions).
 std::vector<ClippedCorners> clip_corners(const std::array<ViewVertex, 3>& view,
-                                         const std::array<Colour, 3>& colours, double near,
-                                         bool with_colours) {
+                                         const std::array<Colour, 3>& colours,
+                                         double near, bool with_colours) {
     const ClippedTriangles uv = clip_near(view, near);
     std::vector<ClippedCorners> pieces(static_cast<std::size_t>(uv.count));
     for (std::size_t t = 0; t < pieces.size(); ++t) {
@@ -351,7 +356,8 @@ std::vector<ClippedCorners> clip_corners(const std::array<ViewVertex, 3>& view,
         for (std::size_t t = 0; t < pieces.size(); ++t) {
             for (std::size_t k = 0; k < 3; ++k) {
                 assert(crg.triangles[t][k].position == pieces[t].view[k].position);
-                pieces[t].colours[k] = {crg.triangles[t][k].uv.x, crg.triangles[t][k].uv.y,
+                pieces[t].colours[k] = {crg.triangles[t][k].uv.x,
+                                        crg.triangles[t][k].uv.y,
                                         cb.triangles[t][k].uv.x};
             }
         }
@@ -371,16 +377,20 @@ double screen_area2(const std::array<TexturedVertex, 3>& t) {
 //> render-scene
 RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
     const Clock::time_point start = Clock::now();
-    RenderResult result{Framebuffer(scene.width, scene.height, to_rgba8(scene.background)),
-                        {}};
+    RenderResult result{
+        Framebuffer(scene.width, scene.height, to_rgba8(scene.background)), {}};
     RenderReport& report = result.report;
     const CameraFrame camera = camera_frame(scene.camera);
     const bool perspective = scene.camera.projection == Projection::perspective;
     const Pinhole lens = pinhole(scene);
     for (const SceneMesh& mesh : scene.meshes) {
-        MeshContext m{scene,        mesh,        plan_mesh(mesh),
+        MeshContext m{scene,
+                      mesh,
+                      plan_mesh(mesh),
                       mesh.texture ? &scene.textures[*mesh.texture].texture : nullptr,
-                      result.image, coordinates, report,
+                      result.image,
+                      coordinates,
+                      report,
                       {}};
         try {
             for (const std::array<SceneVertex, 3>& triangle : mesh.triangles) {
@@ -401,8 +411,8 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                 std::vector<ClippedCorners> pieces{{view, colours}};
                 if (perspective && !in_front) { // the only triangles that pay for it
                     const Clock::time_point c0 = Clock::now();
-                    pieces = clip_corners(view, colours, scene.camera.near,
-                                          m.stages.colour);
+                    pieces =
+                        clip_corners(view, colours, scene.camera.near, m.stages.colour);
                     report.clipping.triangles += 1;
                     report.clipping.seconds += seconds_since(c0);
                 }
@@ -438,8 +448,9 @@ std::string format_report(const RenderReport& r) {
                                   "triangles", "spans", "pixels", "divides", "ms");
     const auto line = [&](const std::string& name, const StageCounter& c, bool always) {
         if (always || c.triangles > 0 || c.spans > 0) {
-            out += fmt::format("{:<18} {:>10} {:>8} {:>10} {:>10} {:>10.3f}\n", name,
-                               c.triangles, c.spans, c.pixels, c.divides, 1e3 * c.seconds);
+            out +=
+                fmt::format("{:<18} {:>10} {:>8} {:>10} {:>10} {:>10.3f}\n", name,
+                            c.triangles, c.spans, c.pixels, c.divides, 1e3 * c.seconds);
         }
     };
     line("geometry", r.geometry, true);

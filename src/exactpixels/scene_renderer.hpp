@@ -36,16 +36,16 @@ struct StageCounter {
 
 /// What ran while rendering a scene: one counter per stage and per mapper.
 struct RenderReport {
-    StageCounter geometry;   ///< triangles moved to view space and projected
-    StageCounter clipping;   ///< triangles that crossed the near plane
-    StageCounter culling;    ///< triangles skipped because their back faces the camera
-    StageCounter raster;     ///< coverage: the triangles, spans and pixels drawn
-    StageCounter flat;       ///< pixels written with the mesh's flat colour
-    StageCounter colour;     ///< vertex colours interpolated and applied
-    StageCounter texture;    ///< texture coordinates computed and texels sampled
+    StageCounter geometry;    ///< triangles moved to view space and projected
+    StageCounter clipping;    ///< triangles that crossed the near plane
+    StageCounter culling;     ///< triangles skipped because their back faces the camera
+    StageCounter raster;      ///< coverage: the triangles, spans and pixels drawn
+    StageCounter flat;        ///< pixels written with the mesh's flat colour
+    StageCounter colour;      ///< vertex colours interpolated and applied
+    StageCounter texture;     ///< texture coordinates computed and texels sampled
     StageCounter auto_choice; ///< spans whose mapper `auto` chose, and its divides
     std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
-    double seconds = 0.0;    ///< the whole render
+    double seconds = 0.0;                ///< the whole render
 
     /// Every divide performed: the mappers' and auto's.
     long long divides() const;

@@ -1,0 +1,338 @@
+// Chapter 7 tests: the shipped scenes render; each mesh runs only the stages it calls
+// for; `auto` stays within its budget; the derived bounds and divide counts hold.
+#include "exactpixels/perspective_error.hpp"
+#include "exactpixels/scene_loader.hpp"
+#include "exactpixels/scene_pipeline.hpp"
+#include "exactpixels/scene_renderer.hpp"
+#include "exactpixels/span_mappers.hpp"
+#include "exactpixels/texture.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+using namespace exactpixels;
+
+namespace {
+
+Scene shipped(const std::string& name) {
+    return load_scene(shipped_scene_folder() / (name + ".toml"));
+}
+
+Scene with_mapper(Scene scene, MapperKind kind) {
+    scene.options.mapper = {false, kind, 16};
+    return scene;
+}
+
+/// A double that counts the divisions done with it.
+struct Counted {
+    double x = 0.0;
+    static inline long long divisions = 0;
+    Counted() = default;
+    Counted(double v) : x(v) {} // NOLINT: converts like a double
+    explicit operator double() const { return x; }
+    friend Counted operator+(Counted a, Counted b) { return a.x + b.x; }
+    friend Counted operator-(Counted a, Counted b) { return a.x - b.x; }
+    friend Counted operator*(Counted a, Counted b) { return a.x * b.x; }
+    friend Counted operator/(Counted a, Counted b) {
+        ++divisions;
+        return a.x / b.x;
+    }
+    Counted& operator+=(Counted b) { return x += b.x, *this; }
+};
+
+} // namespace
+
+TEST_CASE("every shipped scene loads and renders at its size") {
+    for (const auto& path : shipped_scenes()) {
+        INFO(path.string());
+        const Scene scene = load_scene(path);
+        const RenderResult result = render_scene(scene);
+        CHECK(result.image.width() == scene.width);
+        CHECK(result.image.height() == scene.height);
+        CHECK(result.report.raster.pixels > scene.width * scene.height / 20);
+    }
+}
+
+TEST_CASE("a flat orthographic quad covers exactly the pixels whose centres it holds") {
+    // 1 world unit = 1 pixel, the image centre at (4, 3): corners (-2, 2) and (2, -1)
+    // land on the pixel edges x = 2 .. 6 and y = 1 .. 4.
+    const Scene scene = parse_scene(R"(
+[image]
+width = 8
+height = 6
+[camera]
+projection = "orthographic"
+view_height = 6
+[[mesh]]
+primitive = "quad"
+colour = [1, 0, 0]
+corners = [[-2, 2, 0], [2, 2, 0], [2, -1, 0], [-2, -1, 0]]
+[[mesh]]
+primitive = "triangles"
+colour = [0, 0, 1]
+positions = [[-4, -1, 0], [-2, -1, 0], [-4, -3, 0]]
+)",
+                                    "mask.toml", ".");
+    const RenderResult result = render_scene(scene);
+    // The blue triangle's corners land on (0, 4), (2, 4) and (0, 6): its long edge
+    // passes through the centres (1.5, 4.5) and (0.5, 5.5), and a centre on a right
+    // edge is not covered (top-left rule), so only pixel (0, 4) is blue.
+    const char* expected[] = {"........", "..RRRR..", "..RRRR..",
+                              "..RRRR..", "B.......", "........"};
+    for (int y = 0; y < 6; ++y) {
+        for (int x = 0; x < 8; ++x) {
+            const char want = expected[y][x];
+            const Rgba8 colour = want == 'R'   ? rgba(255, 0, 0)
+                                 : want == 'B' ? rgba(0, 0, 255)
+                                               : rgba(0, 0, 0);
+            INFO("pixel (" << x << ", " << y << ")");
+            CHECK(result.image.at(x, y) == colour);
+        }
+    }
+    CHECK(result.report.flat.pixels == 12 + 1);
+    CHECK(result.report.texture.pixels == 0);
+    CHECK(result.report.divides() == 0);
+}
+
+TEST_CASE("the sprite sheet shows each texel as a block of 8 pixels, exactly") {
+    const Scene scene = shipped("sprites");
+    const RenderResult result = render_scene(scene);
+    const Texture f = f_texture(1);
+    // Sprite 0 spans world x -120 .. -80, y 70 .. 14: pixels x 8 .. 47, y 10 .. 65.
+    for (int y = 10; y < 66; ++y) {
+        for (int x = 8; x < 48; ++x) {
+            INFO("pixel (" << x << ", " << y << ")");
+            CHECK(result.image.at(x, y) == f.texel((x - 8) / 8, (y - 10) / 8));
+        }
+    }
+}
+
+TEST_CASE("a scene with no perspective renders the same with auto and exact, and divides "
+          "nothing" *
+          doctest::description("points: 2")) {
+    const Scene scene = shipped("sprites");
+    const RenderResult automatic = render_scene(scene);
+    for (const Precision precision :
+         {Precision::float32, Precision::float64, Precision::fixed}) {
+        Scene exact = with_mapper(scene, MapperKind::exact);
+        exact.options.precision = precision;
+        Scene same_auto = scene;
+        same_auto.options.precision = precision;
+        const RenderResult a = render_scene(same_auto), e = render_scene(exact);
+        CHECK(a.image == e.image);
+        CHECK(a.report.divides() == 0);
+        CHECK(e.report.divides() == e.report.texture.pixels); // one per pixel
+    }
+    CHECK(automatic.report.mappers[std::size_t(MapperKind::affine)].pixels ==
+          automatic.report.texture.pixels);
+    CHECK(automatic.report.auto_choice.spans == 0); // constant w: nothing to decide
+}
+
+TEST_CASE("a scene without textures runs no texture stage") {
+    const RenderResult result = render_scene(shipped("gouraud"));
+    CHECK(result.report.texture.triangles == 0);
+    CHECK(result.report.texture.pixels == 0);
+    CHECK(result.report.divides() == 0);
+    CHECK(result.report.colour.pixels > 0);
+    CHECK(result.report.flat.pixels > 0); // the flat marker: no colour interpolation
+    CHECK(result.report.colour.pixels + result.report.flat.pixels ==
+          result.report.raster.pixels);
+}
+
+TEST_CASE("geometry in front of the near plane does no clipping work") {
+    for (const char* name : {"corridor", "horizon", "gouraud", "sprites"}) {
+        INFO(name);
+        CHECK(render_scene(shipped(name)).report.clipping.triangles == 0);
+    }
+    const RenderResult near = render_scene(shipped("near_plane"));
+    CHECK(near.report.clipping.triangles > 0);
+    CHECK(near.report.clipping.triangles < near.report.geometry.triangles);
+}
+
+TEST_CASE("auto scenes stay within their error budget against the exact reference" *
+          doctest::description("points: 3")) {
+    for (const char* name : {"corridor", "horizon", "near_plane"}) {
+        INFO(name);
+        const Scene scene = shipped(name);
+        const TexelError e = check_against_exact(scene);
+        INFO("worst " << e.worst << ", mean " << e.mean);
+        CHECK(e.pixels > 1000);
+        // The bounds are exact in real arithmetic; double rounding adds far less than
+        // 1e-6 texel to coordinates below 2^13.
+        CHECK(e.worst <= scene.options.budget + 1e-6);
+        // ... and auto is cheaper than exact.
+        const long long auto_divides = render_scene(scene).report.divides();
+        const long long exact_divides =
+            render_scene(with_mapper(scene, MapperKind::exact)).report.divides();
+        CHECK(auto_divides < exact_divides);
+    }
+}
+
+TEST_CASE("a back-culled box draws only the faces turned to the camera") {
+    const Scene scene = parse_scene(R"(
+[image]
+width = 64
+height = 48
+[camera]
+position = [3.0, 2.5, -4.0]
+target = [0.0, 0.0, 0.0]
+[[mesh]]
+primitive = "box"
+cull = "back"
+centre = [0.0, 0.0, 0.0]
+size = [1.0, 2.0, 1.5]
+)",
+                                    "box.toml", ".");
+    const RenderResult result = render_scene(scene);
+    int facing = 0; // triangles whose outward normal points at the eye
+    for (const auto& t : scene.meshes[0].triangles) {
+        const glm::dvec3 centroid = (t[0].position + t[1].position + t[2].position) / 3.0;
+        const glm::dvec3 normal =
+            glm::cross(t[1].position - t[0].position, t[2].position - t[0].position);
+        CHECK(glm::dot(normal, centroid) != 0.0);
+        // Outward: the normal points away from the box centre (the origin).
+        const glm::dvec3 outward = glm::dot(normal, centroid) > 0 ? normal : -normal;
+        facing += glm::dot(outward, scene.camera.position - centroid) > 0.0;
+    }
+    CHECK(facing == 6); // three faces of a box seen from a corner direction
+    CHECK(result.report.culling.triangles == 12 - facing);
+    CHECK(result.report.raster.triangles == facing);
+}
+
+TEST_CASE("the quadratic bound is never below the true worst quadratic error") {
+    for (double r = 1.0 / 64.0; r <= 64.0; r *= 1.07) {
+        INFO("r = " << r);
+        const double truth = quadratic_error_max(r);
+        CHECK(quadratic_error_bound(r) >= truth * (1.0 - 1e-9));
+        CHECK(quadratic_error_bound(r) <= 3.1 * truth + 1e-12); // and not loose
+    }
+}
+
+TEST_CASE("chord and parabola bounds hold on random spans") {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> depth(0.5, 50.0), tex(-300.0, 300.0);
+    std::uniform_int_distribution<int> length(2, 400);
+    for (int trial = 0; trial < 300; ++trial) {
+        // A span from depth w0 to w1 over `count` pixels with texel coordinates u0..u1.
+        const int count = length(rng);
+        const double w0 = depth(rng), w1 = depth(rng), u0 = tex(rng), u1 = tex(rng),
+                     v0 = tex(rng), v1 = tex(rng);
+        const double n = count - 1;
+        const PerspectiveSpan<double> s{u0 / w0,
+                                        v0 / w0,
+                                        1 / w0,
+                                        (u1 / w1 - u0 / w0) / n,
+                                        (v1 / w1 - v0 / w0) / n,
+                                        (1 / w1 - 1 / w0) / n,
+                                        count};
+        double chord = 0.0, parabola = 0.0;
+        map_span_subdivided(s, count, [&](int k, double u, double v) {
+            const UV<double> e = exact_at(s, k);
+            chord = std::max({chord, std::abs(u - e.u), std::abs(v - e.v)});
+        });
+        map_span_quadratic(s, [&](int k, double u, double v) {
+            const UV<double> e = exact_at(s, k);
+            parabola = std::max({parabola, std::abs(u - e.u), std::abs(v - e.v)});
+        });
+        CHECK(chord <= chord_error_bound(s, 0, count - 1) + 1e-9);
+        CHECK(parabola <= parabola_error_bound(s, 0, count - 1) + 1e-9);
+    }
+}
+
+TEST_CASE("auto picks the cheapest mapper whose bound is within the budget" *
+          doctest::description("points: 2; exercise: ch07-choose-mapper")) {
+    // Constant depth along the span: the chord is exact, one piece, four divides.
+    const PerspectiveSpan<double> flat{10.0, 5.0, 0.5, 0.25, 0.0, 0.0, 100};
+    const AutoChoice c = choose_span_mapper(flat, 0.5);
+    CHECK(c.mapper.kind == MapperKind::subdivided);
+    CHECK(c.mapper.span >= 100);
+    CHECK(mapper_divides(c.mapper, 100) == 4);
+    // A steep span: depth 1 to 40 over 200 pixels, 500 texels. A larger budget never
+    // costs more divides, and whatever is chosen is within its budget.
+    const PerspectiveSpan<double> steep{
+        0.0, 0.0, 1.0, (500.0 / 40.0) / 199.0, 0.0, (1.0 / 40.0 - 1.0) / 199.0, 200};
+    long long previous = mapper_divides({MapperKind::exact, 2}, 200) + 1;
+    for (const double budget : {0.01, 0.1, 0.5, 2.0, 10.0, 100.0}) {
+        INFO("budget " << budget);
+        const AutoChoice choice = choose_span_mapper(steep, budget);
+        const long long divides = mapper_divides(choice.mapper, 200);
+        CHECK(divides <= previous);
+        previous = divides;
+        double worst = 0.0;
+        const auto measure = [&](int k, double u, double v) {
+            const UV<double> e = exact_at(steep, k);
+            worst = std::max({worst, std::abs(u - e.u), std::abs(v - e.v)});
+        };
+        switch (choice.mapper.kind) {
+        case MapperKind::subdivided:
+            map_span_subdivided(steep, choice.mapper.span, measure);
+            break;
+        case MapperKind::quadratic:
+            map_span_quadratic(steep, measure);
+            break;
+        default:
+            map_span_exact(steep, measure);
+        }
+        CHECK(worst <= budget + 1e-9);
+    }
+    CHECK(choose_span_mapper(steep, 0.01).mapper.kind == MapperKind::exact);
+    // The chord's bound over the whole span: (sqrt 40 - 1) / (sqrt 40 + 1) * 500 = 363.
+    CHECK(choose_span_mapper(steep, 364.0).mapper ==
+          SpanMapper{MapperKind::subdivided, 200});
+    CHECK(choose_span_mapper(steep, 362.0).mapper !=
+          SpanMapper{MapperKind::subdivided, 200});
+}
+
+TEST_CASE("mapper_divides counts every division chapter 3's mappers perform") {
+    const PerspectiveSpan<Counted> s{3.0, -2.0, 0.9, 0.01, 0.02, -0.001, 0};
+    const auto ignore = [](int, Counted, Counted) {};
+    for (const int count : {1, 2, 7, 16, 17, 100}) {
+        PerspectiveSpan<Counted> span = s;
+        span.count = count;
+        const AffineSpan<Counted> affine{1.0, 2.0, 0.5, 0.25, count};
+        for (const int n : {2, 5, 16}) {
+            INFO("count " << count << ", n " << n);
+            const auto counted = [&](auto run) {
+                Counted::divisions = 0;
+                run();
+                return Counted::divisions;
+            };
+            CHECK(counted([&] { map_span_exact(span, ignore); }) ==
+                  mapper_divides({MapperKind::exact, n}, count));
+            CHECK(counted([&] { map_span_affine(affine, ignore); }) ==
+                  mapper_divides({MapperKind::affine, n}, count));
+            CHECK(counted([&] { map_span_subdivided(span, n, ignore); }) ==
+                  mapper_divides({MapperKind::subdivided, n}, count));
+            CHECK(counted([&] { map_span_quadratic(span, ignore); }) ==
+                  mapper_divides({MapperKind::quadratic, n}, count));
+            CHECK(counted([&] { map_span_quadratic_subdivided(span, n, ignore); }) ==
+                  mapper_divides({MapperKind::quadratic_subdivided, n}, count));
+        }
+    }
+}
+
+TEST_CASE("plan_mesh asks for a stage only when the mesh uses it" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+    SceneMesh bare;
+    MeshStages s = plan_mesh(bare);
+    CHECK_FALSE(s.texture);
+    CHECK_FALSE(s.colour);
+    CHECK_FALSE(s.tint);
+    SceneMesh textured;
+    textured.texture = 0;
+    textured.colour = {1.0, 0.5, 1.0};
+    s = plan_mesh(textured);
+    CHECK(s.texture);
+    CHECK_FALSE(s.colour);
+    CHECK(s.tint);
+    SceneMesh shaded;
+    shaded.vertex_colours = true;
+    shaded.colour = {0.2, 0.2, 0.2}; // ignored: vertex colours win
+    s = plan_mesh(shaded);
+    CHECK(s.colour);
+    CHECK_FALSE(s.tint);
+    CHECK_FALSE(s.texture);
+}
