@@ -109,7 +109,8 @@ TEST_CASE("a modifier for an unusable fraction width is an Error naming k") {
                          doctest::Contains("k = 31"), Error);
 }
 
-TEST_CASE("the modifiers are chapter 3's 16.16 biases") {
+TEST_CASE("the modifiers are chapter 3's 16.16 biases" *
+          doctest::description("points: 1; exercise: ch04-modifier")) {
     // Chapter 3 indexes with floor((U + bias - D/2) / D), U = u * D = C + D/2: the bias
     // is the modifier, so rule 1 gives floor(u) and rule 2 gives ceil(u) - 1.
     CHECK(texel_bias(RoundingRule::ties_up) == texel_scale / 2);
