@@ -1,0 +1,203 @@
+// Chapter 6, hard cases of arithmetic: near-zero y-deltas in the gradient setup, tiny
+// triangles far from the origin, triangles nearly edge-on to the camera, and long spans
+// stepped in float. Each test states its tolerance and where it comes from.
+#include "exactpixels/fixed_point.hpp"
+#include "exactpixels/gradient_stability.hpp"
+#include "exactpixels/gradients.hpp"
+#include "exactpixels/quadratic.hpp"
+#include "exactpixels/span_mappers.hpp"
+#include "exactpixels/texture_mapper.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+using namespace exactpixels;
+
+namespace {
+#ifdef NDEBUG
+constexpr int trials = 1000; // Release
+#else
+constexpr int trials = 200; // Debug and sanitizer builds: the same checks, fewer cases
+#endif
+} // namespace
+
+TEST_CASE("near-zero y-deltas: both gradient setups stay finite and close to exact") {
+    // Chapter 1's study, fewer triangles: y-deltas from 1e-2 px down to 1e-12 px and 0.
+    // The reference is the exact gradient (128-bit integers). Tolerance, in machine
+    // epsilons of the precision, on the largest error over all triangles: 2^10 for the
+    // closed form, and the same for the split edge; never NaN or infinite.
+    const std::vector<StabilityRow> rows =
+        gradient_stability_study(trials, 5);
+    for (const StabilityRow& r : rows) {
+        INFO("y-delta " << r.y_delta << ", " << r.precision);
+        MESSAGE("y-delta " << r.y_delta << " " << r.precision << ": closed max "
+                           << r.closed_max << " eps, split max " << r.split_max << " eps");
+        CHECK(std::isfinite(r.closed_max));
+        CHECK(std::isfinite(r.split_max));
+        CHECK(r.closed_max <= 256.0);
+        CHECK(r.split_max <= 256.0);
+    }
+}
+
+namespace {
+/// c at screen point p from the plane through three vertices, in long double with every
+/// coordinate taken relative to vertex 0 first (the differences are exact): the
+/// reference for the far-from-origin case.
+long double plane_reference(const std::array<Point2, 3>& v, const std::array<double, 3>& c,
+                            Point2 p) {
+    using L = long double;
+    const L x1 = L(v[1].x) - L(v[0].x), y1 = L(v[1].y) - L(v[0].y);
+    const L x2 = L(v[2].x) - L(v[0].x), y2 = L(v[2].y) - L(v[0].y);
+    const L c1 = L(c[1]) - L(c[0]), c2 = L(c[2]) - L(c[0]);
+    const L area = x2 * y1 - x1 * y2;
+    const L gx = (c2 * y1 - c1 * y2) / area, gy = (c1 * x2 - c2 * x1) / area;
+    return L(c[0]) + gx * (L(p.x) - L(v[0].x)) + gy * (L(p.y) - L(v[0].y));
+}
+} // namespace
+
+TEST_CASE("a tiny triangle far from the origin: float loses it, relative coordinates keep it") {
+    // A 2-px triangle a million pixels from the origin, c from 0 to 1 across it. Near
+    // 2^20 float spacing is 1/16 px, so rounding the corners to float moves them by up
+    // to 1/32 px: a few percent of the triangle. Tolerances (on c in [0, 1]): double,
+    // absolute coordinates: 1e-9; float after subtracting vertex 0 in double: 1e-5;
+    // fixed point: exact corners (1/256 px), then double: 1e-9 against the plane through
+    // the snapped corners. Float with absolute coordinates must fail by more than 1e-3.
+    const Point2 base{1.0e6, 1.0e6};
+    const std::array<Point2, 3> v{base + Point2{0.3, 0.7}, base + Point2{2.1, 0.9},
+                                  base + Point2{0.8, 2.6}};
+    const std::array<double, 3> c{0.0, 1.0, 0.5};
+    const std::array<Point2, 3> snapped{to_pixels(snap_in_range(v[0])),
+                                        to_pixels(snap_in_range(v[1])),
+                                        to_pixels(snap_in_range(v[2]))};
+    const std::array<glm::vec2, 3> vf{glm::vec2(v[0]), glm::vec2(v[1]), glm::vec2(v[2])};
+    const std::array<glm::vec2, 3> rf{glm::vec2(v[0] - v[0]), glm::vec2(v[1] - v[0]),
+                                      glm::vec2(v[2] - v[0])};
+    const std::array<float, 3> cf{0.0f, 1.0f, 0.5f};
+    const Gradient<double> gd = gradient_closed_form<double>(v, c);
+    const Gradient<double> gs = gradient_closed_form<double>(snapped, c);
+    const Gradient<float> gf = gradient_closed_form<float>(vf, cf);
+    const Gradient<float> gr = gradient_closed_form<float>(rf, cf);
+    double e_float = 0, e_relative = 0, e_double = 0, e_fixed = 0;
+    for (int j = 0; j < 3; ++j) {
+        for (int i = 0; i < 3; ++i) {
+            const Point2 p = base + Point2{i + 0.5, j + 0.5};
+            const long double truth = plane_reference(v, c, p);
+            const long double truth_snapped = plane_reference(snapped, c, p);
+            const glm::vec2 pf(p);                   // exact: half-integers near 1e6
+            const glm::vec2 pr(p - v[0]);            // the safeguard: relative first
+            const float c_float = gf.dx * (pf.x - vf[0].x) + gf.dy * (pf.y - vf[0].y);
+            const float c_rel = gr.dx * pr.x + gr.dy * pr.y;
+            const double c_double = gd.dx * (p.x - v[0].x) + gd.dy * (p.y - v[0].y);
+            const double c_fixed = gs.dx * (p.x - snapped[0].x) + gs.dy * (p.y - snapped[0].y);
+            e_float = std::max(e_float, double(std::abs(c_float - truth)));
+            e_relative = std::max(e_relative, double(std::abs(c_rel - truth)));
+            e_double = std::max(e_double, double(std::abs(c_double - truth)));
+            e_fixed = std::max(e_fixed, double(std::abs(c_fixed - truth_snapped)));
+        }
+    }
+    MESSAGE("far tiny triangle, largest error in c: float " << e_float << ", float relative "
+                                                            << e_relative << ", double "
+                                                            << e_double << ", fixed "
+                                                            << e_fixed);
+    CHECK(e_float > 1e-3); // the failure the safeguard exists for
+    CHECK(e_relative <= 1e-5);
+    CHECK(e_double <= 1e-9);
+    CHECK(e_fixed <= 1e-9);
+}
+
+TEST_CASE("nearly edge-on: 1/w falls by hundreds along a row, exact in double and 16.16") {
+    // A quad whose left edge is at depth 1 and whose right edge is 10^4 times deeper:
+    // along each row 1/w falls from 1 to nearly 1e-4, and at the far end the divide
+    // (u/w) / (1/w) magnifies the rounding of both. The reference evaluates the same
+    // planes (through the snapped corners) in long double. Tolerances: double 1e-6
+    // texels; 16.16: half a unit (2^-17 texels) plus 1e-6; float: u/w and 1/w are each
+    // off by about 2 eps times their largest value, so relative to 1/w at the far pixel
+    // by 2 eps R, R the ratio of 1/w across the row: the allowance is
+    // 8 * 2^-24 * R * |u|max.
+    const TexturedVertex a{{10.3, 20.6}, 1.0, {0.0, 0.0}}, b{{300.7, 22.1}, 1.0e4, {4096.0, 0.0}},
+        c{{300.2, 60.9}, 1.0e4, {4096.0, 64.0}}, d{{12.2, 60.4}, 1.0, {0.0, 64.0}};
+    const std::array<TexturedVertex, 3> quad[2] = {{a, b, c}, {a, c, d}};
+    double worst[3] = {0, 0, 0};
+    double ratio = 1.0; // the largest ratio of 1/w along a row, at pixel centres
+    int pixels = 0;
+    const Precision precisions[3] = {Precision::float64, Precision::fixed, Precision::float32};
+    for (const auto& t : quad) {
+        std::array<Point2, 3> p{};
+        for (std::size_t k = 0; k < 3; ++k) {
+            p[k] = to_pixels(snap_in_range(t[k].position));
+        }
+        const auto plane = [&](auto f, Point2 at) {
+            return plane_reference(p, {f(t[0]), f(t[1]), f(t[2])}, at);
+        };
+        for (int k = 0; k < 3; ++k) {
+            TexelMap map(320, 64);
+            map_textured_triangle(map, t, {MapperKind::exact, 16, precisions[k], {}, Wrap::repeat});
+            for (int y = 0; y < 64; ++y) {
+                long double q_lo = 1e30L, q_hi = 0.0L;
+                for (int x = 0; x < 320; ++x) {
+                    const std::size_t at = std::size_t(y) * 320 + std::size_t(x);
+                    if (!map.covered[at]) {
+                        continue;
+                    }
+                    pixels += k == 0;
+                    REQUIRE(std::isfinite(map.u[at]));
+                    const Point2 s = pixel_centre(x, y);
+                    const long double q = plane([](const TexturedVertex& v) { return 1 / v.w; }, s);
+                    const long double u =
+                        plane([](const TexturedVertex& v) { return v.uv.x / v.w; }, s) / q;
+                    const long double v =
+                        plane([](const TexturedVertex& v) { return v.uv.y / v.w; }, s) / q;
+                    q_lo = std::min(q_lo, q);
+                    q_hi = std::max(q_hi, q);
+                    worst[k] = std::max({worst[k], double(std::abs(map.u[at] - u)),
+                                         double(std::abs(map.v[at] - v))});
+                }
+                if (q_hi > 0) {
+                    ratio = std::max(ratio, double(q_hi / q_lo));
+                }
+            }
+        }
+    }
+    MESSAGE("edge-on, " << pixels << " pixels, 1/w ratio along a row up to " << ratio
+                        << ", worst texel error: double " << worst[0] << ", 16.16 "
+                        << worst[1] << ", float " << worst[2]);
+    CHECK(pixels > 5000);
+    CHECK(ratio > 100.0);
+    CHECK(worst[0] <= 1e-6);
+    CHECK(worst[1] <= 0x1p-17 + 1e-6);
+    CHECK(worst[2] <= 8 * 0x1p-24 * ratio * 4096.0);
+}
+
+TEST_CASE("long spans in float: stepping drifts, re-evaluating the plane does not") {
+    // 4096 pixels, u from 0.3 growing by about one texel per pixel. Stepping adds a
+    // rounding of at most half a float spacing of |u| per pixel, so after n pixels the
+    // drift is at most n * 2^-24 * |u|max; evaluating u0 + k du afresh rounds twice:
+    // at most 2^-23 * |u|max. The reference is the same float u0 and du in double.
+    const int n = 4096;
+    const float u0 = 0.3f, du = 1.0001f;
+    float stepped = u0;
+    double drift = 0.0, fresh = 0.0;
+    const double u_max = double(u0) + n * double(du);
+    for (int k = 0; k < n; ++k) {
+        const double truth = double(u0) + k * double(du);
+        const float evaluated = u0 + float(k) * du;
+        drift = std::max(drift, std::abs(double(stepped) - truth));
+        fresh = std::max(fresh, std::abs(double(evaluated) - truth));
+        stepped += du;
+    }
+    // The library's float affine mapper steps the same way: same drift, bit for bit.
+    double mapper_drift = 0.0;
+    map_span_affine(AffineSpan<float>{u0, 0.0f, du, 0.0f, n}, [&](int k, float u, float) {
+        mapper_drift = std::max(mapper_drift, std::abs(double(u) - (double(u0) + k * double(du))));
+    });
+    MESSAGE("float over " << n << " px: stepping drift " << drift << " texels, fresh "
+                          << fresh << " texels, bound " << n * 0x1p-24 * u_max);
+    CHECK(drift <= n * 0x1p-24 * u_max);
+    CHECK(fresh <= 0x1p-23 * u_max);
+    CHECK(mapper_drift == drift);
+    CHECK(drift > 16 * fresh); // stepping is the problem, not float as such
+}
+
