@@ -220,8 +220,16 @@ TEST_CASE("pixel and 8x8 block traversals draw the same pixels") {
         const auto v = trial % 4 == 3 ? ch02::random_tie_triangle(rng, -10, 100)
                                       : ch02::random_triangle(rng, -spread / 4, spread);
         INFO("trial " << trial);
-        REQUIRE(draw_one(70, 50, v, Raster::blocks_fixed) ==
-                draw_one(70, 50, v, Raster::pixels_fixed));
+        const Grid pixels = draw_one(70, 50, v, Raster::pixels_fixed);
+        REQUIRE(draw_one(70, 50, v, Raster::blocks_fixed) == pixels); // the fast variant
+        // The plain block traversal (every block through classify_block) as well.
+        const EdgeSetup<FixedEdge> s = setup_edges(v);
+        Grid plain{70, 50};
+        auto hit = [&](int x, int y) { plain.hit(x, y); };
+        if (!s.empty) {
+            traverse_blocks(s, pixel_bounds(v, plain.viewport()), hit);
+        }
+        REQUIRE(plain == pixels);
     }
 }
 
