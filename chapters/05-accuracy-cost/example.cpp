@@ -1,0 +1,34 @@
+// Chapter 5 example: the grazing floor drawn by three mappers, with each one's error.
+// Usage: ch05-example [OUTPUT_DIR]   (writes OUTPUT_DIR/ch05_floor_*.png; default: .)
+#include "exactpixels/accuracy_scenes.hpp"
+#include "exactpixels/error.hpp"
+#include "exactpixels/mapper_error.hpp"
+#include "exactpixels/png.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+using namespace exactpixels;
+
+//> example-main
+int main(int argc, char** argv) try {
+    const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
+    const AccuracyScene floor = grazing_floor_scene();
+    for (const MapperConfig& mapper : accuracy_mappers()) {
+        if (mapper.name != "affine fixed" && mapper.name != "quadratic-8 fixed" &&
+            mapper.name != "exact float") {
+            continue;
+        }
+        Framebuffer frame(floor.width, floor.height, rgba(0, 0, 0));
+        draw_with(frame, floor, mapper);
+        const TexelError e = measure_mapper_error(floor, mapper);
+        std::string file = "ch05_floor_" + mapper.name.substr(0, mapper.name.find(' '));
+        write_png(folder / (file + ".png"), frame);
+        std::printf("%-18s worst %.3f texels, mean %.4f, %.2f %% of texels differ\n",
+                    mapper.name.c_str(), e.worst, e.mean, 100.0 * e.differing_share);
+    }
+} catch (const Error& error) {
+    std::fprintf(stderr, "ch05-example: %s\n", error.what());
+    return 1;
+}
+//< example-main
