@@ -10,6 +10,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <fstream>
 #include <random>
 #include <string>
 
@@ -335,4 +336,26 @@ TEST_CASE("plan_mesh asks for a stage only when the mesh uses it" *
     CHECK(s.colour);
     CHECK_FALSE(s.tint);
     CHECK_FALSE(s.texture);
+}
+
+TEST_CASE("the chapter's TOML listings are scenes the loader accepts") {
+    std::ifstream in(std::string(EXACTPIXELS_SOURCE_DIR) + "/chapters/07-scenes/chapter.md");
+    REQUIRE(in);
+    std::string line, block;
+    bool inside = false;
+    int blocks = 0;
+    while (std::getline(in, line)) {
+        if (!inside && line == "```{.toml}") {
+            inside = true;
+            block.clear();
+        } else if (inside && line == "```") {
+            inside = false;
+            ++blocks;
+            const Scene scene = parse_scene(block, "chapter.md", ".");
+            CHECK_FALSE(scene.meshes.empty());
+        } else if (inside) {
+            block += line + "\n";
+        }
+    }
+    CHECK(blocks >= 1);
 }

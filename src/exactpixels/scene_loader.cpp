@@ -287,7 +287,7 @@ void read_camera(const TableReader& t, SceneCamera& camera) {
     if (const auto* n = t.find("up")) {
         camera.up = read_point(c, *n, t.child("up"));
     }
-    // The view direction and up must span a plane (chapter 7, @eq:look-at).
+    // The view direction and up must span a plane (chapter 7, @eq:scene-look-at).
     const glm::dvec3 forward = camera.target - camera.position;
     if (glm::length(glm::cross(forward, camera.up)) <=
             1e-12 * glm::length(forward) * glm::length(camera.up) ||

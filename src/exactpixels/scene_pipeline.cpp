@@ -72,7 +72,7 @@ AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget) {
     const int last = s.count - 1;
     AutoChoice choice{{MapperKind::exact, 2}, 0};
     // Subdivided pieces of n pixels: the worst piece is at one end of the span, where
-    // the depth ratio and the texel extent are both largest (@eq:worst-piece).
+    // the depth ratio and the texel extent are both largest (@eq:scene-worst-piece).
     const auto pieces_fit = [&](int n) {
         choice.divides += divides_per_bound;
         if (n >= last) {

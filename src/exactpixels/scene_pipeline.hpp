@@ -41,11 +41,11 @@ struct SpanMapper {
 };
 
 /// True when the three depths are equal: u and v are then linear on screen and the
-/// affine mapper is exact (@eq:constant-w).
+/// affine mapper is exact (@eq:scene-constant-w).
 bool constant_depth(double w0, double w1, double w2);
 
 /// The worst error of the quadratic mapper over a span of depth ratio r, as a fraction
-/// of the span's texel extent: the bound of @eq:quadratic-bound, the smaller of
+/// of the span's texel extent: the bound of @eq:scene-quadratic-bound, the smaller of
 /// (sqrt 3 / 18) (s - 1)^2 / (s + 1) and (s - 1)^2 / (4 (s + 1) sqrt s), s = max(r, 1/r).
 /// r > 0. Never below the true worst error (quadratic_error_max of chapter 3), and
 /// within a factor 3.1 of it for r in [1/64, 64].
@@ -56,7 +56,7 @@ double quadratic_error_bound(double r);
 /// (@eq:affine-bound): the larger of the bounds for u and for v.
 double chord_error_bound(const PerspectiveSpan<double>& s, int k0, int k1);
 
-/// The same for Pursey's parabola from pixel k0 to pixel k1 (@eq:quadratic-bound).
+/// The same for Pursey's parabola from pixel k0 to pixel k1 (@eq:scene-quadratic-bound).
 double parabola_error_bound(const PerspectiveSpan<double>& s, int k0, int k1);
 
 /// The result of the auto choice for one span: the mapper and the divides spent
@@ -74,7 +74,7 @@ AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget);
 
 /// How many divides chapter 3's mapper performs on a span of `count` pixels (the same
 /// for every precision): exact count; affine 0; subdivided 1 + 3 P; quadratic 10;
-/// quadratic subdivided 10 P; P = ceil(count / span) pieces (@eq:divides).
+/// quadratic subdivided 10 P; P = ceil(count / span) pieces (@eq:scene-divides).
 long long mapper_divides(SpanMapper mapper, int count);
 
 } // namespace exactpixels

@@ -51,7 +51,7 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// The camera's axes in world space (@eq:look-at).
+/// The camera's axes in world space (@eq:scene-look-at).
 struct CameraFrame {
     glm::dvec3 eye, right, up, forward;
 };
@@ -64,7 +64,7 @@ CameraFrame camera_frame(const SceneCamera& camera) {
 
 //> project-vertex
 /// Chapter 3's pinhole for a perspective camera: the focal length in pixels from the
-/// vertical field of view, the view axis through the image centre (@eq:focal).
+/// vertical field of view, the view axis through the image centre (@eq:scene-focal).
 Pinhole pinhole(const Scene& scene) {
     const double half_angle = 0.5 * scene.camera.fov_degrees * std::acos(-1.0) / 180.0;
     return {0.5 * scene.height / std::tan(half_angle),
@@ -174,7 +174,7 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
         return plane(p, {value(tv[0], 0), value(tv[1], 1), value(tv[2], 2)});
     };
     // Texture stage setup: only for textured meshes.
-    const bool affine_exact = constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:constant-w
+    const bool affine_exact = constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
     const RenderOptions& options = m.scene.options;
     MapperSettings settings{.kind = options.mapper.kind,
                             .span = options.mapper.span,
