@@ -1,0 +1,64 @@
+// page_check.js: evaluated by the browser check (tests/bookcheck_html.cpp) in every page
+// of the built book, after the page and its fonts have loaded. It only looks; the C++
+// side decides what is wrong. Its value is an object:
+//   links     every href (a, link) as an absolute URL, with its text
+//   images    every <img>: its URL and whether it decoded to a non-empty picture
+//   ids       every id and <a name> of the page (targets of #anchors)
+//   rawTex    prose that still holds TeX: $$, \(, \[, \command, or pandoc's fallback
+//             <span class="math"> (MathML conversion failed)
+//   mathErrors every MathML <merror>, and every <math> the browser laid out with no size
+//   wide      every listing (<pre>) or display equation whose content is wider than its
+//             box (scrollWidth > clientWidth): the reader would have to scroll
+(() => {
+  const short = (text) => text.replace(/\s+/g, " ").trim().slice(0, 80);
+  const links = [...document.querySelectorAll("a[href], link[href]")].map((a) => ({
+    url: a.href,
+    text: short(a.textContent || a.getAttribute("rel") || ""),
+  }));
+  const images = [...document.querySelectorAll("img")].map((img) => ({
+    url: img.src,
+    ok: img.complete && img.naturalWidth > 0 && img.naturalHeight > 0,
+  }));
+  const ids = [...document.querySelectorAll("[id]")].map((e) => e.id)
+    .concat([...document.querySelectorAll("a[name]")].map((e) => e.name));
+
+  // Prose only: code, listings, scripts and MathML may legitimately hold backslashes.
+  const rawTex = [];
+  const skip = "PRE, CODE, SCRIPT, STYLE, MATH, TEXTAREA";
+  const walker = document.createTreeWalker(document.body, NodeFilter.SHOW_TEXT);
+  const tex = /\$\$|\\\(|\\\[|\\[A-Za-z]{2,}|\$[^$\s][^$]*\$/;
+  for (let node = walker.nextNode(); node; node = walker.nextNode()) {
+    const parent = node.parentElement;
+    if (parent && !parent.closest(skip) && tex.test(node.nodeValue)) {
+      rawTex.push(short(node.nodeValue));
+    }
+  }
+  for (const span of document.querySelectorAll("span.math")) {
+    rawTex.push("unrendered math: " + short(span.textContent));
+  }
+
+  const mathErrors = [];
+  for (const e of document.querySelectorAll("merror")) {
+    mathErrors.push("<merror>: " + short(e.textContent));
+  }
+  for (const m of document.querySelectorAll("math")) {
+    const box = m.getBoundingClientRect();
+    if (box.width === 0 || box.height === 0) {
+      mathErrors.push("math laid out with no size: " + short(m.textContent));
+    }
+  }
+
+  const wide = [];
+  const boxes = document.querySelectorAll("pre, .equation > p:first-child");
+  for (const box of boxes) {
+    if (box.scrollWidth > box.clientWidth + 1) {
+      wide.push({
+        what: box.tagName === "PRE" ? "listing" : "equation",
+        text: short((box.textContent || "").split("\n").find((l) => l.trim()) || ""),
+        scroll: box.scrollWidth,
+        client: box.clientWidth,
+      });
+    }
+  }
+  return { links, images, ids, rawTex, mathErrors, wide };
+})()
