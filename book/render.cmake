@@ -1,5 +1,5 @@
 # render.cmake: renders the HTML book and the PDF book (run by the `book` target).
-# Inputs (-D): ROOT, BOOK_DIR, FIGURE_DIR, PANDOC, PDFLATEX, RSVG_CONVERT, PAPER.
+# Inputs (-D): ROOT, BOOK_DIR, FIGURE_DIR, PANDOC, PDFLATEX, MAKEINDEX, RSVG_CONVERT, PAPER.
 cmake_minimum_required(VERSION 3.25)
 
 function(run_or_fail what)
@@ -57,20 +57,34 @@ foreach(i RANGE ${last})
     ${PANDOC} ${html_options} ${nav} chapters/${dir}/chapter.md -o ${BOOK_DIR}/${dir}.html)
 endforeach()
 
-# The contents page.
+# Pages that are not chapters (book/NAME.md): HTML pages of their own, and appendices of
+# the PDF in this order.
+set(pages build-and-run glossary)
+
+# The contents page: every chapter with its numbered sections (the filter reads them from
+# the chapters), then the appendix pages.
 set(index "---\npagetitle: Contents\n---\n\n# Exact Pixels\n\n")
 string(APPEND index "*Triangle rasterization and texture mapping, every pixel accounted for.*\n\n")
-string(APPEND index "::: toc\n")
-foreach(dir IN LISTS dirs)
-  string(APPEND index "1. [Chapter ${number_${dir}}: ${title_${dir}}](${dir}.html)\n")
+string(APPEND index "::: contents\n:::\n\n")
+string(APPEND index "::: appendices\n")
+foreach(page IN LISTS pages)
+  file(STRINGS ${ROOT}/book/${page}.md heading LIMIT_COUNT 1 REGEX "^# ")
+  string(REGEX REPLACE "^# +" "" heading "${heading}")
+  string(REGEX REPLACE " *\\{[^}]*\\} *$" "" heading "${heading}")
+  string(APPEND index "- [${heading}](${page}.html)\n")
 endforeach()
 string(APPEND index ":::\n\n")
 string(APPEND index "Also: [the PDF book](exact-pixels.pdf) · [the API reference](api/index.html)\n")
 file(WRITE ${BOOK_DIR}/latex/index.md "${index}")
 run_or_fail("HTML contents page"
-  ${PANDOC} --from=markdown --to=html5 --standalone --template=${ROOT}/book/template.html
-  --metadata-file=${ROOT}/book/metadata.yaml ${BOOK_DIR}/latex/index.md
-  -o ${BOOK_DIR}/index.html)
+  ${CMAKE_COMMAND} -E env ${filter_env} EP_TARGET=html EP_PAGE=${BOOK_DIR}/latex/index.md
+  ${PANDOC} ${html_options} ${BOOK_DIR}/latex/index.md -o ${BOOK_DIR}/index.html)
+
+foreach(page IN LISTS pages)
+  run_or_fail("HTML of book/${page}.md"
+    ${CMAKE_COMMAND} -E env ${filter_env} EP_TARGET=html EP_PAGE=book/${page}.md
+    ${PANDOC} ${html_options} book/${page}.md -o ${BOOK_DIR}/${page}.html)
+endforeach()
 
 # The PDF: SVG figures become PDF, then one LaTeX document of all chapters.
 file(GLOB svgs ${FIGURE_DIR}/*.svg)
@@ -88,6 +102,22 @@ if(PAPER STREQUAL "letter")
 else()
   set(papersize a4)
 endif()
+# The back matter: the pages above as appendices, then the index of terms.
+set(back "\\appendix\n")
+foreach(page IN LISTS pages)
+  run_or_fail("LaTeX of book/${page}.md"
+    ${CMAKE_COMMAND} -E env ${filter_env} EP_TARGET=latex EP_PAGE=book/${page}.md
+    ${PANDOC} --from=markdown --to=latex --top-level-division=chapter --number-sections
+    --lua-filter=${ROOT}/book/filters/exactpixels.lua book/${page}.md
+    -o ${BOOK_DIR}/latex/${page}.tex)
+  file(READ ${BOOK_DIR}/latex/${page}.tex text)
+  string(APPEND back "${text}\n")
+endforeach()
+string(APPEND back "\\cleardoublepage\\phantomsection\\addcontentsline{toc}{chapter}{Index}\n")
+string(APPEND back "\\printindex\n")
+file(WRITE ${BOOK_DIR}/latex/back-matter.tex "${back}")
+# The same 155 mm text block on both papers (about 80 characters of 11 pt text a line, and
+# 90 columns of the listing font, see latex/header.tex); the margins take the difference.
 run_or_fail("LaTeX of the book"
   ${CMAKE_COMMAND} -E env ${filter_env} EP_TARGET=latex "EP_CHAPTERS=${all_dirs}"
   ${PANDOC} --from=markdown --to=latex --standalone --top-level-division=chapter
@@ -95,18 +125,32 @@ run_or_fail("LaTeX of the book"
   --lua-filter=${ROOT}/book/filters/exactpixels.lua
   --metadata-file=${ROOT}/book/metadata.yaml
   --include-in-header=${ROOT}/book/latex/header.tex
+  --include-after-body=${BOOK_DIR}/latex/back-matter.tex
   -V documentclass=book -V classoption=oneside -V papersize=${papersize}
-  -V fontsize=10pt -V geometry=margin=22mm
+  -V fontsize=11pt -V geometry=textwidth=155mm -V geometry=top=25mm
+  -V geometry=bottom=30mm
   ${chapter_paths} -o ${BOOK_DIR}/latex/exact-pixels.tex)
-foreach(pass 1 2)
-  execute_process(COMMAND ${PDFLATEX} -interaction=nonstopmode -halt-on-error
-                    exact-pixels.tex
+# Three passes with makeindex after the first: the second places the index and the
+# contents, the third settles page numbers that moved. max_print_line keeps each log
+# message on one line for the PDF check.
+file(REMOVE ${BOOK_DIR}/latex/exact-pixels.ind)
+foreach(pass 1 2 3)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env max_print_line=10000
+                    ${PDFLATEX} -interaction=nonstopmode -halt-on-error exact-pixels.tex
                   WORKING_DIRECTORY ${BOOK_DIR}/latex RESULT_VARIABLE result
                   OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT result EQUAL 0)
     string(REGEX MATCH "![^\n]*\n[^\n]*\n[^\n]*\n[^\n]*" first_error "${out}")
     message(FATAL_ERROR "pdflatex failed (see ${BOOK_DIR}/latex/exact-pixels.log):\n"
                         "${first_error}")
+  endif()
+  if(pass EQUAL 1)
+    execute_process(COMMAND ${MAKEINDEX} -q exact-pixels.idx
+                    WORKING_DIRECTORY ${BOOK_DIR}/latex RESULT_VARIABLE result
+                    ERROR_VARIABLE err)
+    if(NOT result EQUAL 0)
+      message(FATAL_ERROR "makeindex failed (see ${BOOK_DIR}/latex/exact-pixels.ilg):\n${err}")
+    endif()
   endif()
 endforeach()
 file(COPY_FILE ${BOOK_DIR}/latex/exact-pixels.pdf ${BOOK_DIR}/exact-pixels.pdf)

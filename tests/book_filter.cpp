@@ -5,6 +5,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -49,14 +50,23 @@ struct FixtureBook {
     // Renders chapters/07-demo/chapter.md with `markdown` as its text, to HTML.
     exactpixels::testing::CommandResult render(const std::string& markdown) const {
         write("chapters/07-demo/chapter.md", markdown);
-        const std::string env =
+        return run_filter("chapters/07-demo/chapter.md", "html", "EP_CHAPTERS=07-demo");
+    }
+
+    // Runs the filter on `file` (relative to the root) for `target` (html or latex), with
+    // `env` added to the environment (e.g. "EP_CHAPTERS=07-demo" or "EP_PAGE=...").
+    exactpixels::testing::CommandResult run_filter(const std::string& file,
+                                                   const std::string& target,
+                                                   const std::string& env,
+                                                   const std::string& all = "07-demo") const {
+        const std::string vars =
             "EP_ROOT='" + root.string() + "' EP_FIGURES='" + (root / "figures").string() +
-            "' EP_OUT='" + (root / "out").string() +
-            "' EP_TARGET=html EP_CHAPTERS=07-demo EP_ALL_CHAPTERS=07-demo ";
-        return run_command(env + "pandoc --from=markdown --to=html5 --lua-filter='" +
+            "' EP_OUT='" + (root / "out").string() + "' EP_TARGET=" + target + " " + env +
+            " EP_ALL_CHAPTERS='" + all + "' ";
+        return run_command(vars + "pandoc --from=markdown --to=" +
+                           (target == "html" ? "html5 --mathml" : "latex") + " --lua-filter='" +
                            std::string(EXACTPIXELS_SOURCE_DIR) +
-                           "/book/filters/exactpixels.lua' '" +
-                           (root / "chapters/07-demo/chapter.md").string() + "'");
+                           "/book/filters/exactpixels.lua' '" + (root / file).string() + "'");
     }
 };
 
@@ -164,4 +174,79 @@ TEST_CASE("a figure the build did not make fails the book") {
     const auto made = book.render(title + "![A figure.](ch07_made.png){#fig:made}\n");
     CHECK(made.exit_code == 0);
     CHECK(made.out.find("Figure\u00a07.1:") != std::string::npos);
+}
+
+TEST_CASE("an index term is plain text in HTML and an \\index entry in LaTeX") {
+    FixtureBook book;
+    const std::string text = title + "The [Top-left fill rule]{.index} decides, and so does "
+                                     "[the affine one]{.index term=\"texture mapping!affine\"}.\n";
+    const auto html = book.render(text);
+    REQUIRE(html.exit_code == 0);
+    CHECK(html.out.find("The Top-left fill rule decides") != std::string::npos);
+    CHECK(html.out.find("index") == std::string::npos);
+    book.write("chapters/07-demo/chapter.md", text);
+    const auto latex =
+        book.run_filter("chapters/07-demo/chapter.md", "latex", "EP_CHAPTERS=07-demo");
+    REQUIRE(latex.exit_code == 0);
+    // Sorted by a plain lower-case key, shown as written; "!" makes a sub-entry.
+    CHECK(latex.out.find("Top-left fill rule\\index{topleft fill rule@Top-left fill rule}") !=
+          std::string::npos);
+    CHECK(latex.out.find("\\index{texture mapping@texture mapping!affine@affine}") !=
+          std::string::npos);
+}
+
+TEST_CASE("the contents page lists every chapter and numbered section with links") {
+    FixtureBook book;
+    book.write("chapters/07-demo/chapter.md", title + "## Part {#sec:part}\n\nText.\n\n"
+                                                      "### Detail\n\nText.\n\n"
+                                                      "## Exercises {.unnumbered}\n\nDo.\n");
+    book.write("contents.md", "# Contents\n\n::: contents\n:::\n\nSee @sec:part.\n");
+    const auto result = book.run_filter("contents.md", "html",
+                                        "EP_PAGE='" + (book.root / "contents.md").string() + "'");
+    REQUIRE(result.exit_code == 0);
+    std::string text = without_tags(result.out);
+    std::replace(text.begin(), text.end(), '\n', ' ');
+    CHECK(result.out.find("href=\"07-demo.html\"") != std::string::npos);
+    CHECK(text.find("7 Demo") != std::string::npos);
+    CHECK(result.out.find("href=\"07-demo.html#sec:part\"") != std::string::npos);
+    CHECK(text.find("7.1 Part") != std::string::npos);
+    // Level 3 and unnumbered headings stay out of the contents.
+    CHECK(text.find("Detail") == std::string::npos);
+    CHECK(text.find("Exercises") == std::string::npos);
+    // A reference from a page that is not a chapter goes to the chapter's page.
+    CHECK(result.out.find("href=\"07-demo.html#sec:part\" class=\"ref\">Section\u00a07.1</a>") !=
+          std::string::npos);
+}
+
+TEST_CASE("a page that is not a chapter reports errors with its own file name") {
+    FixtureBook book;
+    book.write("page.md", "# A page\n\nSee @sec:nowhere.\n");
+    const auto result = book.run_filter("page.md", "html",
+                                        "EP_PAGE='" + (book.root / "page.md").string() + "'");
+    CHECK(result.exit_code != 0);
+    CHECK(result.err.find("page.md:3: error:") != std::string::npos);
+    CHECK(result.err.find("sec:nowhere") != std::string::npos);
+}
+
+TEST_CASE("headings without an explicit label may repeat from chapter to chapter") {
+    FixtureBook book;
+    fs::create_directories(book.root / "chapters" / "08-more");
+    book.write("chapters/08-more/chapter.md", "# More\n\n## Exercises\n\nDo.\n");
+    book.write("chapters/07-demo/chapter.md", title + "## Exercises\n\nDo.\n");
+    const auto result = book.run_filter("chapters/07-demo/chapter.md", "html",
+                                        "EP_CHAPTERS=07-demo", "07-demo 08-more");
+    CHECK(result.exit_code == 0);
+    CHECK(result.err.find("defined twice") == std::string::npos);
+}
+
+TEST_CASE("plain parentheses in HTML math do not stretch; \\left and \\right do") {
+    FixtureBook book;
+    const auto plain = book.render(title + "A point $(x_k, y_k)$.\n");
+    REQUIRE(plain.exit_code == 0);
+    CHECK(plain.out.find("<math") != std::string::npos);
+    CHECK(plain.out.find("stretchy=\"false\" form=\"prefix\">(") != std::string::npos);
+    CHECK(plain.out.find("stretchy=\"true\"") == std::string::npos);
+    const auto fenced = book.render(title + "A point $\\left(\\frac{a}{b}\\right)$.\n");
+    REQUIRE(fenced.exit_code == 0);
+    CHECK(fenced.out.find("stretchy=\"true\"") != std::string::npos);
 }

@@ -14,6 +14,15 @@
 --   EP_ALL_CHAPTERS  every chapter folder of the book, in order (for cross references)
 --   EP_OUT           the HTML output folder (source pages of named tests go below it)
 --   EP_LATEX_FIGURES the folder where SVG figures were converted to PDF (LaTeX only)
+--   EP_PAGE          set for a page that is not a chapter (the contents page, the
+--                    glossary, "Build and run"): the path of its Markdown file, for error
+--                    messages. Its headings are not numbered, its references and named
+--                    tests resolve as in a chapter, and a `::: contents` block in it is
+--                    filled with every chapter's numbered headings (the table of contents).
+--
+-- In every document, [term]{.index} marks a term for the PDF's index (\index{term}; HTML
+-- shows the text only); [text]{.index term="edge function!top-left bias"} files the text
+-- under another entry (makeindex syntax: "!" for a sub-entry).
 
 local root = assert(os.getenv("EP_ROOT"), "EP_ROOT not set")
 local figures = assert(os.getenv("EP_FIGURES"), "EP_FIGURES not set")
@@ -27,6 +36,7 @@ local function split(text)
   return items
 end
 local chapters_here = split(os.getenv("EP_CHAPTERS"))
+local page_file = os.getenv("EP_PAGE")
 local all_chapters = split(os.getenv("EP_ALL_CHAPTERS"))
 
 local function read_file(path)
@@ -60,6 +70,14 @@ end
 
 -- Stops the build with "chapters/NN-slug/chapter.md:LINE: message" and a non-zero status.
 local function fail(dir, needle, message)
+  if not dir and page_file then
+    local n = 0
+    for number, line in ipairs(lines_of(read_file(page_file) or "")) do
+      if line:find(needle, 1, true) then n = number break end
+    end
+    io.stderr:write(string.format("%s:%d: error: %s\n", page_file, n, message))
+    os.exit(1)
+  end
   io.stderr:write(string.format("%s:%d: error: %s\n", chapter_file(dir or "??"),
     line_of(dir or "", needle), message))
   os.exit(1)
@@ -197,7 +215,9 @@ local function collect_labels()
       each_block(doc.blocks, state, function(block, counters)
         local kind, number = number_of(block, counters)
         local label = kind and label_of(block)
-        if label and label ~= "" then
+        -- Only labels written as kind:name are the book's; a heading's automatic id
+        -- ("exercises") is local to its page and may repeat from chapter to chapter.
+        if label and label:match("^%a+:") then
           if labels[label] then
             fail(dir, label, "label '" .. label .. "' is defined twice")
           end
@@ -206,6 +226,41 @@ local function collect_labels()
       end)
     end
   end
+end
+
+-- The table of contents: every chapter's title and numbered level-2 headings, with
+-- their numbers, linked to the chapter pages (HTML) or labels (LaTeX).
+local function contents_list()
+  local chapters = {}
+  for _, dir in ipairs(all_chapters) do
+    local text = read_file(root .. "/" .. chapter_file(dir))
+    if text then
+      local doc = pandoc.read(text, "markdown")
+      local state = { h1 = 0, dirs = { dir } }
+      local entry
+      each_block(doc.blocks, state, function(block, counters)
+        local kind, number = number_of(block, counters)
+        if block.t ~= "Header" or kind ~= (block.level == 1 and "ch" or "sec")
+            or block.level > 2 then
+          return
+        end
+        local title = pandoc.utils.stringify(block.content)
+        local href = dir .. ".html" .. (block.level == 2 and ("#" .. block.identifier) or "")
+        local link = pandoc.Link({ pandoc.Span({ pandoc.Str(number) }, { class = "secnum" }),
+                                   pandoc.Space(), pandoc.Str(title) }, href)
+        if block.level == 1 then
+          entry = { pandoc.Plain({ link }), pandoc.BulletList({}) }
+          chapters[#chapters + 1] = entry
+        elseif entry then
+          entry[2].content:insert({ pandoc.Plain({ link }) })
+        end
+      end)
+    end
+  end
+  for _, entry in ipairs(chapters) do
+    if #entry[2].content == 0 then entry[2] = nil end
+  end
+  return pandoc.BulletList(chapters)
 end
 
 ---------------------------------------------------------------------------------------
@@ -465,6 +520,29 @@ local function test_reference(span, dir)
   return pandoc.Link({ label }, href, file .. ", line " .. line_number, { class = "test" })
 end
 
+-- [term]{.index}: the text stays; LaTeX also gets \index{key@shown}, sorted by the
+-- plain lower-case key. term="..." names another entry (makeindex syntax, "!" nests).
+local function index_term(span)
+  if target ~= "latex" then return span.content end
+  local shown = plain(span.attributes.term or pandoc.utils.stringify(span.content))
+  local function escape(text)
+    text = text:gsub('(["@|])', '"%1')
+    return (text:gsub("([\\{}$&#^_%%~])", function(c)
+      local map = { ["\\"] = "\\textbackslash{}", ["~"] = "\\textasciitilde{}",
+                    ["^"] = "\\textasciicircum{}" }
+      return map[c] or ("\\" .. c)
+    end))
+  end
+  local parts = {}
+  for part in (shown .. "!"):gmatch("(.-)!") do
+    local key = part:lower():gsub("[^%w ]", "")
+    parts[#parts + 1] = escape(key) .. "@" .. escape(part)
+  end
+  local out = pandoc.List(span.content)
+  out:insert(pandoc.RawInline("latex", "\\index{" .. table.concat(parts, "!") .. "}"))
+  return out
+end
+
 local function render_inlines(doc, dir_of_block)
   return doc:walk({
     Cite = function(cite)
@@ -477,14 +555,56 @@ local function render_inlines(doc, dir_of_block)
     end,
     Span = function(span)
       if span.classes:includes("test") then return test_reference(span, dir_of_block()) end
+      if span.classes:includes("index") then return index_term(span) end
     end,
   })
 end
 
 ---------------------------------------------------------------------------------------
 
+-- HTML: pandoc's MathML marks every parenthesis stretchy, so a browser grows "(x_k)" to
+-- the height of its subscript and pads it. In TeX only \left, \right and \big... grow a
+-- delimiter; make the MathML say the same.
+local function fixed_delimiters(doc)
+  if target ~= "html" then return doc end
+  return doc:walk({
+    Math = function(math)
+      if math.text:find("\\left") or math.text:find("\\right") or math.text:find("\\[bB]ig")
+          or math.text:find("\\middle") then
+        return nil
+      end
+      local html = pandoc.write(pandoc.Pandoc({ pandoc.Plain({ math }) }), "html5",
+                                { html_math_method = "mathml" })
+      html = html:gsub('<mo stretchy="true" form="(%a+)">', '<mo stretchy="false" form="%1">')
+      return pandoc.RawInline("html", (html:gsub("%s+$", "")))
+    end,
+  })
+end
+
+-- A page that is not a chapter: references and named tests resolve, headings are not
+-- numbered, and `::: contents` is filled with the table of contents.
+local function render_page(doc)
+  doc = render_inlines(doc, function() return nil end)
+  doc = doc:walk({
+    Div = function(div)
+      if div.classes:includes("contents") then
+        div.content = { contents_list() }
+        return div
+      end
+    end,
+    CodeBlock = function(block)
+      for _, class in ipairs(block.classes) do
+        if allowed_code_classes[class] then return nil end
+      end
+      fail(nil, "```", "a code block typed by hand: mark it .pseudocode / .text / .sh / .toml")
+    end,
+  })
+  return fixed_delimiters(doc)
+end
+
 function Pandoc(doc)
   collect_labels()
+  if page_file then return render_page(doc) end
   -- Inline references need the chapter each block belongs to: resolve them block by
   -- block, top level, tracking level-1 headings.
   local h1, blocks = 0, pandoc.List()
@@ -503,5 +623,5 @@ function Pandoc(doc)
   if target == "html" and state.title then
     doc.meta.pagetitle = state.title
   end
-  return doc
+  return fixed_delimiters(doc)
 end
