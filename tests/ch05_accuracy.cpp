@@ -1,0 +1,101 @@
+// Chapter 5 tests: the error measure of the benchmark, its scenes, and its agreement
+// with chapter 3's closed-form bound for the affine mapper.
+#include "exactpixels/accuracy_scenes.hpp"
+#include "exactpixels/mapper_error.hpp"
+#include "exactpixels/perspective_error.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+using namespace exactpixels;
+
+namespace {
+MapperConfig find(const std::string& name) {
+    for (const MapperConfig& m : accuracy_mappers()) {
+        if (m.name == name) {
+            return m;
+        }
+    }
+    FAIL("no mapper " << name);
+    return {};
+}
+} // namespace
+
+TEST_CASE("the texel error is the larger of the two coordinate errors" *
+          doctest::description("points: 2; exercise: ch05-texel-error")) {
+    CHECK(texel_error(3.25, 7.0, 3.0, 7.5) == 0.5);
+    CHECK(texel_error(-1.0, 2.0, 1.0, 2.25) == 2.0);
+    CHECK(texel_error(4.0, 4.0, 4.0, 4.0) == 0.0);
+    // Through a whole comparison: one pixel off by (0.75, -0.25) texels.
+    TexelMap a(2, 1), b(2, 1);
+    for (TexelMap* m : {&a, &b}) {
+        m->covered = {true, true};
+        m->u = {0.5, 1.5};
+        m->v = {0.5, 0.5};
+        m->i = {0, 1};
+        m->j = {0, 0};
+    }
+    b.u[1] = 2.25;
+    b.v[1] = 0.25;
+    b.i[1] = 2;
+    const TexelError e = compare_texel_maps(a, b);
+    CHECK(e.pixels == 2);
+    CHECK(e.worst == 0.75);
+    CHECK(e.mean == 0.375);
+    CHECK(e.differing_share == 0.5);
+}
+
+TEST_CASE("every mapper covers the same pixels as the reference on every scene") {
+    for (const AccuracyScene& scene : accuracy_scenes()) {
+        for (const MapperConfig& m : accuracy_mappers()) {
+            INFO(benchmark_name(scene, m));
+            const TexelError e = measure_mapper_error(scene, m);
+            CHECK(e.coverage_mismatches == 0);
+            CHECK(e.pixels > 0);
+        }
+    }
+}
+
+TEST_CASE("on the facing wall only the rounding rule decides, at exactly the ties") {
+    // w is the same at every corner, so every mapper is exact; u = (304.5 - x) / 2 is a
+    // whole number at every other pixel centre, and u falls to the right, so chapter
+    // 4's rule picks ceil(u) - 1 there while rule 1 picks floor(u): half the pixels.
+    const AccuracyScene wall = wall_facing_scene();
+    for (const char* name : {"affine fixed", "quadratic fixed", "exact double"}) {
+        const TexelError e = measure_mapper_error(wall, find(name));
+        INFO(name);
+        CHECK(e.worst == 0.0);
+        CHECK(e.differing_share == 0.5);
+    }
+    for (const char* name : {"affine fixed +rule", "exact fixed +rule"}) {
+        const TexelError e = measure_mapper_error(wall, find(name));
+        CHECK(e.worst == 0.0);
+        CHECK(e.differing_share == 0.0);
+    }
+}
+
+TEST_CASE("the grazing floor spans depth ratios from 1.1 to 20") {
+    const auto r = span_depth_ratios(grazing_floor_scene());
+    CHECK(r[0] >= 1.1);
+    CHECK(r[0] <= 1.2);
+    CHECK(r[1] >= 20.0);
+    CHECK(r[1] <= 21.0);
+}
+
+TEST_CASE("the measured affine error meets chapter 3's bound on a single receding quad") {
+    // A quad whose depth grows from 1 to r along x only: every row is one span with
+    // depth ratio close to r and u running over 100 texels, so the worst affine error
+    // is affine_error_bound(r) * 100 texels (eq. affine-bound), up to the sampling of
+    // the span at pixel centres: within 1 % of it.
+    const double r = 9.0;
+    AccuracyScene quad{"quad", 320, 40, {}, checkerboard_texture(8, 8, 1)};
+    const TexturedVertex a{{0.0, 0.0}, 1.0, {0.0, 0.0}}, b{{320.0, 0.0}, r, {100.0, 0.0}},
+        c{{320.0, 40.0}, r, {100.0, 10.0}}, d{{0.0, 40.0}, 1.0, {0.0, 10.0}};
+    quad.triangles = {{a, b, c}, {a, c, d}};
+    const TexelError e = measure_mapper_error(quad, find("affine double"));
+    const double bound = affine_error_bound(r) * 100.0; // 50 texels for r = 9
+    MESSAGE("affine worst " << e.worst << " texels, chapter 3's bound " << bound);
+    CHECK(e.worst <= bound);
+    CHECK(e.worst >= 0.99 * bound);
+}
