@@ -214,7 +214,7 @@ int main(int argc, char** argv) {
            "a mesh's triangles (where the mesh must cover them) or by two or more, with "
            "the "
            "mesh moved away from the origin by the offset (fig_ch02_float). "
-           "{#tbl:float-faults}\n";
+           "{#tbl:edge-float-faults}\n";
     out << "\n| triangles, size (px) | offset (px) | pixels drawn | float 1x1 wrong | "
            "float 8x8 wrong | float 8x8 vs 1/256 vertices |\n|---|--:|--:|--:|--:|--:|\n";
     const std::pair<int, int> sizes[] = {{16, 4000}, {128, 400}, {1024, 12}};
@@ -229,7 +229,7 @@ int main(int argc, char** argv) {
            "the "
            "same vertices, and from the exact coverage of the vertices before they were "
            "rounded to float, for random triangles about the given size across "
-           "(fig_ch02_float). {#tbl:float-wrong}\n";
+           "(fig_ch02_float). {#tbl:edge-float-wrong}\n";
     if (!out) {
         std::fprintf(stderr, "fig_ch02_float: cannot write %s\n", path.c_str());
         return 1;

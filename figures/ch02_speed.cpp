@@ -140,7 +140,7 @@ void write_table(const std::map<std::string, Rates>& rates,
     }
     out << "\n: Measured here: millions of triangles per second on one core, triangles "
            "of 3, 15 and 80 px area, and each rate over the naive rasterizer's "
-           "(bench_ch02_rasterizers). {#tbl:speed}\n\n";
+           "(bench_ch02_rasterizers). {#tbl:edge-speed}\n\n";
 
     const int big[] = {4096, 65536};
     out << "| variant | Mpix/s, 4096 px | % of plain fill | Mpix/s, 65536 px | "
@@ -157,7 +157,7 @@ void write_table(const std::map<std::string, Rates>& rates,
         out << '\n';
     }
     out << "\n: Measured here: millions of pixels per second on one core for large "
-           "triangles, and the share of the plain fill's rate. {#tbl:speed-large}\n";
+           "triangles, and the share of the plain fill's rate. {#tbl:edge-speed-large}\n";
 }
 
 void write_sweep(const std::map<std::string, Rates>& rates,

@@ -55,7 +55,7 @@ constexpr FixedPoint2 fixed_pixel_centre(int x, int y) {
 /// or a left edge (going up, the inside to its right). (dx, dy) = b - a.
 template <class T> constexpr bool is_top_left(T dx, T dy) {
     //> exercise ch02-edge-bias: a top edge is horizontal going right; a left edge goes
-    //up.
+    // up.
     return dy < 0 || (dy == 0 && dx > 0);
     //| (void)dx, (void)dy;
     //| return false; // stub: no edge owns its centres, so shared edges leave gaps
@@ -145,7 +145,7 @@ inline EdgeSetup<FixedEdge> setup_edges(const std::array<FixedPoint2, 3>& v) {
 }
 //< setup-fixed
 
-/// The three edges of the float triangle v, oriented (eq. 2.6) and flagged top-left.
+/// The three edges of the float triangle v, oriented and flagged top-left.
 /// Either winding; zero area (as computed in float) gives an empty setup.
 inline EdgeSetup<FloatEdge> setup_edges(const std::array<Point2f, 3>& v) {
     EdgeSetup<FloatEdge> s;
@@ -187,7 +187,7 @@ inline std::array<double, 3> barycentric(const std::array<FixedPoint2, 3>& v,
 //< barycentric
 
 //> edge-gradient
-/// dc/dx and dc/dy from the edge functions' steps (eq. 2.9): c_i times the change of
+/// dc/dx and dc/dy from the edge functions' steps (eq. 2.6): c_i times the change of
 /// lambda_i per pixel, summed. The same plane as chapter 1's closed form (eq. 1.5), in
 /// any number type T (double, or an exact rational in the tests). Zero area: {0, 0}.
 template <class T> Gradient<T> edge_function_gradient(const PlaneSamples<T>& s) {

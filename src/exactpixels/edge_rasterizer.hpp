@@ -130,7 +130,7 @@ enum class BlockClass {
 /// Classifies the block `b` by its corner pixel centres. An edge value is linear, so
 /// over the block it is largest at one corner and smallest at another, picked by the
 /// signs of step_x and step_y: if it fails even at the largest corner, every centre
-/// fails; if it passes even at the smallest, every centre passes (eq. 2.10).
+/// fails; if it passes even at the smallest, every centre passes (eq. 2.9).
 template <class Edge> BlockClass classify_block(const EdgeSetup<Edge>& s, PixelRect b) {
     //> exercise ch02-block-classify: test each edge at the block's extreme corners.
     bool inside = true;

@@ -45,8 +45,8 @@ inline FixedPoint2 snap_to_subpixel(Point2 p) {
 
 //> fixed-range
 /// The largest |x| or |y| in 1/256 px for which the fixed-point rasterizers are exact:
-/// 2^28 (2^20 px). Every edge function value is then below 2^59 in magnitude and the
-/// sum of all three below 2^61, far inside int64 (eq. 2.8).
+/// 2^28 (2^20 px). Every edge function value is then below 2^60 in magnitude and the
+/// sum of all three below 2^62, inside int64 (eq. 2.8).
 inline constexpr std::int64_t max_fixed_coordinate = std::int64_t{1} << 28;
 /// max_fixed_coordinate in pixels: 1048576 px.
 inline constexpr double max_fixed_coordinate_px =
