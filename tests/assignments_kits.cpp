@@ -78,10 +78,23 @@ bool starts_with(const std::string& text, const std::string& prefix) {
     return text.rfind(prefix, 0) == 0;
 }
 
-/// A fresh folder under the system's temporary folder, private to this process.
+/// This process's folder for kits and their builds, deleted when the tests end.
+const fs::path& scratch_root() {
+    struct Root {
+        fs::path path = fs::temp_directory_path() /
+                        ("exactpixels-kits-" + std::to_string(::getpid()));
+        ~Root() {
+            std::error_code ignored;
+            fs::remove_all(path, ignored);
+        }
+    };
+    static const Root root;
+    return root.path;
+}
+
+/// A fresh folder under scratch_root().
 fs::path scratch(const std::string& name) {
-    const fs::path folder =
-        fs::temp_directory_path() / ("exactpixels-kits-" + std::to_string(::getpid())) / name;
+    const fs::path folder = scratch_root() / name;
     fs::remove_all(folder);
     fs::create_directories(folder);
     return folder;

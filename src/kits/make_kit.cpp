@@ -692,7 +692,17 @@ void make_kit(const Options& options) {
         book = "(The chapter text has no exercise section yet.)\n";
     }
     const bool has_example = folder && fs::exists(root / *folder / "example.cpp");
+    // The Debian packages: the book's base list, plus toml++ if the library reads scenes.
+    std::string packages =
+        "cmake g++ make pkg-config doctest-dev libglm-dev libstb-dev libfmt-dev libcli11-dev";
+    for (const auto& [rel, text] : kit) {
+        if (rel.filename() == "CMakeLists.txt" && text.find("tomlplusplus") != std::string::npos) {
+            packages += " libtomlplusplus-dev";
+            break;
+        }
+    }
     const std::map<std::string, std::string> values = {
+        {"@PACKAGES@", packages},
         {"@CHAPTER@", number},
         {"@TITLE@", chapter_title(chapter_md)},
         {"@VERSION@", options.version},
