@@ -21,10 +21,12 @@ using namespace exactpixels;
 
 namespace {
 
-constexpr int panel_gap = 5;  // empty pixels between the panels
-constexpr int top = 3;        // rows above the quads, for the titles
+constexpr int panel_gap = 5; // empty pixels between the panels
+constexpr int top = 3;       // rows above the quads, for the titles
 
-std::string hex(Rgba8 c) { return fmt::format("#{:02x}{:02x}{:02x}", c.r, c.g, c.b); }
+std::string hex(Rgba8 c) {
+    return fmt::format("#{:02x}{:02x}{:02x}", c.r, c.g, c.b);
+}
 
 /// The texel map of the mirrored quad with its corner at (x0 + 0.5, top + 0.5).
 TexelMap mirrored_quad(const Texture& t, int frame_width, int frame_height, int x0,
@@ -36,7 +38,8 @@ TexelMap mirrored_quad(const Texture& t, int frame_width, int frame_height, int 
     TexelMap map(frame_width, frame_height);
     for (const std::array<TexturedVertex, 3>& tri :
          {std::array{tl, tr, br}, std::array{tl, br, bl}}) {
-        MapperSettings s{.kind = MapperKind::exact, .precision = Precision::fixed,
+        MapperSettings s{.kind = MapperKind::exact,
+                         .precision = Precision::fixed,
                          .wrap = Wrap::clamp};
         s.rounding = choose ? choose_rounding(tri, s.kind) : TexelRounding{};
         map_textured_triangle(map, tri, s);
@@ -50,7 +53,8 @@ std::vector<int> draw_panel(SvgDiagram& d, const Texture& t, const TexelMap& map
     std::vector<int> shown(static_cast<std::size_t>(t.width()), 0);
     for (int y = 0; y < map.height; ++y) {
         for (int x = 0; x < map.width; ++x) {
-            const std::size_t at = std::size_t(y) * std::size_t(map.width) + std::size_t(x);
+            const std::size_t at =
+                std::size_t(y) * std::size_t(map.width) + std::size_t(x);
             if (map.covered[at] && y == top) {
                 ++shown[std::size_t(wrap_index(map.i[at], t.width(), Wrap::clamp))];
             }
@@ -58,7 +62,8 @@ std::vector<int> draw_panel(SvgDiagram& d, const Texture& t, const TexelMap& map
     }
     for (int y = 0; y < map.height; ++y) {
         for (int x = 0; x < map.width; ++x) {
-            const std::size_t at = std::size_t(y) * std::size_t(map.width) + std::size_t(x);
+            const std::size_t at =
+                std::size_t(y) * std::size_t(map.width) + std::size_t(x);
             if (!map.covered[at]) {
                 continue;
             }
@@ -66,7 +71,9 @@ std::vector<int> draw_panel(SvgDiagram& d, const Texture& t, const TexelMap& map
             const int j = wrap_index(map.j[at], t.height(), Wrap::clamp);
             d.fill_pixel(x, y, hex(t.texel(i, j)), 0.85);
             if (shown[std::size_t(i)] > 1) {
-                d.polygon({{x + 0.1, y + 0.1}, {x + 0.9, y + 0.1}, {x + 0.9, y + 0.9},
+                d.polygon({{x + 0.1, y + 0.1},
+                           {x + 0.9, y + 0.1},
+                           {x + 0.9, y + 0.9},
                            {x + 0.1, y + 0.9}},
                           {.stroke = "#ffb000", .width = 3.0});
             }
@@ -108,7 +115,8 @@ int main(int argc, char** argv) {
         d.text({left_x, 1.2}, "rule 1 everywhere: floor(u)", 14);
         d.text({right_x, 1.2}, "du/dx < 0: rule 2, ceil(u) - 1", 14);
         const auto columns = [](const std::vector<int>& c) {
-            return c.empty() ? std::string("none") : fmt::format("{}", fmt::join(c, ", "));
+            return c.empty() ? std::string("none")
+                             : fmt::format("{}", fmt::join(c, ", "));
         };
         d.text({left_x, h - 1.2}, "F column never shown: " + columns(never_broken), 13);
         d.text({left_x, h - 0.4}, "outlined: a column shown twice", 13, SvgAnchor::start,

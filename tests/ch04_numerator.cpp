@@ -29,8 +29,8 @@ using Coordinate = ProjectedCoordinate<Rational>;
 /// (exact in float too). q crosses zero inside the span for every other span: at
 /// t_zero, which is a pixel itself (q = 0 exactly there) in a quarter of them.
 struct RandomSpan {
-    Coordinate c;     // at t = 0, with exact values
-    double t_zero;    // where q = 0, or NaN when q keeps its sign
+    Coordinate c;  // at t = 0, with exact values
+    double t_zero; // where q = 0, or NaN when q keeps its sign
 };
 
 RandomSpan random_span(std::mt19937& random, int index) {
@@ -123,7 +123,8 @@ TEST_CASE("the numerator's sign is the sign of dc/dx at every pixel, across 1/w 
             const Rational q = along_x(c, Rational(t), true);
             if (q == Rational(0)) {
                 ++pixels_on_zero; // no c here at all; the numerator is still n
-                CHECK(numerator_x(moved_by(c, Rational(t), Rational(0))) == numerator_x(c));
+                CHECK(numerator_x(moved_by(c, Rational(t), Rational(0))) ==
+                      numerator_x(c));
                 continue;
             }
             // Step away from the zero of q so both points are on one side of it.
@@ -131,9 +132,9 @@ TEST_CASE("the numerator's sign is the sign of dc/dx at every pixel, across 1/w 
             const Rational step = zero_ahead ? -h : h;
             const Rational q2 = along_x(c, Rational(t) + step, true);
             REQUIRE(sign(q2) == sign(q));
-            const Rational secant =
-                (along_x(c, Rational(t) + step, false) / q2 -
-                 along_x(c, Rational(t), false) / q) / step;
+            const Rational secant = (along_x(c, Rational(t) + step, false) / q2 -
+                                     along_x(c, Rational(t), false) / q) /
+                                    step;
             INFO("span " << i << ", pixel " << t << ", q = " << q);
             CHECK(sign(secant) == n_sign);
             ++pixels;
@@ -181,10 +182,11 @@ TEST_CASE("the float numerator is within the stated rounding bound of the exact 
             const float p = p0 + dp * tf;
             const float q = q0 + dq * tf;
             const float n_float = dp * q - p * dq;
-            const double bound = g4 * (std::abs(double{dp}) * (std::abs(double{q0}) +
-                                                                std::abs(double{dq} * t)) +
-                                       std::abs(double{dq}) * (std::abs(double{p0}) +
-                                                                std::abs(double{dp} * t)));
+            const double bound =
+                g4 * (std::abs(double{dp}) *
+                          (std::abs(double{q0}) + std::abs(double{dq} * t)) +
+                      std::abs(double{dq}) *
+                          (std::abs(double{p0}) + std::abs(double{dp} * t)));
             const Rational error = abs(Rational::from_double(n_float) - n);
             INFO("span " << i << ", pixel " << t);
             CHECK(error <= Rational::from_double(bound));
@@ -196,7 +198,7 @@ TEST_CASE("the float numerator is within the stated rounding bound of the exact 
         }
     }
     MESSAGE("worst float error: " << worst << " of the bound; " << sign_checks
-                                   << " pixels had |n| above the bound");
+                                  << " pixels had |n| above the bound");
     CHECK(sign_checks > span_count * span_length / 2);
 }
 
@@ -219,15 +221,16 @@ TEST_CASE("the chosen rule can differ between rows of one perspective triangle")
             q[i] = Rational(1) / Rational::from_double(wall[i].w);
             pv[i] = Rational::from_double(wall[i].uv.y) * q[i];
         }
-        auto cross = [&](int i, const Rational& ax, const Rational& ay, const Rational& bx,
-                         const Rational& by) {
+        auto cross = [&](int i, const Rational& ax, const Rational& ay,
+                         const Rational& bx, const Rational& by) {
             return (ax - vx[i]) * (by - vy[i]) - (ay - vy[i]) * (bx - vx[i]);
         };
         const Rational area = cross(0, vx[1], vy[1], vx[2], vy[2]);
         const Rational b1 = cross(0, x, y, vx[2], vy[2]) / area;
         const Rational b2 = cross(0, vx[1], vy[1], x, y) / area;
         const Rational b0 = Rational(1) - b1 - b2;
-        return (b0 * pv[0] + b1 * pv[1] + b2 * pv[2]) / (b0 * q[0] + b1 * q[1] + b2 * q[2]);
+        return (b0 * pv[0] + b1 * pv[1] + b2 * pv[2]) /
+               (b0 * q[0] + b1 * q[1] + b2 * q[2]);
     };
     int rows_differing_from_triangle = 0, rows_checked = 0;
     const TexelRounding whole = choose_rounding(wall);
@@ -250,8 +253,8 @@ TEST_CASE("the chosen rule can differ between rows of one perspective triangle")
         rows_differing_from_triangle += row.v_bias != whole.v_bias;
         ++rows_checked;
     }
-    MESSAGE(rows_differing_from_triangle << " of " << rows_checked
-                                         << " rows need the other rule than the centroid's");
+    MESSAGE(rows_differing_from_triangle
+            << " of " << rows_checked << " rows need the other rule than the centroid's");
     CHECK(rows_differing_from_triangle > 0);
     CHECK(rows_differing_from_triangle < rows_checked);
 }

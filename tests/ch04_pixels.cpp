@@ -39,7 +39,8 @@ std::array<std::array<TexturedVertex, 3>, 2> triangles(const Quad& q) {
 /// Whether a triangle's rounding is chosen by chapter 4 or left at rule 1 (the bug).
 enum class Rounding { chosen, always_rule1 };
 
-MapperSettings settings_for(MapperKind kind, Precision precision, Wrap wrap = Wrap::clamp) {
+MapperSettings settings_for(MapperKind kind, Precision precision,
+                            Wrap wrap = Wrap::clamp) {
     MapperSettings s;
     s.kind = kind;
     s.precision = precision;
@@ -50,7 +51,8 @@ MapperSettings settings_for(MapperKind kind, Precision precision, Wrap wrap = Wr
 
 MapperSettings with_rounding(MapperSettings s, const std::array<TexturedVertex, 3>& t,
                              Rounding rounding) {
-    s.rounding = rounding == Rounding::chosen ? choose_rounding(t, s.kind) : TexelRounding{};
+    s.rounding =
+        rounding == Rounding::chosen ? choose_rounding(t, s.kind) : TexelRounding{};
     return s;
 }
 
@@ -101,15 +103,16 @@ std::string name(Combo c) {
 /// (px0 + a, py0 + b) must show texel (want_i(a), want_j(b)). Returns the number of
 /// pixels that break this, and describes the first few.
 int mismatches(const TexelMap& map, int px0, int py0, int cols, int rows,
-               const std::function<int(int)>& want_i, const std::function<int(int)>& want_j,
-               std::string& report) {
+               const std::function<int(int)>& want_i,
+               const std::function<int(int)>& want_j, std::string& report) {
     REQUIRE(px0 + cols <= map.width); // the whole quad must be inside the frame
     REQUIRE(py0 + rows <= map.height);
     std::ostringstream out;
     int bad = 0;
     for (int y = 0; y < map.height; ++y) {
         for (int x = 0; x < map.width; ++x) {
-            const std::size_t at = std::size_t(y) * std::size_t(map.width) + std::size_t(x);
+            const std::size_t at =
+                std::size_t(y) * std::size_t(map.width) + std::size_t(x);
             const int a = x - px0, b = y - py0;
             const bool inside = a >= 0 && a < cols && b >= 0 && b < rows;
             bool wrong = map.covered[at] != inside;
@@ -188,7 +191,7 @@ std::function<int(int)> backwards(int size, int scale = 1) {
 
 } // namespace
 
-TEST_CASE("a pixel-aligned 1:1 quad shows every texel exactly once, through every mapper") {
+TEST_CASE("a pixel-aligned 1:1 quad shows every texel exactly once, in every mapper") {
     // Pixel centres sit at u = a + 1/2: no tie anywhere, both rules agree.
     for (const Combo c : every_mapper()) {
         for (const Rounding r : {Rounding::chosen, Rounding::always_rule1}) {
@@ -202,14 +205,14 @@ TEST_CASE("a pixel-aligned 1:1 quad shows every texel exactly once, through ever
     }
 }
 
-TEST_CASE("the quad offset by half a pixel puts every sample on a tie and still shows "
-          "every texel once") {
+TEST_CASE("a half-pixel-offset quad samples only ties and shows every texel once") {
     // Corner at (3.5, 2.5): the top-left rule covers centres 3.5 .. 12.5, and the centre
     // of pixel (3 + a, 2 + b) maps to (u, v) = (a, b) exactly: an integer in both.
     for (const Combo c : every_mapper()) {
         std::string report;
-        const TexelMap map = map_quad(one_to_one(0.5, false, false),
-                                      settings_for(c.kind, c.precision), Rounding::chosen);
+        const TexelMap map =
+            map_quad(one_to_one(0.5, false, false), settings_for(c.kind, c.precision),
+                     Rounding::chosen);
         INFO(name(c) << report);
         CHECK(mismatches(map, X0, Y0, W, H, forwards(), forwards(), report) == 0);
         int ties = 0;
@@ -228,9 +231,9 @@ TEST_CASE("mirrored mappings give exactly the mirrored images with the chosen ru
             for (const bool mv : {false, true}) {
                 for (const Combo c : every_mapper()) {
                     std::string report;
-                    const TexelMap map = map_quad(one_to_one(offset, mu, mv),
-                                                  settings_for(c.kind, c.precision),
-                                                  Rounding::chosen);
+                    const TexelMap map =
+                        map_quad(one_to_one(offset, mu, mv),
+                                 settings_for(c.kind, c.precision), Rounding::chosen);
                     INFO(name(c) << ", offset " << offset << ", mirrored u " << mu
                                  << ", mirrored v " << mv << report);
                     CHECK(mismatches(map, X0, Y0, W, H, mu ? backwards(W) : forwards(),
@@ -241,8 +244,7 @@ TEST_CASE("mirrored mappings give exactly the mirrored images with the chosen ru
     }
 }
 
-TEST_CASE("always rule 1, the mirrored tie quads skip one texel row or column and double "
-          "another") {
+TEST_CASE("rule 1 alone skips and doubles texels on mirrored tie quads") {
     // Offset quad, u running backwards: the centre of column a maps to u = W - a, a tie.
     // Rule 1 takes floor(u) = W - a: column 0 asks for texel W, beyond the texture
     // (clamped to W - 1, which so shows twice), and texel 0 never shows. The same in v.
@@ -259,9 +261,10 @@ TEST_CASE("always rule 1, the mirrored tie quads skip one texel row or column an
     for (const Case& k : cases) {
         for (const Combo c : every_mapper()) {
             const auto s = settings_for(c.kind, c.precision);
-            const TexelMap broken = map_quad(one_to_one(0.5, k.mu, k.mv), s,
-                                             Rounding::always_rule1);
-            const TexelMap fixed = map_quad(one_to_one(0.5, k.mu, k.mv), s, Rounding::chosen);
+            const TexelMap broken =
+                map_quad(one_to_one(0.5, k.mu, k.mv), s, Rounding::always_rule1);
+            const TexelMap fixed =
+                map_quad(one_to_one(0.5, k.mu, k.mv), s, Rounding::chosen);
             const Census bad = census(texel_histogram(broken, W, H));
             const Census good = census(texel_histogram(fixed, W, H));
             INFO(name(c) << ", mirrored u " << k.mu << ", mirrored v " << k.mv);
@@ -273,7 +276,8 @@ TEST_CASE("always rule 1, the mirrored tie quads skip one texel row or column an
             // The broken map asks for texel index W (or H) itself, one past the end.
             int past_end = 0;
             for (std::size_t at = 0; at < broken.covered.size(); ++at) {
-                past_end += broken.covered[at] && (broken.i[at] == W || broken.j[at] == H);
+                past_end +=
+                    broken.covered[at] && (broken.i[at] == W || broken.j[at] == H);
             }
             CHECK(past_end == (k.mu ? H : 0) + (k.mv ? W : 0) - (k.mu && k.mv ? 1 : 0));
         }
@@ -285,7 +289,8 @@ TEST_CASE("without ties the rule makes no difference, mirrored or not") {
         for (const bool mv : {false, true}) {
             const auto s = settings_for(MapperKind::exact, Precision::fixed);
             const TexelMap a = map_quad(one_to_one(0.0, mu, mv), s, Rounding::chosen);
-            const TexelMap b = map_quad(one_to_one(0.0, mu, mv), s, Rounding::always_rule1);
+            const TexelMap b =
+                map_quad(one_to_one(0.0, mu, mv), s, Rounding::always_rule1);
             CHECK(a.i == b.i);
             CHECK(a.j == b.j);
         }
@@ -305,14 +310,15 @@ TEST_CASE("the F mirrored with the rule is the mirrored F; with rule 1 it is not
                 Framebuffer want(frame_width, frame_height, rgba(0, 160, 0));
                 for (int b = 0; b < H; ++b) {
                     for (int a = 0; a < W; ++a) {
-                        want.at(X0 + a, Y0 + b) = f.texel(mu ? W - 1 - a : a, mv ? H - 1 - b : b);
+                        want.at(X0 + a, Y0 + b) =
+                            f.texel(mu ? W - 1 - a : a, mv ? H - 1 - b : b);
                     }
                 }
                 for (const Combo c : every_mapper()) {
                     const auto s = settings_for(c.kind, c.precision, wrap);
                     const Quad q = one_to_one(0.5, mu, mv);
-                    INFO(name(c) << ", repeat " << (wrap == Wrap::repeat) << ", mirrored u "
-                                 << mu << ", mirrored v " << mv);
+                    INFO(name(c) << ", repeat " << (wrap == Wrap::repeat)
+                                 << ", mirrored u " << mu << ", mirrored v " << mv);
                     CHECK(draw_quad(q, f, s, Rounding::chosen) == want);
                     const Framebuffer broken = draw_quad(q, f, s, Rounding::always_rule1);
                     int wrong = 0;
@@ -341,15 +347,16 @@ TEST_CASE("integer magnification k = 2, 3, 4: every texel covers exactly k x k p
                 for (const bool mv : {false, true}) {
                     for (const Combo c : every_mapper()) {
                         std::string report;
-                        const TexelMap map = map_quad(one_to_one(offset, mu, mv, k),
-                                                      settings_for(c.kind, c.precision),
-                                                      Rounding::chosen);
-                        INFO(name(c) << ", k = " << k << ", offset " << offset
-                                     << ", mirrored u " << mu << ", mirrored v " << mv
-                                     << report);
+                        const TexelMap map =
+                            map_quad(one_to_one(offset, mu, mv, k),
+                                     settings_for(c.kind, c.precision), Rounding::chosen);
+                        INFO(name(c)
+                             << ", k = " << k << ", offset " << offset << ", mirrored u "
+                             << mu << ", mirrored v " << mv << report);
                         CHECK(mismatches(map, X0, Y0, k * W, k * H,
                                          mu ? backwards(W, k) : forwards(k),
-                                         mv ? backwards(H, k) : forwards(k), report) == 0);
+                                         mv ? backwards(H, k) : forwards(k),
+                                         report) == 0);
                         const std::vector<int> histogram = texel_histogram(map, W, H);
                         CHECK(std::count(histogram.begin(), histogram.end(), k * k) ==
                               W * H);
@@ -367,9 +374,9 @@ TEST_CASE("every mapper draws the constant-depth quads into identical images") {
             for (const bool mu : {false, true}) {
                 for (const bool mv : {false, true}) {
                     const Quad q = one_to_one(offset, mu, mv, k);
-                    const Framebuffer reference =
-                        draw_quad(q, f, settings_for(MapperKind::exact, Precision::float64),
-                                  Rounding::chosen);
+                    const Framebuffer reference = draw_quad(
+                        q, f, settings_for(MapperKind::exact, Precision::float64),
+                        Rounding::chosen);
                     for (const Combo c : every_mapper()) {
                         INFO(name(c) << ", k = " << k << ", offset " << offset
                                      << ", mirrored u " << mu << ", mirrored v " << mv);

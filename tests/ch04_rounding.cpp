@@ -94,9 +94,11 @@ TEST_CASE("the single floor holds at the ends of the documented range") {
                                any(random), any(random), any(random)}) {
             INFO("k = " << k << ", C = " << C);
             for (RoundingRule rule : {RoundingRule::ties_up, RoundingRule::ties_down}) {
-                const std::int64_t by_definition =
-                    rule == RoundingRule::ties_up ? round_ties_up(C, k) : round_ties_down(C, k);
-                CHECK(round_with_modifier(C, rounding_modifier(rule, k), k) == by_definition);
+                const std::int64_t by_definition = rule == RoundingRule::ties_up
+                                                       ? round_ties_up(C, k)
+                                                       : round_ties_down(C, k);
+                CHECK(round_with_modifier(C, rounding_modifier(rule, k), k) ==
+                      by_definition);
             }
         }
     }
@@ -120,7 +122,8 @@ TEST_CASE("the modifiers are chapter 3's 16.16 biases" *
         INFO("U = " << U);
         const double u = static_cast<double>(U) / texel_scale; // exact
         CHECK(fixed_texel_index(U, texel_bias(RoundingRule::ties_up)) == std::floor(u));
-        CHECK(fixed_texel_index(U, texel_bias(RoundingRule::ties_down)) == std::ceil(u) - 1);
+        CHECK(fixed_texel_index(U, texel_bias(RoundingRule::ties_down)) ==
+              std::ceil(u) - 1);
     }
 }
 
@@ -177,7 +180,8 @@ TEST_CASE("with the chosen rule a span samples only the texels between its ends"
         // Half of the spans start and end on pixel centres or pixel edges (multiples of
         // 1/2 px), where whole-number slopes make ties common; the rest anywhere.
         const int snap = trial % 2 == 0 ? 128 : 1;
-        const int s0 = position(random) / snap * snap, s1 = position(random) / snap * snap;
+        const int s0 = position(random) / snap * snap,
+                  s1 = position(random) / snap * snap;
         const std::int64_t a = texel(random), b = texel(random);
         if (s0 == s1 || a == b) {
             continue;
@@ -205,8 +209,9 @@ TEST_CASE("with the chosen rule a span samples only the texels between its ends"
             stray_with_rule1 += rule1 < lo || rule1 >= hi;
         }
     }
-    MESSAGE(samples << " samples, " << ties << " ties; always using rule 1 would have put "
-                    << stray_with_rule1 << " of them on a neighbour's texel");
-    CHECK(ties > 100);            // the random spans do exercise the tie
-    CHECK(stray_with_rule1 > 0);  // and the bug the rule exists for does happen
+    MESSAGE(samples << " samples, " << ties
+                    << " ties; always using rule 1 would have put " << stray_with_rule1
+                    << " of them on a neighbour's texel");
+    CHECK(ties > 100);           // the random spans do exercise the tie
+    CHECK(stray_with_rule1 > 0); // and the bug the rule exists for does happen
 }

@@ -34,16 +34,18 @@ int main(int argc, char** argv) {
     const Texture f = f_texture(2); // 10 x 14 texels
     const double W = f.width(), H = f.height();
     Framebuffer frame(4 * 13 + 1, 2 * 17 + 1, rgba(0, 160, 0));
-    for (int row = 0; row < 2; ++row) {         // 0: chosen rule, 1: rule 1 always
+    for (int row = 0; row < 2; ++row) {              // 0: chosen rule, 1: rule 1 always
         for (int mirror = 0; mirror < 4; ++mirror) { // bit 0: u backwards, bit 1: v
             const double x0 = 2.5 + 13 * mirror, y0 = 2.5 + 17 * row; // half-pixel offset
             const double ul = (mirror & 1) ? W : 0, ur = W - ul;
             const double vt = (mirror & 2) ? H : 0, vb = H - vt;
-            const TexturedVertex a{{x0, y0}, 1.0, {ul, vt}}, b{{x0 + W, y0}, 1.0, {ur, vt}};
+            const TexturedVertex a{{x0, y0}, 1.0, {ul, vt}},
+                b{{x0 + W, y0}, 1.0, {ur, vt}};
             const TexturedVertex c{{x0 + W, y0 + H}, 1.0, {ur, vb}};
             const TexturedVertex d{{x0, y0 + H}, 1.0, {ul, vb}};
             for (const auto& triangle : {std::array{a, b, c}, std::array{a, c, d}}) {
-                MapperSettings settings{.precision = Precision::fixed, .wrap = Wrap::clamp};
+                MapperSettings settings{.precision = Precision::fixed,
+                                        .wrap = Wrap::clamp};
                 if (row == 0) {
                     settings.rounding = choose_rounding(triangle, settings.kind);
                 }

@@ -39,8 +39,10 @@ std::array<ProjectedCoordinate<double>, 2>
 projected_coordinates(const std::array<TexturedVertex, 3>& v, Point2 at) {
     const ProjectedPlanes planes = projected_planes(v);
     const Point2 d = at - v[0].position; // move from vertex 0 to `at`
-    const ProjectedCoordinate<double> u0{planes.pu[0], planes.q[0], planes.dpu, planes.dq};
-    const ProjectedCoordinate<double> v0{planes.pv[0], planes.q[0], planes.dpv, planes.dq};
+    const ProjectedCoordinate<double> u0{planes.pu[0], planes.q[0], planes.dpu,
+                                         planes.dq};
+    const ProjectedCoordinate<double> v0{planes.pv[0], planes.q[0], planes.dpv,
+                                         planes.dq};
     return {moved_by(u0, d.x, d.y), moved_by(v0, d.x, d.y)};
 }
 
@@ -48,6 +50,7 @@ TexelRounding choose_rounding(const Gradient<double>& du, const Gradient<double>
     return texel_rounding(choose_rule(du.dx, du.dy), choose_rule(dv.dx, dv.dy));
 }
 
+//> choose-rounding
 TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v) {
     const Point2 centroid = (v[0].position + v[1].position + v[2].position) / 3.0;
     const auto [u, t] = projected_coordinates(v, centroid);
@@ -59,10 +62,13 @@ TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v, MapperKind
         return choose_rounding(v);
     }
     const std::array<glm::dvec2, 3> p{v[0].position, v[1].position, v[2].position};
-    const Gradient<double> du = gradient_closed_form(p, {v[0].uv.x, v[1].uv.x, v[2].uv.x});
-    const Gradient<double> dv = gradient_closed_form(p, {v[0].uv.y, v[1].uv.y, v[2].uv.y});
+    const Gradient<double> du =
+        gradient_closed_form(p, {v[0].uv.x, v[1].uv.x, v[2].uv.x});
+    const Gradient<double> dv =
+        gradient_closed_form(p, {v[0].uv.y, v[1].uv.y, v[2].uv.y});
     return choose_rounding(du, dv);
 }
+//< choose-rounding
 
 TexelRounding choose_rounding_on_row(const std::array<TexturedVertex, 3>& v, double y) {
     // Any point of the row will do (the x numerator is constant along it); vertex 0's

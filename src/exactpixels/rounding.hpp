@@ -146,7 +146,8 @@ template <class Real> Real numerator_y(const ProjectedCoordinate<Real>& c) {
 /// The same coordinate around the point moved by (dx, dy) pixels.
 template <class Real>
 ProjectedCoordinate<Real> moved_by(const ProjectedCoordinate<Real>& c, Real dx, Real dy) {
-    return {c.p + c.dp.dx * dx + c.dp.dy * dy, c.q + c.dq.dx * dx + c.dq.dy * dy, c.dp, c.dq};
+    return {c.p + c.dp.dx * dx + c.dp.dy * dy, c.q + c.dq.dx * dx + c.dq.dy * dy, c.dp,
+            c.dq};
 }
 
 /// The rule for a perspective coordinate at its point: the signs of the numerators
