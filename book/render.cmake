@@ -103,7 +103,9 @@ else()
   set(papersize a4)
 endif()
 # The back matter: the pages above as appendices, then the index of terms.
-set(back "\\appendix\n")
+# Pandoc's template says \backmatter before this, which would leave the appendices
+# unnumbered: number them again (without \mainmatter, which restarts the page numbers).
+set(back "\\makeatletter\\@mainmattertrue\\makeatother\n\\appendix\n")
 foreach(page IN LISTS pages)
   run_or_fail("LaTeX of book/${page}.md"
     ${CMAKE_COMMAND} -E env ${filter_env} EP_TARGET=latex EP_PAGE=book/${page}.md
@@ -113,7 +115,7 @@ foreach(page IN LISTS pages)
   file(READ ${BOOK_DIR}/latex/${page}.tex text)
   string(APPEND back "${text}\n")
 endforeach()
-string(APPEND back "\\cleardoublepage\\phantomsection\\addcontentsline{toc}{chapter}{Index}\n")
+string(APPEND back "\\backmatter\n\\cleardoublepage\\phantomsection\\addcontentsline{toc}{chapter}{Index}\n")
 string(APPEND back "\\printindex\n")
 file(WRITE ${BOOK_DIR}/latex/back-matter.tex "${back}")
 # The same 155 mm text block on both papers (about 80 characters of 11 pt text a line, and
