@@ -124,6 +124,15 @@ TEST_CASE("closed form is unchanged by every vertex order" *
     for (int trial = 0; trial < trials / 20; ++trial) {
         const PlaneSamples<Rational> s = random_integer_triangle(random, 100);
         const Gradient<Rational> first = closed_form_gradient(s);
+        if (twice_area(s) != Rational(0)) {
+            // It is the plane's gradient (not merely the same wrong answer six times):
+            // stepping from vertex 0 reaches c at the other two vertices exactly.
+            for (int i = 1; i < 3; ++i) {
+                REQUIRE(s.c[0] + first.dx * (s.x[i] - s.x[0]) +
+                            first.dy * (s.y[i] - s.y[0]) ==
+                        s.c[i]);
+            }
+        }
         for (const auto& order : orders) {
             const Gradient<Rational> g = closed_form_gradient(permuted(s, order));
             REQUIRE(g.dx == first.dx); // exactly, not within a tolerance
@@ -200,7 +209,8 @@ TEST_CASE("split edge and closed form agree on random triangles" *
     CHECK(checked > trials / 2);
 }
 
-TEST_CASE("both edge slopes are the same number in exact arithmetic") {
+TEST_CASE("both edge slopes are the same number in exact arithmetic" *
+          doctest::description("points: 1; exercise: ch01-closed-form")) {
     std::mt19937_64 random(14);
     for (int trial = 0; trial < trials / 10; ++trial) {
         const PlaneSamples<Rational> s = random_integer_triangle(random, 50);
@@ -222,7 +232,8 @@ TEST_CASE("both edge slopes are the same number in exact arithmetic") {
     }
 }
 
-TEST_CASE("both edge slopes agree in floating point") {
+TEST_CASE("both edge slopes agree in floating point" *
+          doctest::description("points: 1; exercise: ch01-closed-form")) {
     // The form from the gradient inherits the gradient's error (32 eps kappa times the
     // term size, see above) times (1 + |dx/dy|); the direct form rounds twice. The
     // tolerance is the sum.
@@ -249,7 +260,8 @@ TEST_CASE("both edge slopes agree in floating point") {
     }
 }
 
-TEST_CASE("flat-top and flat-bottom triangles need no special case") {
+TEST_CASE("flat-top and flat-bottom triangles need no special case" *
+          doctest::description("points: 1; exercise: ch01-closed-form")) {
     // c = 1 + 2x + 3y sampled at integer vertices: every formula is exact in double.
     const auto plane = [](double x, double y) { return 1 + 2 * x + 3 * y; };
     const std::array<std::array<glm::dvec2, 3>, 4> triangles{{
@@ -312,7 +324,8 @@ TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
     }
 }
 
-TEST_CASE("the stability study's reference is exact") {
+TEST_CASE("the stability study's reference is exact" *
+          doctest::description("points: 1; exercise: ch01-closed-form")) {
     // exact_gradient computes eq. 1.7 in 128-bit integers; check it against the
     // library's closed form run in Rational arithmetic on the same inputs.
     for (const double delta : {1e-2, 1e-9, 0.0}) {
@@ -340,7 +353,8 @@ TEST_CASE("the stability study's reference is exact") {
     }
 }
 
-TEST_CASE("neither gradient loses accuracy as the y-delta shrinks") {
+TEST_CASE("neither gradient loses accuracy as the y-delta shrinks" *
+          doctest::description("points: 1; exercise: ch01-closed-form")) {
     // The chapter's stability table, re-measured on fewer triangles. What it claims:
     // on typical triangles (the median) both methods are accurate to within one
     // machine epsilon at every y-delta down to 1e-12 px and at exactly 0; 99% of

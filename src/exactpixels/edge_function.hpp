@@ -54,8 +54,7 @@ constexpr FixedPoint2 fixed_pixel_centre(int x, int y) {
 /// of every edge (y down), is a top edge (horizontal, going right, the inside below it)
 /// or a left edge (going up, the inside to its right). (dx, dy) = b - a.
 template <class T> constexpr bool is_top_left(T dx, T dy) {
-    //> exercise ch02-edge-bias: a top edge is horizontal going right; a left edge goes
-    // up.
+    //> exercise ch02-edge-bias: top edge: horizontal, going right; left: going up.
     return dy < 0 || (dy == 0 && dx > 0);
     //| (void)dx, (void)dy;
     //| return false; // stub: no edge owns its centres, so shared edges leave gaps

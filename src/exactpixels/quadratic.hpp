@@ -47,8 +47,7 @@ template <class T> Quadratic<T> pursey_quadratic(T u0, T w0, T u2, T w2, T n) {
 /// Thellier's form of the same parabola (@eq:thellier): one ratio 4 w0 / (w0 + w2) and
 /// the span's texel extent du = u2 - u0 give both coefficients.
 template <class T> Quadratic<T> thellier_quadratic(T u0, T w0, T u2, T w2, T n) {
-    //> exercise ch03-quadratic-coefficients: a and b from du = u2 - u0 and 4 w0/(w0 +
-    //w2).
+    //> exercise ch03-quadratic-coefficients: a and b from du and 4 w0 / (w0 + w2).
     const T du = u2 - u0;                   // the span's extent in texels
     const T k = T(4) * du * w0 / (w0 + w2); // 4 (u1 - u0), @eq:midpoint
     return {(T(2) * du - k) / (n * n), (k - du) / n, u0};

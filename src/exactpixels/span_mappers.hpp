@@ -65,8 +65,7 @@ inline int piece_target(int k0, int n, int count) {
 /// one divide (@eq:exact-divide). k may be any pixel of the row, inside the span or not.
 template <class Real> UV<Real> exact_at(const PerspectiveSpan<Real>& s, int k) {
     const Real t = static_cast<Real>(k);
-    //> exercise ch03-perspective-divide: Recover u and v from u/w, v/w and 1/w at pixel
-    //k.
+    //> exercise ch03-perspective-divide: u and v from u/w, v/w and 1/w at pixel k.
     const Real w = Real(1) / (s.one_w + t * s.done_w); // the depth at pixel k
     return {(s.u_w + t * s.du_w) * w, (s.v_w + t * s.dv_w) * w};
     //| (void)t;
