@@ -10,11 +10,14 @@
 // Each benchmark "scene/mapper" draws the whole scene once per iteration with
 // draw_textured_triangle (coverage, setup, the mapper's inner loop and the texel fetch:
 // everything a caller pays). Counters: pixels (writes per drawing), ns_per_px, and the
-// deterministic error of that mapper on that scene against the reference (mapper_error.hpp):
-// worst and mean texel error (texels) and the share of pixels whose texel differs.
+// deterministic error of that mapper on that scene against the reference
+// (mapper_error.hpp): worst and mean texel error (texels) and the share of pixels whose
+// texel differs.
 // --once draws one run's scene once inside the function ch05_render_once, so that
-//   valgrind --tool=callgrind --toggle-collect=ch05_render_once bench_ch05_mappers --once=NAME
-// counts the instructions of exactly one drawing (chapters/05-accuracy-cost/callgrind.sh).
+//   valgrind --tool=callgrind --toggle-collect=ch05_render_once bench_ch05_mappers
+//   --once=NAME
+// counts the instructions of exactly one drawing
+// (chapters/05-accuracy-cost/callgrind.sh).
 #include "exactpixels/accuracy_scenes.hpp"
 #include "exactpixels/mapper_error.hpp"
 
@@ -57,8 +60,8 @@ void register_all(const std::vector<AccuracyScene>& scenes,
                     }
                     using C = benchmark::Counter;
                     state.counters["pixels"] = C(double(pixels));
-                    state.counters["ns_per_px"] =
-                        C(double(pixels) * 1e-9, C::kIsIterationInvariantRate | C::kInvert);
+                    state.counters["ns_per_px"] = C(
+                        double(pixels) * 1e-9, C::kIsIterationInvariantRate | C::kInvert);
                     state.counters["worst_texels"] = C((*error)->worst);
                     state.counters["mean_texels"] = C((*error)->mean);
                     state.counters["differing_share"] = C((*error)->differing_share);

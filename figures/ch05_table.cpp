@@ -3,8 +3,9 @@
 // Reads FIGURE_DIR/bench_ch05_mappers.csv (written by the book build's quick benchmark
 // run, or by a full run) and writes into FIGURE_DIR:
 //   ch05_table.md          one table per scene: time per pixel, ratio to the affine
-//                          fixed-point mapper of the same run, worst and mean texel error,
-//                          share of differing texels, and whether it is on the front
+//                          fixed-point mapper of the same run, worst and mean texel
+//                          error, share of differing texels, and whether it is on the
+//                          front
 //   ch05_table_picks.md    the floor split by the depth ratio of each pixel's span: the
 //                          cheapest mapper whose worst error stays under half a texel
 //   ch05_table_targets.md  the two speed targets of the chapter, checked
@@ -84,8 +85,8 @@ double number(const std::map<std::string, std::string>& row, const std::string& 
               const std::string& name) {
     const auto at = row.find(column);
     if (at == row.end() || at->second.empty()) {
-        throw Error(fmt::format("bench_ch05_mappers.csv: run {} has no column {}", name,
-                                column));
+        throw Error(
+            fmt::format("bench_ch05_mappers.csv: run {} has no column {}", name, column));
     }
     return std::stod(at->second);
 }
@@ -103,7 +104,9 @@ void mark_front(std::vector<Row>& rows) {
 //< pareto-front
 
 std::string texels(double e) {
-    return e == 0.0 ? "0" : e < 1e-3 ? fmt::format("{:.1e}", e) : fmt::format("{:.3f}", e);
+    return e == 0.0   ? "0"
+           : e < 1e-3 ? fmt::format("{:.1e}", e)
+                      : fmt::format("{:.3f}", e);
 }
 
 void write(const fs::path& path, const std::string& text) {
@@ -150,10 +153,10 @@ int main(int argc, char** argv) try {
         std::string dat = "# ratio worst mean front name\n";
         for (std::size_t k = 0; k < rows.size(); ++k) {
             const Row& r = rows[k];
-            table += fmt::format("| {} | {:.2f} | {:.2f} | {} | {} | {:.2f} % | {} |\n",
-                                 r.mapper, r.ns_per_px, r.ratio, texels(r.worst),
-                                 texels(r.mean), 100.0 * r.differing,
-                                 r.front ? "yes" : "");
+            table +=
+                fmt::format("| {} | {:.2f} | {:.2f} | {} | {} | {:.2f} % | {} |\n",
+                            r.mapper, r.ns_per_px, r.ratio, texels(r.worst),
+                            texels(r.mean), 100.0 * r.differing, r.front ? "yes" : "");
             dat += fmt::format("{:.4f} {:.6g} {:.6g} {} \"{}\"\n", r.ratio,
                                std::max(r.worst, 1e-6), std::max(r.mean, 1e-6),
                                int(r.front), r.mapper);
@@ -171,8 +174,9 @@ int main(int argc, char** argv) try {
             best = &r;
         }
     }
-    const auto exact_float = std::find_if(floor.begin(), floor.end(),
-                                          [](const Row& r) { return r.mapper == "exact float"; });
+    const auto exact_float = std::find_if(floor.begin(), floor.end(), [](const Row& r) {
+        return r.mapper == "exact float";
+    });
     targets += fmt::format(
         "| target | mapper | × affine | met |\n|:--|:--|--:|:-:|\n"
         "| cheapest with worst error under 1/2 texel on the floor: at most 1.5 | {} | "
@@ -204,8 +208,9 @@ int main(int argc, char** argv) try {
         maps.emplace_back(floor_scene.width, floor_scene.height);
         map_with(maps.back(), floor_scene, m);
     }
-    std::string picks = "| span depth ratio | pixels | cheapest under 1/2 texel | × affine "
-                        "| its worst (texels) |\n|:--|--:|:--|--:|--:|\n";
+    std::string picks =
+        "| span depth ratio | pixels | cheapest under 1/2 texel | × affine "
+        "| its worst (texels) |\n|:--|--:|:--|--:|--:|\n";
     for (const auto& bin : bins) {
         std::vector<char> include(ratio.size());
         for (std::size_t k = 0; k < ratio.size(); ++k) {

@@ -22,7 +22,8 @@ double uniform(double lo, double hi) {
 }
 
 /// Where the ray from the eye through screen point s meets the plane of triangle t:
-/// barycentric weights (b0, b1, b2) and the depth z of the hit. Camera as perspective.hpp.
+/// barycentric weights (b0, b1, b2) and the depth z of the hit. Camera as
+/// perspective.hpp.
 struct Hit {
     glm::dvec3 b;
     double z;
@@ -95,13 +96,15 @@ TEST_CASE("drawn through the clip, every pixel gets the texel a traced ray finds
         const ProjectedTriangles pieces = clip_and_project(camera, t, near);
         TexelMap map(320, 240);
         for (int k = 0; k < pieces.count; ++k) {
-            for (const TexturedVertex& v : pieces.triangles[static_cast<std::size_t>(k)]) {
+            for (const TexturedVertex& v :
+                 pieces.triangles[static_cast<std::size_t>(k)]) {
                 REQUIRE(v.w >= near);
                 REQUIRE(std::isfinite(v.position.x));
                 REQUIRE(std::isfinite(v.position.y));
             }
-            map_textured_triangle(map, pieces.triangles[static_cast<std::size_t>(k)],
-                                  {MapperKind::exact, 16, Precision::float64, {}, Wrap::repeat});
+            map_textured_triangle(
+                map, pieces.triangles[static_cast<std::size_t>(k)],
+                {MapperKind::exact, 16, Precision::float64, {}, Wrap::repeat});
         }
         for (int y = 0; y < 240; ++y) {
             for (int x = 0; x < 320; ++x) {
@@ -117,7 +120,8 @@ TEST_CASE("drawn through the clip, every pixel gets the texel a traced ray finds
                     // The mapper's planes run through the corners snapped to 1/256 px,
                     // so the allowance is what uv changes over 1/256 px here.
                     const auto uv_at = [&](double dx, double dy) {
-                        const Hit g = trace(camera, t, pixel_centre(x, y) + Point2{dx, dy});
+                        const Hit g =
+                            trace(camera, t, pixel_centre(x, y) + Point2{dx, dy});
                         return g.b.x * t[0].uv + g.b.y * t[1].uv + g.b.z * t[2].uv;
                     };
                     const TexCoord uv = uv_at(0.0, 0.0);

@@ -52,8 +52,8 @@ bool exactly_covered(std::array<FixedPoint2, 3> v, int x, int y) {
     return true;
 }
 
-std::vector<int> coverage(const std::array<Point2, 3>& v, Viewport vp, RasterizerKind kind,
-                          CoveragePrecision precision) {
+std::vector<int> coverage(const std::array<Point2, 3>& v, Viewport vp,
+                          RasterizerKind kind, CoveragePrecision precision) {
     std::vector<int> counts(static_cast<std::size_t>(vp.width * vp.height), 0);
     add_coverage(counts, vp, v, kind, precision);
     return counts;
@@ -150,12 +150,12 @@ TEST_CASE("at the fixed-point limit coverage is exact; past it, an Error and no 
     const Viewport vp{64, 64};
     // Huge triangles whose edges cross the viewport at steep and shallow slopes.
     const std::array<Point2, 3> huge[] = {
-        {{{-m, -m}, {m, m}, {-m, m}}},                        // the diagonal y = x
-        {{{-m, -m / 2 + 32}, {m, m / 2 + 32}, {m, -m}}},      // slope 1/2 through (0, 32)
-        {{{20.5, -m}, {40.5 + 1.0 / 256, m}, {-m, 0.0}}},     // almost vertical
+        {{{-m, -m}, {m, m}, {-m, m}}},                    // the diagonal y = x
+        {{{-m, -m / 2 + 32}, {m, m / 2 + 32}, {m, -m}}},  // slope 1/2 through (0, 32)
+        {{{20.5, -m}, {40.5 + 1.0 / 256, m}, {-m, 0.0}}}, // almost vertical
     };
     for (const auto& t : huge) {
-        CHECK(reference_count(t, vp) > 0); // the edges cross the viewport:
+        CHECK(reference_count(t, vp) > 0);       // the edges cross the viewport:
         CHECK(reference_count(t, vp) < 64 * 64); // some pixels in, some out
         for (const RasterizerKind kind : all_kinds) {
             CHECK(mismatches_with_reference(t, vp, kind) == 0);
@@ -165,8 +165,9 @@ TEST_CASE("at the fixed-point limit coverage is exact; past it, an Error and no 
     const std::array<Point2, 3> past{{{-m, -m}, {m + 1.0 / 256, 0.0}, {-m, m}}};
     for (const RasterizerKind kind : all_kinds) {
         std::vector<int> counts(64 * 64, 0);
-        CHECK_THROWS_WITH_AS(add_coverage(counts, vp, past, kind, CoveragePrecision::fixed),
-                             doctest::Contains("1048576.00390625"), Error);
+        CHECK_THROWS_WITH_AS(
+            add_coverage(counts, vp, past, kind, CoveragePrecision::fixed),
+            doctest::Contains("1048576.00390625"), Error);
         CHECK(std::count(counts.begin(), counts.end(), 0) == 64 * 64);
     }
     Framebuffer frame(64, 64, rgba(1, 2, 3));
@@ -254,13 +255,15 @@ TEST_CASE("rotating the vertex order or reversing the winding changes no pixel")
         return lo + (hi - lo) * double(state >> 11) * 0x1p-53;
     };
     const Viewport vp{96, 96};
-    const int orders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}, {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
+    const int orders[6][3] = {{0, 1, 2}, {1, 2, 0}, {2, 0, 1},
+                              {0, 2, 1}, {2, 1, 0}, {1, 0, 2}};
     int index_mismatches = 0;
     double worst_uv = 0.0;
     for (int trial = 0; trial < 40; ++trial) {
         std::array<TexturedVertex, 3> t{};
         for (TexturedVertex& p : t) {
-            p = {{uniform(-10, 106), uniform(-10, 106)}, uniform(1, 9),
+            p = {{uniform(-10, 106), uniform(-10, 106)},
+                 uniform(1, 9),
                  {uniform(0, 64), uniform(0, 64)}};
         }
         for (const MapperKind kind : {MapperKind::exact, MapperKind::affine,
@@ -274,7 +277,8 @@ TEST_CASE("rotating the vertex order or reversing the winding changes no pixel")
                 REQUIRE(other.covered == first.covered);
                 for (std::size_t k = 0; k < first.covered.size(); ++k) {
                     if (first.covered[k]) {
-                        index_mismatches += other.i[k] != first.i[k] || other.j[k] != first.j[k];
+                        index_mismatches +=
+                            other.i[k] != first.i[k] || other.j[k] != first.j[k];
                         worst_uv = std::max({worst_uv, std::abs(other.u[k] - first.u[k]),
                                              std::abs(other.v[k] - first.v[k])});
                     }

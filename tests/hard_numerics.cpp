@@ -29,12 +29,12 @@ TEST_CASE("near-zero y-deltas: both gradient setups stay finite and close to exa
     // The reference is the exact gradient (128-bit integers). Tolerance, in machine
     // epsilons of the precision, on the largest error over all triangles: 2^10 for the
     // closed form, and the same for the split edge; never NaN or infinite.
-    const std::vector<StabilityRow> rows =
-        gradient_stability_study(trials, 5);
+    const std::vector<StabilityRow> rows = gradient_stability_study(trials, 5);
     for (const StabilityRow& r : rows) {
         INFO("y-delta " << r.y_delta << ", " << r.precision);
         MESSAGE("y-delta " << r.y_delta << " " << r.precision << ": closed max "
-                           << r.closed_max << " eps, split max " << r.split_max << " eps");
+                           << r.closed_max << " eps, split max " << r.split_max
+                           << " eps");
         CHECK(std::isfinite(r.closed_max));
         CHECK(std::isfinite(r.split_max));
         CHECK(r.closed_max <= 256.0);
@@ -46,8 +46,8 @@ namespace {
 /// c at screen point p from the plane through three vertices, in long double with every
 /// coordinate taken relative to vertex 0 first (the differences are exact): the
 /// reference for the far-from-origin case.
-long double plane_reference(const std::array<Point2, 3>& v, const std::array<double, 3>& c,
-                            Point2 p) {
+long double plane_reference(const std::array<Point2, 3>& v,
+                            const std::array<double, 3>& c, Point2 p) {
     using L = long double;
     const L x1 = L(v[1].x) - L(v[0].x), y1 = L(v[1].y) - L(v[0].y);
     const L x2 = L(v[2].x) - L(v[0].x), y2 = L(v[2].y) - L(v[0].y);
@@ -58,7 +58,8 @@ long double plane_reference(const std::array<Point2, 3>& v, const std::array<dou
 }
 } // namespace
 
-TEST_CASE("a tiny triangle far from the origin: float loses it, relative coordinates keep it") {
+TEST_CASE(
+    "a tiny triangle far from the origin: float loses it, relative coordinates keep it") {
     // A 2-px triangle a million pixels from the origin, c from 0 to 1 across it. Near
     // 2^20 float spacing is 1/16 px, so rounding the corners to float moves them by up
     // to 1/32 px: a few percent of the triangle. Tolerances (on c in [0, 1]): double,
@@ -86,29 +87,30 @@ TEST_CASE("a tiny triangle far from the origin: float loses it, relative coordin
             const Point2 p = base + Point2{i + 0.5, j + 0.5};
             const long double truth = plane_reference(v, c, p);
             const long double truth_snapped = plane_reference(snapped, c, p);
-            const glm::vec2 pf(p);                   // exact: half-integers near 1e6
-            const glm::vec2 pr(p - v[0]);            // the safeguard: relative first
+            const glm::vec2 pf(p);        // exact: half-integers near 1e6
+            const glm::vec2 pr(p - v[0]); // the safeguard: relative first
             const float c_float = gf.dx * (pf.x - vf[0].x) + gf.dy * (pf.y - vf[0].y);
             const float c_rel = gr.dx * pr.x + gr.dy * pr.y;
             const double c_double = gd.dx * (p.x - v[0].x) + gd.dy * (p.y - v[0].y);
-            const double c_fixed = gs.dx * (p.x - snapped[0].x) + gs.dy * (p.y - snapped[0].y);
+            const double c_fixed =
+                gs.dx * (p.x - snapped[0].x) + gs.dy * (p.y - snapped[0].y);
             e_float = std::max(e_float, double(std::abs(c_float - truth)));
             e_relative = std::max(e_relative, double(std::abs(c_rel - truth)));
             e_double = std::max(e_double, double(std::abs(c_double - truth)));
             e_fixed = std::max(e_fixed, double(std::abs(c_fixed - truth_snapped)));
         }
     }
-    MESSAGE("far tiny triangle, largest error in c: float " << e_float << ", float relative "
-                                                            << e_relative << ", double "
-                                                            << e_double << ", fixed "
-                                                            << e_fixed);
+    MESSAGE("far tiny triangle, largest error in c: float "
+            << e_float << ", float relative " << e_relative << ", double " << e_double
+            << ", fixed " << e_fixed);
     CHECK(e_float > 1e-3); // the failure the safeguard exists for
     CHECK(e_relative <= 1e-5);
     CHECK(e_double <= 1e-9);
     CHECK(e_fixed <= 1e-9);
 }
 
-TEST_CASE("nearly edge-on: 1/w falls by hundreds along a row, exact in double and 16.16") {
+TEST_CASE(
+    "nearly edge-on: 1/w falls by hundreds along a row, exact in double and 16.16") {
     // A quad whose left edge is at depth 1 and whose right edge is 10^4 times deeper:
     // along each row 1/w falls from 1 to nearly 1e-4, and at the far end the divide
     // (u/w) / (1/w) magnifies the rounding of both. The reference evaluates the same
@@ -117,13 +119,15 @@ TEST_CASE("nearly edge-on: 1/w falls by hundreds along a row, exact in double an
     // off by about 2 eps times their largest value, so relative to 1/w at the far pixel
     // by 2 eps R, R the ratio of 1/w across the row: the allowance is
     // 8 * 2^-24 * R * |u|max.
-    const TexturedVertex a{{10.3, 20.6}, 1.0, {0.0, 0.0}}, b{{300.7, 22.1}, 1.0e4, {4096.0, 0.0}},
-        c{{300.2, 60.9}, 1.0e4, {4096.0, 64.0}}, d{{12.2, 60.4}, 1.0, {0.0, 64.0}};
+    const TexturedVertex a{{10.3, 20.6}, 1.0, {0.0, 0.0}},
+        b{{300.7, 22.1}, 1.0e4, {4096.0, 0.0}}, c{{300.2, 60.9}, 1.0e4, {4096.0, 64.0}},
+        d{{12.2, 60.4}, 1.0, {0.0, 64.0}};
     const std::array<TexturedVertex, 3> quad[2] = {{a, b, c}, {a, c, d}};
     double worst[3] = {0, 0, 0};
     double ratio = 1.0; // the largest ratio of 1/w along a row, at pixel centres
     int pixels = 0;
-    const Precision precisions[3] = {Precision::float64, Precision::fixed, Precision::float32};
+    const Precision precisions[3] = {Precision::float64, Precision::fixed,
+                                     Precision::float32};
     for (const auto& t : quad) {
         std::array<Point2, 3> p{};
         for (std::size_t k = 0; k < 3; ++k) {
@@ -134,7 +138,8 @@ TEST_CASE("nearly edge-on: 1/w falls by hundreds along a row, exact in double an
         };
         for (int k = 0; k < 3; ++k) {
             TexelMap map(320, 64);
-            map_textured_triangle(map, t, {MapperKind::exact, 16, precisions[k], {}, Wrap::repeat});
+            map_textured_triangle(
+                map, t, {MapperKind::exact, 16, precisions[k], {}, Wrap::repeat});
             for (int y = 0; y < 64; ++y) {
                 long double q_lo = 1e30L, q_hi = 0.0L;
                 for (int x = 0; x < 320; ++x) {
@@ -145,11 +150,14 @@ TEST_CASE("nearly edge-on: 1/w falls by hundreds along a row, exact in double an
                     pixels += k == 0;
                     REQUIRE(std::isfinite(map.u[at]));
                     const Point2 s = pixel_centre(x, y);
-                    const long double q = plane([](const TexturedVertex& v) { return 1 / v.w; }, s);
+                    const long double q =
+                        plane([](const TexturedVertex& v) { return 1 / v.w; }, s);
                     const long double u =
-                        plane([](const TexturedVertex& v) { return v.uv.x / v.w; }, s) / q;
+                        plane([](const TexturedVertex& v) { return v.uv.x / v.w; }, s) /
+                        q;
                     const long double v =
-                        plane([](const TexturedVertex& v) { return v.uv.y / v.w; }, s) / q;
+                        plane([](const TexturedVertex& v) { return v.uv.y / v.w; }, s) /
+                        q;
                     q_lo = std::min(q_lo, q);
                     q_hi = std::max(q_hi, q);
                     worst[k] = std::max({worst[k], double(std::abs(map.u[at] - u)),
@@ -191,7 +199,8 @@ TEST_CASE("long spans in float: stepping drifts, re-evaluating the plane does no
     // The library's float affine mapper steps the same way: same drift, bit for bit.
     double mapper_drift = 0.0;
     map_span_affine(AffineSpan<float>{u0, 0.0f, du, 0.0f, n}, [&](int k, float u, float) {
-        mapper_drift = std::max(mapper_drift, std::abs(double(u) - (double(u0) + k * double(du))));
+        mapper_drift =
+            std::max(mapper_drift, std::abs(double(u) - (double(u0) + k * double(du))));
     });
     MESSAGE("float over " << n << " px: stepping drift " << drift << " texels, fresh "
                           << fresh << " texels, bound " << n * 0x1p-24 * u_max);
@@ -200,4 +209,3 @@ TEST_CASE("long spans in float: stepping drifts, re-evaluating the plane does no
     CHECK(mapper_drift == drift);
     CHECK(drift > 16 * fresh); // stepping is the problem, not float as such
 }
-

@@ -103,8 +103,8 @@ std::vector<MapperConfig> accuracy_mappers() {
     using P = Precision;
     const auto m = [](std::string name, K kind, P precision, int span = 16,
                       bool choose = false) {
-        return MapperConfig{std::move(name), {kind, span, precision, {}, Wrap::repeat},
-                            choose};
+        return MapperConfig{
+            std::move(name), {kind, span, precision, {}, Wrap::repeat}, choose};
     };
     std::vector<MapperConfig> list = {
         m("affine fixed", K::affine, P::fixed), // the baseline of every time ratio
@@ -114,8 +114,8 @@ std::vector<MapperConfig> accuracy_mappers() {
     for (const int n : {4, 8, 16, 32}) {
         list.push_back(m("subdivided-" + std::to_string(n) + " float", K::subdivided,
                          P::float32, n));
-        list.push_back(m("subdivided-" + std::to_string(n) + " fixed", K::subdivided,
-                         P::fixed, n));
+        list.push_back(
+            m("subdivided-" + std::to_string(n) + " fixed", K::subdivided, P::fixed, n));
     }
     list.push_back(m("quadratic float", K::quadratic, P::float32));
     list.push_back(m("quadratic double", K::quadratic, P::float64));
@@ -130,8 +130,8 @@ std::vector<MapperConfig> accuracy_mappers() {
     // The same fixed-point loops with chapter 4's rule chosen per triangle.
     list.push_back(m("affine fixed +rule", K::affine, P::fixed, 16, true));
     list.push_back(m("subdivided-16 fixed +rule", K::subdivided, P::fixed, 16, true));
-    list.push_back(m("quadratic-16 fixed +rule", K::quadratic_subdivided, P::fixed, 16,
-                     true));
+    list.push_back(
+        m("quadratic-16 fixed +rule", K::quadratic_subdivided, P::fixed, 16, true));
     list.push_back(m("exact double +rule", K::exact, P::float64, 16, true));
     list.push_back(m("exact fixed +rule", K::exact, P::fixed, 16, true));
     return list;
@@ -139,8 +139,8 @@ std::vector<MapperConfig> accuracy_mappers() {
 //< accuracy-mappers
 
 MapperConfig reference_mapper() {
-    return {"reference", {MapperKind::exact, 16, Precision::float64, {}, Wrap::repeat},
-            true};
+    return {
+        "reference", {MapperKind::exact, 16, Precision::float64, {}, Wrap::repeat}, true};
 }
 
 MapperSettings settings_for(const MapperConfig& mapper,
@@ -152,9 +152,11 @@ MapperSettings settings_for(const MapperConfig& mapper,
     return s;
 }
 
-void draw_with(Framebuffer& frame, const AccuracyScene& scene, const MapperConfig& mapper) {
+void draw_with(Framebuffer& frame, const AccuracyScene& scene,
+               const MapperConfig& mapper) {
     for (const auto& triangle : scene.triangles) {
-        draw_textured_triangle(frame, triangle, scene.texture, settings_for(mapper, triangle));
+        draw_textured_triangle(frame, triangle, scene.texture,
+                               settings_for(mapper, triangle));
     }
 }
 

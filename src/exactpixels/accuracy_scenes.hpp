@@ -75,7 +75,8 @@ MapperSettings settings_for(const MapperConfig& mapper,
                             const std::array<TexturedVertex, 3>& triangle);
 
 /// Draws every triangle of the scene into `frame` (scene-sized) with the mapper.
-void draw_with(Framebuffer& frame, const AccuracyScene& scene, const MapperConfig& mapper);
+void draw_with(Framebuffer& frame, const AccuracyScene& scene,
+               const MapperConfig& mapper);
 
 /// Records the texels the mapper picks for every triangle of the scene into `map`.
 void map_with(TexelMap& map, const AccuracyScene& scene, const MapperConfig& mapper);

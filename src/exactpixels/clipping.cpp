@@ -16,7 +16,8 @@ void check_clip_input(const std::array<ViewVertex, 3>& v, double near) {
     }
     for (int k = 0; k < 3; ++k) {
         const ViewVertex& p = v[static_cast<std::size_t>(k)];
-        for (const double c : {p.position.x, p.position.y, p.position.z, p.uv.x, p.uv.y}) {
+        for (const double c :
+             {p.position.x, p.position.y, p.position.z, p.uv.x, p.uv.y}) {
             if (!std::isfinite(c)) {
                 throw Error(fmt::format("clip_near: vertex {} has a coordinate {} "
                                         "(position and uv must be finite)",
@@ -28,10 +29,12 @@ void check_clip_input(const std::array<ViewVertex, 3>& v, double near) {
 } // namespace
 
 //> near-crossing
-ViewVertex near_crossing(const ViewVertex& inside, const ViewVertex& outside, double near) {
+ViewVertex near_crossing(const ViewVertex& inside, const ViewVertex& outside,
+                         double near) {
     assert(inside.position.z >= near && outside.position.z < near);
     // @eq:clip-t: the denominator is at least inside.z - near >= 0 plus a positive part.
-    const double t = (inside.position.z - near) / (inside.position.z - outside.position.z);
+    const double t =
+        (inside.position.z - near) / (inside.position.z - outside.position.z);
     ViewVertex p{inside.position + t * (outside.position - inside.position),
                  inside.uv + t * (outside.uv - inside.uv)};
     p.position.z = near; // on the plane exactly, whatever the rounding of t
@@ -81,9 +84,10 @@ ProjectedTriangles clip_and_project(const Pinhole& camera,
     ProjectedTriangles out{};
     for (int k = 0; k < c.count; ++k) {
         const auto& t = c.triangles[static_cast<std::size_t>(k)];
-        out.triangles[static_cast<std::size_t>(k)] = {project(camera, t[0].position, t[0].uv),
-                                                      project(camera, t[1].position, t[1].uv),
-                                                      project(camera, t[2].position, t[2].uv)};
+        out.triangles[static_cast<std::size_t>(k)] = {
+            project(camera, t[0].position, t[0].uv),
+            project(camera, t[1].position, t[1].uv),
+            project(camera, t[2].position, t[2].uv)};
     }
     out.count = c.count;
     return out;

@@ -6,7 +6,8 @@
 //                                {{1.0, -1.0, -2.0}, {64.0, 0.0}},     // behind the eye
 //                                {{0.0, 1.0, 4.0}, {32.0, 64.0}}}};
 //   ClippedTriangles c = clip_near(t, 0.5);              // 0, 1 or 2 triangles
-//   draw_view_triangle(frame, camera, t, 0.5, texture, settings);   // clip, project, draw
+//   draw_view_triangle(frame, camera, t, 0.5, texture, settings);   // clip, project,
+//   draw
 //
 // View space is perspective.hpp's: the eye at the origin looking along +z, x right, y
 // up; z is the depth that becomes the mapper's w. The near plane is z = near (near > 0,
@@ -47,7 +48,8 @@ struct ClippedTriangles {
 
 /// The point where the edge from `inside` (z >= near) to `outside` (z < near) meets the
 /// plane z = near: z is set to near exactly, uv interpolated with the same parameter.
-ViewVertex near_crossing(const ViewVertex& inside, const ViewVertex& outside, double near);
+ViewVertex near_crossing(const ViewVertex& inside, const ViewVertex& outside,
+                         double near);
 
 /// The part of the triangle with z >= near, as 0 to 2 triangles of the same winding.
 /// Throws Error for a non-finite coordinate or a near that is not finite and > 0.

@@ -49,8 +49,8 @@ TexelError compare_texel_maps(const TexelMap& reference, const TexelMap& candida
         if (!reference.covered[k]) {
             continue;
         }
-        const double error = texel_error(candidate.u[k], candidate.v[k], reference.u[k],
-                                         reference.v[k]);
+        const double error =
+            texel_error(candidate.u[k], candidate.v[k], reference.u[k], reference.v[k]);
         e.worst = std::max(e.worst, error);
         sum += error;
         differing += candidate.i[k] != reference.i[k] || candidate.j[k] != reference.j[k];
