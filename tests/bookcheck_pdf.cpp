@@ -43,7 +43,13 @@ std::string read_text(const fs::path& path) {
     return text.str();
 }
 
-std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+// (Built up step by step: GCC 12 warns wrongly about "'" + string + "'" at -O2.)
+std::string quoted(const fs::path& path) {
+    std::string out = "'";
+    out += path.string();
+    out += '\'';
+    return out;
+}
 
 std::vector<std::string> lines_of(const std::string& text) {
     std::vector<std::string> lines;
