@@ -6,10 +6,12 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <vector>
 
 using namespace exactpixels;
 using testing::Rational;
@@ -253,4 +255,43 @@ TEST_CASE("the chosen rule can differ between rows of one perspective triangle")
             << " of " << rows_checked << " rows need the other rule than the centroid's");
     CHECK(rows_differing_from_triangle > 0);
     CHECK(rows_differing_from_triangle < rows_checked);
+}
+
+TEST_CASE("with rounding per row, every row samples with its own rule") {
+    // The wall of the test above, drawn in 16.16 fixed point with the exact mapper: each
+    // pixel's texel row must be the one its own row's rule picks from the v the mapper
+    // computed, and the rule must change from row to row (above and below the horizon).
+    const std::array<TexturedVertex, 3> wall{{{{10.0, 10.5}, 1.0, {0.0, 0.0}},
+                                              {{74.0, 34.5}, 4.0, {64.0, 0.0}},
+                                              {{10.0, 74.5}, 1.0, {0.0, 64.0}}}};
+    MapperSettings settings;
+    settings.precision = Precision::fixed;
+    settings.rounding_per_row = true;
+    TexelMap map(96, 96);
+    map_textured_triangle(map, wall, settings);
+    int pixels = 0;
+    std::vector<std::int32_t> biases;
+    for (int y = 0; y < map.height; ++y) {
+        const TexelRounding row = choose_rounding_on_row(wall, y + 0.5);
+        bool row_covered = false;
+        for (int x = 0; x < map.width; ++x) {
+            const std::size_t k = static_cast<std::size_t>(y * map.width + x);
+            if (!map.covered[k]) {
+                continue;
+            }
+            const auto V = static_cast<std::int32_t>(std::lround(map.v[k] * texel_scale));
+            INFO("pixel (" << x << ", " << y << ")");
+            CHECK(map.j[k] == fixed_texel_index(V, row.v_bias));
+            row_covered = true;
+            ++pixels;
+        }
+        if (row_covered) {
+            biases.push_back(row.v_bias);
+        }
+    }
+    CHECK(pixels > 1000);
+    CHECK(std::count(biases.begin(), biases.end(), texel_bias(RoundingRule::ties_up)) >
+          0);
+    CHECK(std::count(biases.begin(), biases.end(), texel_bias(RoundingRule::ties_down)) >
+          0);
 }

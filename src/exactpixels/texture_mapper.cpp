@@ -3,6 +3,7 @@
 #include "exactpixels/error.hpp"
 #include "exactpixels/fixed_point.hpp"
 #include "exactpixels/gradients.hpp"
+#include "exactpixels/rounding.hpp"
 #include "exactpixels/scanline.hpp"
 #include "exactpixels/span_mappers.hpp"
 
@@ -158,10 +159,10 @@ void for_each_textured_pixel(const std::array<TexturedVertex, 3>& v, Viewport vi
     const Plane one_w = plane([](const TexturedVertex& t) { return 1.0 / t.w; });
     const Plane u = plane([](const TexturedVertex& t) { return t.uv.x; });
     const Plane v_ = plane([](const TexturedVertex& t) { return t.uv.y; });
-    const TexelRounding r = settings.rounding;
-
     scanline_spans(snapped, viewport, [&](Span s) {
         const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
+        const TexelRounding r =
+            settings.rounding_per_row ? choose_rounding_on_row(v, y) : settings.rounding;
         const int count = s.x_end - s.x_begin;
         const PerspectiveSpan<double> ps{u_w.at(p[0], x, y),
                                          v_w.at(p[0], x, y),

@@ -81,6 +81,10 @@ struct MapperSettings {
     Precision precision = Precision::float64; ///< inner-loop arithmetic
     TexelRounding rounding = {};              ///< texel index rounding (all precisions)
     Wrap wrap = Wrap::repeat;                 ///< how indices outside the texture wrap
+    /// Chapter 4: choose the rounding of every row from its own BC - AD numerators
+    /// (choose_rounding_on_row) instead of using `rounding` for the whole triangle; under
+    /// perspective the sign of du/dx or dv/dx can change from row to row.
+    bool rounding_per_row = false;
 };
 
 /// The texel index a mapper picks from a 16.16 coordinate U: floor((U + bias - D/2) / D).
