@@ -7,7 +7,8 @@
 
 namespace exactpixels::cli {
 
-/// The exit code for malformed input (a message naming the line and value goes to stderr).
+/// The exit code for malformed input (a message naming the line and value goes to
+/// stderr).
 inline constexpr int exit_bad_input = 2;
 
 /// Registers `exactpixels pattern`: writes the chapter 0 "F" test pattern as a PNG.
