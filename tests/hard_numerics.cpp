@@ -58,8 +58,7 @@ long double plane_reference(const std::array<Point2, 3>& v,
 }
 } // namespace
 
-TEST_CASE(
-    "a tiny triangle far from the origin: float loses it, relative coordinates keep it") {
+TEST_CASE("a tiny far triangle: float loses it, relative coordinates keep it") {
     // A 2-px triangle a million pixels from the origin, c from 0 to 1 across it. Near
     // 2^20 float spacing is 1/16 px, so rounding the corners to float moves them by up
     // to 1/32 px: a few percent of the triangle. Tolerances (on c in [0, 1]): double,
@@ -109,8 +108,7 @@ TEST_CASE(
     CHECK(e_fixed <= 1e-9);
 }
 
-TEST_CASE(
-    "nearly edge-on: 1/w falls by hundreds along a row, exact in double and 16.16") {
+TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") {
     // A quad whose left edge is at depth 1 and whose right edge is 10^4 times deeper:
     // along each row 1/w falls from 1 to nearly 1e-4, and at the far end the divide
     // (u/w) / (1/w) magnifies the rounding of both. The reference evaluates the same
