@@ -39,7 +39,10 @@ struct FixtureBook {
                               "    }\n"
                               "//< answer\n"
                               "int after;\n");
-        write("tests/ch07_demo.cpp", "TEST_CASE(\"the answer is 42\") {}\n");
+        write("tests/ch07_demo.cpp",
+              "TEST_CASE(\"the answer is 42\") {}\n"
+              "TEST_CASE(\n"
+              "    \"a name too long for one line\" * points) {}\n");
     }
     ~FixtureBook() { fs::remove_all(root); }
 
@@ -55,18 +58,18 @@ struct FixtureBook {
 
     // Runs the filter on `file` (relative to the root) for `target` (html or latex), with
     // `env` added to the environment (e.g. "EP_CHAPTERS=07-demo" or "EP_PAGE=...").
-    exactpixels::testing::CommandResult run_filter(const std::string& file,
-                                                   const std::string& target,
-                                                   const std::string& env,
-                                                   const std::string& all = "07-demo") const {
-        const std::string vars =
-            "EP_ROOT='" + root.string() + "' EP_FIGURES='" + (root / "figures").string() +
-            "' EP_OUT='" + (root / "out").string() + "' EP_TARGET=" + target + " " + env +
-            " EP_ALL_CHAPTERS='" + all + "' ";
+    exactpixels::testing::CommandResult
+    run_filter(const std::string& file, const std::string& target, const std::string& env,
+               const std::string& all = "07-demo") const {
+        const std::string vars = "EP_ROOT='" + root.string() + "' EP_FIGURES='" +
+                                 (root / "figures").string() + "' EP_OUT='" +
+                                 (root / "out").string() + "' EP_TARGET=" + target + " " +
+                                 env + " EP_ALL_CHAPTERS='" + all + "' ";
         return run_command(vars + "pandoc --from=markdown --to=" +
-                           (target == "html" ? "html5 --mathml" : "latex") + " --lua-filter='" +
-                           std::string(EXACTPIXELS_SOURCE_DIR) +
-                           "/book/filters/exactpixels.lua' '" + (root / file).string() + "'");
+                           (target == "html" ? "html5 --mathml" : "latex") +
+                           " --lua-filter='" + std::string(EXACTPIXELS_SOURCE_DIR) +
+                           "/book/filters/exactpixels.lua' '" + (root / file).string() +
+                           "'");
     }
 };
 
@@ -163,6 +166,11 @@ TEST_CASE("a named test must exist in the named file") {
         book.render(title + "[the answer is 41]{.test file=\"tests/ch07_demo.cpp\"}\n");
     CHECK(bad.exit_code != 0);
     CHECK(bad.err.find("the answer is 41") != std::string::npos);
+    // clang-format may move a long name to the line after "TEST_CASE(".
+    const auto wrapped = book.render(
+        title + "[a name too long for one line]{.test file=\"tests/ch07_demo.cpp\"}\n");
+    CHECK(wrapped.exit_code == 0);
+    CHECK(wrapped.out.find("ch07_demo.cpp.html#src-2") != std::string::npos);
 }
 
 TEST_CASE("a figure the build did not make fails the book") {
@@ -178,8 +186,9 @@ TEST_CASE("a figure the build did not make fails the book") {
 
 TEST_CASE("an index term is plain text in HTML and an \\index entry in LaTeX") {
     FixtureBook book;
-    const std::string text = title + "The [Top-left fill rule]{.index} decides, and so does "
-                                     "[the affine one]{.index term=\"texture mapping!affine\"}.\n";
+    const std::string text =
+        title + "The [Top-left fill rule]{.index} decides, and so does "
+                "[the affine one]{.index term=\"texture mapping!affine\"}.\n";
     const auto html = book.render(text);
     REQUIRE(html.exit_code == 0);
     CHECK(html.out.find("The Top-left fill rule decides") != std::string::npos);
@@ -189,7 +198,8 @@ TEST_CASE("an index term is plain text in HTML and an \\index entry in LaTeX") {
         book.run_filter("chapters/07-demo/chapter.md", "latex", "EP_CHAPTERS=07-demo");
     REQUIRE(latex.exit_code == 0);
     // Sorted by a plain lower-case key, shown as written; "!" makes a sub-entry.
-    CHECK(latex.out.find("Top-left fill rule\\index{topleft fill rule@Top-left fill rule}") !=
+    CHECK(latex.out.find(
+              "Top-left fill rule\\index{topleft fill rule@Top-left fill rule}") !=
           std::string::npos);
     CHECK(latex.out.find("\\index{texture mapping@texture mapping!affine@affine}") !=
           std::string::npos);
@@ -197,12 +207,13 @@ TEST_CASE("an index term is plain text in HTML and an \\index entry in LaTeX") {
 
 TEST_CASE("the contents page lists every chapter and numbered section with links") {
     FixtureBook book;
-    book.write("chapters/07-demo/chapter.md", title + "## Part {#sec:part}\n\nText.\n\n"
-                                                      "### Detail\n\nText.\n\n"
-                                                      "## Exercises {.unnumbered}\n\nDo.\n");
+    book.write("chapters/07-demo/chapter.md", title +
+                                                  "## Part {#sec:part}\n\nText.\n\n"
+                                                  "### Detail\n\nText.\n\n"
+                                                  "## Exercises {.unnumbered}\n\nDo.\n");
     book.write("contents.md", "# Contents\n\n::: contents\n:::\n\nSee @sec:part.\n");
-    const auto result = book.run_filter("contents.md", "html",
-                                        "EP_PAGE='" + (book.root / "contents.md").string() + "'");
+    const auto result = book.run_filter(
+        "contents.md", "html", "EP_PAGE='" + (book.root / "contents.md").string() + "'");
     REQUIRE(result.exit_code == 0);
     std::string text = without_tags(result.out);
     std::replace(text.begin(), text.end(), '\n', ' ');
@@ -214,15 +225,16 @@ TEST_CASE("the contents page lists every chapter and numbered section with links
     CHECK(text.find("Detail") == std::string::npos);
     CHECK(text.find("Exercises") == std::string::npos);
     // A reference from a page that is not a chapter goes to the chapter's page.
-    CHECK(result.out.find("href=\"07-demo.html#sec:part\" class=\"ref\">Section\u00a07.1</a>") !=
+    CHECK(result.out.find(
+              "href=\"07-demo.html#sec:part\" class=\"ref\">Section\u00a07.1</a>") !=
           std::string::npos);
 }
 
 TEST_CASE("a page that is not a chapter reports errors with its own file name") {
     FixtureBook book;
     book.write("page.md", "# A page\n\nSee @sec:nowhere.\n");
-    const auto result = book.run_filter("page.md", "html",
-                                        "EP_PAGE='" + (book.root / "page.md").string() + "'");
+    const auto result = book.run_filter(
+        "page.md", "html", "EP_PAGE='" + (book.root / "page.md").string() + "'");
     CHECK(result.exit_code != 0);
     CHECK(result.err.find("page.md:3: error:") != std::string::npos);
     CHECK(result.err.find("sec:nowhere") != std::string::npos);

@@ -500,7 +500,12 @@ local function test_reference(span, dir)
   local text = read_file(root .. "/" .. file)
   if not text then fail(dir, file, "test file '" .. file .. "' does not exist") end
   local line_number
-  for n, line in ipairs(lines_of(text)) do
+  local lines = lines_of(text)
+  for n, line in ipairs(lines) do
+    -- clang-format may put the name on the line after "TEST_CASE(": join them.
+    if line:match("TEST_CASE%($") or line:match("TEST_CASE_TEMPLATE%($") then
+      line = line .. (lines[n + 1] or ""):gsub("^%s+", "")
+    end
     if line:find('TEST_CASE("' .. name .. '"', 1, true)
         or line:find('TEST_CASE_TEMPLATE("' .. name .. '"', 1, true) then
       line_number = n
