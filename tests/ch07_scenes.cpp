@@ -111,8 +111,7 @@ TEST_CASE("the sprite sheet shows each texel as a block of 8 pixels, exactly") {
     }
 }
 
-TEST_CASE("a scene with no perspective renders the same with auto and exact, and divides "
-          "nothing" *
+TEST_CASE("without perspective, auto renders as exact and divides nothing" *
           doctest::description("points: 2")) {
     const Scene scene = shipped("sprites");
     const RenderResult automatic = render_scene(scene);
@@ -339,7 +338,8 @@ TEST_CASE("plan_mesh asks for a stage only when the mesh uses it" *
 }
 
 TEST_CASE("the chapter's TOML listings are scenes the loader accepts") {
-    std::ifstream in(std::string(EXACTPIXELS_SOURCE_DIR) + "/chapters/07-scenes/chapter.md");
+    std::ifstream in(std::string(EXACTPIXELS_SOURCE_DIR) +
+                     "/chapters/07-scenes/chapter.md");
     REQUIRE(in);
     std::string line, block;
     bool inside = false;
