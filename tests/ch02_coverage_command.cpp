@@ -95,8 +95,9 @@ TEST_CASE("coverage: malformed input names the line and exits with 2") {
         check_malformed("4 4\n0 0 3 0 3 3 1\n", "line 2: expected 6 numbers");
     }
     SUBCASE("text") {
-        check_malformed("4 4\n0 0 3 0 3 3\n0 0 three 0 3 3\n", "line 3: expected a number, "
-                                                               "found 'three'");
+        check_malformed("4 4\n0 0 3 0 3 3\n0 0 three 0 3 3\n",
+                        "line 3: expected a number, "
+                        "found 'three'");
     }
     SUBCASE("NaN") {
         check_malformed("4 4\n\n0 0 3 nan 3 3\n", "line 3: 'nan' is not a finite number");

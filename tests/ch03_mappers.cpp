@@ -92,7 +92,8 @@ TEST_CASE("the exact mapper reproduces the perspective projection of a textured 
     }
 }
 
-TEST_CASE("affine error on a span matches the formula and peaks at the bound") {
+TEST_CASE("affine error on a span matches the formula and peaks at the bound" *
+          doctest::description("points: 1; exercise: ch03-perspective-divide")) {
     for (const double r : {1.25, 2.0, 4.0, 10.0, 100.0, 0.25}) {
         for (const double extent : {16.0, 64.0, 256.0}) {
             const int count = 257; // 256 steps: t = k / 256
@@ -126,7 +127,8 @@ TEST_CASE("affine error on a span matches the formula and peaks at the bound") {
     }
 }
 
-TEST_CASE("quadratic error on a span matches the formula and its tabulated peak") {
+TEST_CASE("quadratic error on a span matches the formula and its tabulated peak" *
+          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
     for (const double r : {1.25, 2.0, 4.0, 10.0, 100.0, 0.25}) {
         for (const double extent : {16.0, 64.0, 256.0}) {
             const int count = 257;
@@ -183,7 +185,8 @@ TEST_CASE("subdivided mappers are exact at every span point, bit for bit") {
     }
 }
 
-TEST_CASE("subdivided affine error falls as N shrinks, as the bound predicts") {
+TEST_CASE("subdivided affine error falls as N shrinks, as the bound predicts" *
+          doctest::description("points: 1; exercise: ch03-perspective-divide")) {
     // One long span, depth ratio 8, 256 texels. Each piece from pixel k0 to its target
     // has its own ratio and extent; the bound of eq:affine-bound applies piece by piece.
     const int count = 512;

@@ -45,7 +45,8 @@ TEST_CASE("Thellier's coefficients equal Pursey's in exact arithmetic" *
     }
 }
 
-TEST_CASE("Thellier's and Pursey's coefficients agree in float within the stated bound") {
+TEST_CASE("Thellier's and Pursey's coefficients agree in float within the stated bound" *
+          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
     // Both forms, run in float, are compared with the exact coefficients of the same
     // float inputs. Pursey's 2 u0 - 4 u1 + 2 u2 cancels: its rounding error is a few ulps
     // of the largest |u| involved, so a and b are allowed 32 float epsilons of
@@ -76,7 +77,8 @@ TEST_CASE("Thellier's and Pursey's coefficients agree in float within the stated
     MESSAGE("largest float error: " << worst << " of the allowance");
 }
 
-TEST_CASE("the parabola passes through the exact values at both ends and the middle") {
+TEST_CASE("the parabola passes through the exact values at both ends and the middle" *
+          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
     std::mt19937 random(11);
     std::uniform_int_distribution<int> texel(-500, 500), depth(1, 200), steps(1, 300);
     for (int trial = 0; trial < 1000; ++trial) {

@@ -79,7 +79,8 @@ TEST_CASE("ceil(N/D - 1/2) = floor((N + D/2 - 1)/D) for every N in +-2^20, k = 1
     }
 }
 
-TEST_CASE("the single floor holds at the ends of the documented range") {
+TEST_CASE("the single floor holds at the ends of the documented range" *
+          doctest::description("points: 1; exercise: ch04-modifier")) {
     // |C| <= 2^61 and k <= 30: 2C + D and C + m must not overflow.
     std::mt19937_64 random(4);
     const std::int64_t limit = std::int64_t{1} << 61;

@@ -83,7 +83,8 @@ TEST_CASE("the grazing floor spans depth ratios from 1.1 to 20") {
     CHECK(r[1] <= 21.0);
 }
 
-TEST_CASE("the measured affine error meets chapter 3's bound on a single receding quad") {
+TEST_CASE("the measured affine error meets chapter 3's bound on a single receding quad" *
+          doctest::description("points: 1; exercise: ch05-texel-error")) {
     // A quad whose depth grows from 1 to r along x only: every row is one span with
     // depth ratio close to r and u running over 100 texels, so the worst affine error
     // is affine_error_bound(r) * 100 texels (eq. affine-bound), up to the sampling of

@@ -98,7 +98,8 @@ positions = [[-4, -1, 0], [-2, -1, 0], [-4, -3, 0]]
     CHECK(result.report.divides() == 0);
 }
 
-TEST_CASE("the sprite sheet shows each texel as a block of 8 pixels, exactly") {
+TEST_CASE("the sprite sheet shows each texel as a block of 8 pixels, exactly" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     const Scene scene = shipped("sprites");
     const RenderResult result = render_scene(scene);
     const Texture f = f_texture(1);
@@ -131,7 +132,8 @@ TEST_CASE("without perspective, auto renders as exact and divides nothing" *
     CHECK(automatic.report.auto_choice.spans == 0); // constant w: nothing to decide
 }
 
-TEST_CASE("a scene without textures runs no texture stage") {
+TEST_CASE("a scene without textures runs no texture stage" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     const RenderResult result = render_scene(shipped("gouraud"));
     CHECK(result.report.texture.triangles == 0);
     CHECK(result.report.texture.pixels == 0);
@@ -153,7 +155,7 @@ TEST_CASE("geometry in front of the near plane does no clipping work") {
 }
 
 TEST_CASE("auto scenes stay within their error budget against the exact reference" *
-          doctest::description("points: 3")) {
+          doctest::description("points: 3; exercise: ch07-choose-mapper")) {
     for (const char* name : {"corridor", "horizon", "near_plane"}) {
         INFO(name);
         const Scene scene = shipped(name);
@@ -337,7 +339,8 @@ TEST_CASE("plan_mesh asks for a stage only when the mesh uses it" *
     CHECK_FALSE(s.texture);
 }
 
-TEST_CASE("the chapter's TOML listings are scenes the loader accepts") {
+TEST_CASE("the chapter's TOML listings are scenes the loader accepts" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     std::ifstream in(std::string(EXACTPIXELS_SOURCE_DIR) +
                      "/chapters/07-scenes/chapter.md");
     REQUIRE(in);

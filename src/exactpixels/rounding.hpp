@@ -27,6 +27,7 @@
 
 #include "exactpixels/error.hpp"
 #include "exactpixels/gradients.hpp"
+#include "exactpixels/integer_division.hpp"
 #include "exactpixels/texture_mapper.hpp"
 #include "exactpixels/types.hpp"
 
@@ -41,18 +42,6 @@ enum class RoundingRule {
     ties_up,  ///< rule 1: floor(c + 1/2) = floor(u); a tie picks the larger index
     ties_down ///< rule 2: ceil(c - 1/2) = ceil(u) - 1; a tie picks the smaller index
 };
-
-/// floor(a / b) for b > 0, exact for every a (C++'s / truncates towards zero).
-constexpr std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-    const std::int64_t q = a / b;
-    return (a % b != 0 && a < 0) ? q - 1 : q;
-}
-
-/// ceil(a / b) for b > 0, exact for every a.
-constexpr std::int64_t ceil_div(std::int64_t a, std::int64_t b) {
-    const std::int64_t q = a / b;
-    return (a % b != 0 && a > 0) ? q + 1 : q;
-}
 
 /// Throws Error unless 1 <= k <= 30 (D = 2^k must be even and small enough for int64).
 constexpr void check_fraction_bits(int k) {

@@ -21,7 +21,7 @@
 //   - FixedPoint2 vertices (1/256 px, already snapped): the span ends are found with
 //     exact integer arithmetic, so the result is the exact top-left coverage of the
 //     snapped triangle, pixel for pixel the same as chapter 2's edge functions.
-//     Coordinates must lie in [-fixed_coordinate_limit, fixed_coordinate_limit].
+//     Coordinates must lie in [-max_fixed_coordinate, max_fixed_coordinate].
 // Spans arrive top to bottom, one per non-empty row, clipped to the Viewport.
 //
 // Attributes: scanline_interpolate steps N values (colour channels, u, v, ...) across the
@@ -33,6 +33,7 @@
 #include "exactpixels/error.hpp"
 #include "exactpixels/fixed_point.hpp"
 #include "exactpixels/gradients.hpp"
+#include "exactpixels/integer_division.hpp"
 #include "exactpixels/span.hpp"
 #include "exactpixels/types.hpp"
 
@@ -48,9 +49,6 @@ namespace exactpixels {
 
 /// The largest |x| or |y| in pixels that the floating-point scanline forms accept.
 inline constexpr double scanline_coordinate_limit = 1 << 24;
-/// The largest |X| or |Y| in 1/256 px that the fixed-point scanline form accepts
-/// (2^28 units = 2^20 px), so every product it forms fits in 64 bits.
-inline constexpr std::int64_t fixed_coordinate_limit = std::int64_t{1} << 28;
 
 /// N attribute values carried by a vertex, or stepped to a pixel.
 template <std::size_t N> using Attributes = std::array<double, N>;
@@ -155,12 +153,12 @@ void scanline_spans(const std::array<Point2, 3>& v, Viewport viewport, SpanFn&& 
 //< scanline-spans
 
 /// Throws Error naming the function, the vertex and the value unless every coordinate
-/// of v is within +-fixed_coordinate_limit (1/256 px).
+/// of v is within +-max_fixed_coordinate (1/256 px).
 inline void check_scanline_input(const std::array<FixedPoint2, 3>& v,
                                  const char* function) {
     for (int i = 0; i < 3; ++i) {
         for (const std::int64_t value : {v[i].x, v[i].y}) {
-            if (value < -fixed_coordinate_limit || value > fixed_coordinate_limit) {
+            if (value < -max_fixed_coordinate || value > max_fixed_coordinate) {
                 throw Error(std::string(function) + ": vertex " + std::to_string(i) +
                             " has fixed-point coordinate " + std::to_string(value) +
                             " (1/256 px), outside [-2^28, 2^28]");
@@ -208,15 +206,6 @@ struct FixedEdgeWalker {
         step_whole = floor_div(subpixel_scale * dx, denominator);
         step_part = subpixel_scale * dx - step_whole * denominator;
     }
-    /// floor(n / d) for d > 0, exact for negative n too (C++ division truncates).
-    static constexpr std::int64_t floor_div(std::int64_t n, std::int64_t d) {
-        return n / d - ((n % d != 0) && (n < 0));
-    }
-    /// ceil(n / d) for d > 0, exact for negative n too.
-    static constexpr std::int64_t ceil_div(std::int64_t n, std::int64_t d) {
-        return -floor_div(-n, d);
-    }
-
     /// Moves to the next row, keeping x_first exact.
     void step() {
         x_first += step_whole;
@@ -231,7 +220,7 @@ struct FixedEdgeWalker {
 
 /// Emits the exact top-left coverage of the snapped triangle v (1/256 px, any order,
 /// either winding), one Span per non-empty row, top to bottom, never outside the
-/// viewport. Throws Error for a coordinate beyond +-fixed_coordinate_limit.
+/// viewport. Throws Error for a coordinate beyond +-max_fixed_coordinate.
 template <class SpanFn>
 void scanline_spans(const std::array<FixedPoint2, 3>& v, Viewport viewport,
                     SpanFn&& emit) {

@@ -36,7 +36,7 @@ TexelMap::TexelMap(int width_, int height_)
 
 void check_textured_triangle(const std::array<TexturedVertex, 3>& v,
                              const MapperSettings& settings) {
-    const double position_limit = double(fixed_coordinate_limit) / subpixel_scale;
+    const double position_limit = max_fixed_coordinate_px;
     const double uv_limit = settings.precision == Precision::fixed ? 16384.0 : 1e30;
     for (int k = 0; k < 3; ++k) {
         const TexturedVertex& p = v[static_cast<std::size_t>(k)];
