@@ -459,8 +459,9 @@ std::vector<fs::path> kit_files(const fs::path& root, const std::string& number)
     add_tree("tests/support", everything);
     add_tree(".clang-format", everything);
     if (const auto folder = chapter_folder(root, number)) {
-        // The example and whatever it reads; the chapter text belongs to the book.
-        add_tree(*folder, [](const fs::path& file) { return file.extension() != ".md"; });
+        // The example, whatever it reads, and the chapter's text (its listings are named
+        // regions, so it never shows a stub; some tests read the chapter's own examples).
+        add_tree(*folder, everything);
     }
     const std::string prefix = "ch" + number;
     for (const char* top : {"tests", "tests/fixtures"}) {
