@@ -5,7 +5,8 @@
 //   malformed ones (naming file and line), and refuses a region no test checks;
 // - on a fixture tree (tests/fixtures/kits/tree): the kit holds the chapter's stubs and
 //   every other chapter's solutions, no marker line, the example, tests and fixture data;
-//   the zip holds the same files; the grade is exactly the expected lines, twice the same;
+//   the zip holds the same files; the grade is exactly the expected lines, twice the
+//   same;
 // - for every chapter of the book: its kit configures and builds on its own, outside the
 //   source tree; fresh, every test of an exercise fails and every other test passes;
 //   restored, every test passes and the grade reaches full marks; the restored kit's code
@@ -119,10 +120,11 @@ bool is_code(const fs::path& path) {
 
 CommandResult make_kit(const fs::path& source, const std::string& chapter,
                        const fs::path& out) {
-    return run_command(std::string("'") + EXACTPIXELS_MAKE_KIT + "' kit --source " +
-                       quoted(source) + " --template " +
-                       quoted(fs::path(EXACTPIXELS_KIT_SCRIPT).parent_path() / "template") +
-                       " --chapter " + chapter + " --out " + quoted(out));
+    return run_command(
+        std::string("'") + EXACTPIXELS_MAKE_KIT + "' kit --source " + quoted(source) +
+        " --template " +
+        quoted(fs::path(EXACTPIXELS_KIT_SCRIPT).parent_path() / "template") +
+        " --chapter " + chapter + " --out " + quoted(out));
 }
 
 CommandResult restore_kit(const fs::path& source, const fs::path& kit) {
@@ -130,7 +132,9 @@ CommandResult restore_kit(const fs::path& source, const fs::path& kit) {
                        quoted(source) + " --kit " + quoted(kit));
 }
 
-std::string cmake() { return std::string("'") + EXACTPIXELS_CMAKE + "'"; }
+std::string cmake() {
+    return std::string("'") + EXACTPIXELS_CMAKE + "'";
+}
 
 /// Configures `kit` into `build` with the compiler and generator of this build, Release.
 CommandResult configure(const fs::path& kit, const fs::path& build) {
@@ -203,8 +207,8 @@ Grade parse_grade(const std::string& text) {
 
 /// Runs the kit's `grade` target; returns the grade file (also checked to be printed).
 std::string run_grade(const fs::path& build_dir) {
-    const auto result = run_command(cmake() + " --build " + quoted(build_dir) +
-                                    " --target grade");
+    const auto result =
+        run_command(cmake() + " --build " + quoted(build_dir) + " --target grade");
     INFO(result.out << result.err);
     CHECK(result.exit_code == 0);
     const std::string text = read_file(build_dir / "grade.txt");
@@ -220,8 +224,8 @@ std::string without_markers(const std::string& text) {
     bool after_exercise_open = false;
     for (const auto& line : lines_of(text)) {
         const std::string t = trimmed(line);
-        const bool marker = starts_with(t, "//>") || starts_with(t, "//<") ||
-                            starts_with(t, "//|");
+        const bool marker =
+            starts_with(t, "//>") || starts_with(t, "//<") || starts_with(t, "//|");
         const bool continuation = after_exercise_open && t.size() > 2 &&
                                   starts_with(t, "//") &&
                                   std::string(" /<>|!").find(t[2]) == std::string::npos;
@@ -290,7 +294,8 @@ void check_clean(const fs::path& kit, const fs::path& source) {
 fs::path fixture_tree() {
     static const fs::path tree = [] {
         const fs::path copy = scratch("fixture-tree");
-        fs::copy(source_root / "tests/fixtures/kits/tree", copy, fs::copy_options::recursive);
+        fs::copy(source_root / "tests/fixtures/kits/tree", copy,
+                 fs::copy_options::recursive);
         fs::copy(source_root / "tests/support", copy / "tests/support",
                  fs::copy_options::recursive);
         return copy;
@@ -312,7 +317,8 @@ std::vector<std::string> book_chapters() {
     for (const auto& entry : fs::directory_iterator(source_root / "tests")) {
         const std::string name = entry.path().filename().string();
         if (name.size() > 5 && starts_with(name, "ch") && std::isdigit(name[2]) &&
-            std::isdigit(name[3]) && name[4] == '_' && entry.path().extension() == ".cpp") {
+            std::isdigit(name[3]) && name[4] == '_' &&
+            entry.path().extension() == ".cpp") {
             numbers.insert(name.substr(2, 2));
         }
     }
@@ -352,7 +358,8 @@ TEST_CASE("make-kit refuses malformed exercise regions, naming the file and line
          "TEST_CASE(\"t\" * doctest::description(\"exercise: ch07-x\")) {}\n",
          "ch07_bad.cpp:1: test \"t\" checks exercise ch07-x but declares no points"},
         {"points not a number", "//> exercise ch07-x: h\n//< exercise ch07-x\n",
-         "TEST_CASE(\"t\" * doctest::description(\"points: two; exercise: ch07-x\")) {}\n",
+         "TEST_CASE(\"t\" * doctest::description(\"points: two; exercise: ch07-x\")) "
+         "{}\n",
          "points 'two' is not a whole number"},
     };
     for (const auto& c : cases) {
@@ -367,8 +374,10 @@ TEST_CASE("make-kit refuses malformed exercise regions, naming the file and line
     }
     // The same ID twice in the tree.
     const fs::path tree = scratch("bad-tree");
-    write_file(tree / "src/exactpixels/a.hpp", "//> exercise ch07-x: h\n//< exercise ch07-x\n");
-    write_file(tree / "src/exactpixels/b.hpp", "\n//> exercise ch07-x: h\n//< exercise ch07-x\n");
+    write_file(tree / "src/exactpixels/a.hpp",
+               "//> exercise ch07-x: h\n//< exercise ch07-x\n");
+    write_file(tree / "src/exactpixels/b.hpp",
+               "\n//> exercise ch07-x: h\n//< exercise ch07-x\n");
     write_file(tree / "tests/ch07_bad.cpp", ok_test);
     const auto result = make_kit(tree, "07", scratch("bad-kit"));
     CHECK(result.exit_code == 1);
@@ -382,7 +391,8 @@ TEST_CASE("make-kit refuses malformed exercise regions, naming the file and line
     CHECK(read_file(precious / "thesis.tex") == "years of work");
 }
 
-TEST_CASE("a fixture kit holds its chapter's stubs, other chapters' solutions, no markers") {
+TEST_CASE(
+    "a fixture kit holds its chapter's stubs, other chapters' solutions, no markers") {
     const fs::path tree = fixture_tree();
     const fs::path kits = scratch("fixture-kit");
     const fs::path kit = kits / "ch07";
@@ -392,20 +402,26 @@ TEST_CASE("a fixture kit holds its chapter's stubs, other chapters' solutions, n
     CHECK(made.out.find("(chapter 07, 2 exercises, 5 test cases, 6 points)") !=
           std::string::npos);
 
-    // Exactly these files: library, example folder without the text, the chapter's tests
-    // and fixture data, the test support files, the template files; nothing of ch08.
+    // Exactly these files: library, the chapter folder (example and text), the chapter's
+    // tests and fixture data, the test support files, the template files; nothing of
+    // ch08.
     std::vector<std::string> files;
     for (const auto& rel : files_under(kit)) {
         if (!starts_with(rel.generic_string(), "tests/support/")) {
             files.push_back(rel.generic_string());
         }
     }
-    const std::vector<std::string> expected = {
-        ".exactpixels-kit",        "CMakeLists.txt",
-        "README.md",               "chapters/07-fake/example.cpp",
-        "grade.cmake",             "src/CMakeLists.txt",
-        "src/exactpixels/answer.cpp", "src/exactpixels/answer.hpp",
-        "tests/ch07_fake.cpp",     "tests/fixtures/ch07/numbers.txt"};
+    const std::vector<std::string> expected = {".exactpixels-kit",
+                                               "CMakeLists.txt",
+                                               "README.md",
+                                               "chapters/07-fake/chapter.md",
+                                               "chapters/07-fake/example.cpp",
+                                               "grade.cmake",
+                                               "src/CMakeLists.txt",
+                                               "src/exactpixels/answer.cpp",
+                                               "src/exactpixels/answer.hpp",
+                                               "tests/ch07_fake.cpp",
+                                               "tests/fixtures/ch07/numbers.txt"};
     CHECK(files == expected);
     // src/CMakeLists.txt is the tree's, without the line that adds the kit maker.
     const std::string src_cmake = read_file(tree / "src/CMakeLists.txt");
@@ -451,8 +467,9 @@ TEST_CASE("a fixture kit holds its chapter's stubs, other chapters' solutions, n
     CHECK(readme.find("chapter 07: A fake chapter\n") != std::string::npos);
     CHECK(readme.find("| `ch07-answer` | `src/exactpixels/answer.hpp:10` | 3 | six times "
                       "seven. |") != std::string::npos);
-    CHECK(readme.find("| `ch07-triangle` | `src/exactpixels/answer.cpp:7` | 2 | add 1, 2, "
-                      "..., n. |") != std::string::npos);
+    CHECK(
+        readme.find("| `ch07-triangle` | `src/exactpixels/answer.cpp:7` | 2 | add 1, 2, "
+                    "..., n. |") != std::string::npos);
     CHECK(readme.find("- `ch07-triangle`: \"triangle numbers\"") != std::string::npos);
     CHECK(readme.find("1. Implement `answer` (\"the answer is 42\").\n2. Derive") !=
           std::string::npos);
@@ -464,15 +481,17 @@ TEST_CASE("a fixture kit holds its chapter's stubs, other chapters' solutions, n
     // Chapter 08's kit takes the wrapped hint whole.
     const fs::path kit08 = kits / "ch08";
     REQUIRE(make_kit(tree, "08", kit08).exit_code == 0);
-    CHECK(read_file(kit08 / "src/exactpixels/answer.hpp")
-              .find("    // EXERCISE ch08-twice: add x to itself; this hint is long enough "
-                    "that clang-format wraps it.\n    (void)x;\n    return 0;\n"
-                    "    // END EXERCISE ch08-twice\n") != std::string::npos);
+    CHECK(
+        read_file(kit08 / "src/exactpixels/answer.hpp")
+            .find("    // EXERCISE ch08-twice: add x to itself; this hint is long enough "
+                  "that clang-format wraps it.\n    (void)x;\n    return 0;\n"
+                  "    // END EXERCISE ch08-twice\n") != std::string::npos);
 
     // Made again into the same folder, the kit is the same and unchanged files keep their
     // time stamps (so a build in the kit's place recompiles only what changed).
     const auto stamp = fs::last_write_time(kit / "src/exactpixels/answer.cpp");
-    write_file(kit / "src/exactpixels/answer.cpp", read_file(kit / "src/exactpixels/answer.cpp"));
+    write_file(kit / "src/exactpixels/answer.cpp",
+               read_file(kit / "src/exactpixels/answer.cpp"));
     const auto touched = fs::last_write_time(kit / "src/exactpixels/answer.cpp");
     REQUIRE(make_kit(tree, "07", kit).exit_code == 0);
     CHECK(fs::last_write_time(kit / "src/exactpixels/answer.cpp") == touched);
@@ -481,10 +500,10 @@ TEST_CASE("a fixture kit holds its chapter's stubs, other chapters' solutions, n
 
 TEST_CASE("the assignment script writes the kit and a zip holding the same files") {
     const fs::path out = scratch("fixture-assignments");
-    const auto result = run_command(
-        cmake() + " -DMAKE_KIT='" + EXACTPIXELS_MAKE_KIT + "' -DSOURCE=" +
-        quoted(fixture_tree()) + " -DCHAPTER=07 -DOUTPUT=" + quoted(out) + " -P '" +
-        EXACTPIXELS_KIT_SCRIPT + "'");
+    const auto result = run_command(cmake() + " -DMAKE_KIT='" + EXACTPIXELS_MAKE_KIT +
+                                    "' -DSOURCE=" + quoted(fixture_tree()) +
+                                    " -DCHAPTER=07 -DOUTPUT=" + quoted(out) + " -P '" +
+                                    EXACTPIXELS_KIT_SCRIPT + "'");
     INFO(result.out << result.err);
     REQUIRE(result.exit_code == 0);
     REQUIRE(fs::exists(out / "ch07.zip"));
@@ -531,7 +550,8 @@ TEST_CASE("the fixture kit builds on its own; fresh it fails its exercises, rest
     INFO(restored.out << restored.err);
     REQUIRE(restored.exit_code == 0);
     CHECK(restored.out.find("restored 2 exercise solutions") != std::string::npos);
-    for (const char* file : {"src/exactpixels/answer.hpp", "src/exactpixels/answer.cpp"}) {
+    for (const char* file :
+         {"src/exactpixels/answer.hpp", "src/exactpixels/answer.cpp"}) {
         CHECK(without_kit_comments(read_file(kit / file)) ==
               without_markers(read_file(tree / file)));
     }
@@ -557,7 +577,8 @@ TEST_CASE("every chapter's kit builds on its own; fresh it fails exactly its exe
     }
     MESSAGE("assignment kits tested for:" << list);
 
-    // One kit folder and one build folder, reused kit after kit (see the top of the file).
+    // One kit folder and one build folder, reused kit after kit (see the top of the
+    // file).
     const fs::path kit = scratch("book-kit") / "kit";
     const fs::path build_dir = scratch("book-build");
     const fs::path figures = scratch("book-example-out");
@@ -586,8 +607,8 @@ TEST_CASE("every chapter's kit builds on its own; fresh it fails exactly its exe
         CHECK(fresh.well_formed);
         std::set<std::string> checked;
         for (const auto& line : fresh.cases) {
-            INFO("fresh ch" << number << ": " << line.status << " " << line.exercise << " "
-                            << line.name);
+            INFO("fresh ch" << number << ": " << line.status << " " << line.exercise
+                            << " " << line.name);
             if (line.exercise != "-") {
                 CHECK(line.status == "FAIL");
                 CHECK(exercises.count(line.exercise) == 1);
@@ -599,8 +620,8 @@ TEST_CASE("every chapter's kit builds on its own; fresh it fails exactly its exe
         CHECK(checked == exercises);
         const fs::path example = build_dir / ("bin/ch" + number + "-example");
         if (fs::exists(kit / "chapters") && fs::exists(example)) {
-            const auto ran = run_command("cd " + quoted(figures) + " && " + quoted(example) +
-                                         " " + quoted(figures));
+            const auto ran = run_command("cd " + quoted(figures) + " && " +
+                                         quoted(example) + " " + quoted(figures));
             INFO("the example with stubs: " << ran.out << ran.err);
             CHECK(ran.exit_code == 0);
         }
