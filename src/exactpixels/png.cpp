@@ -1,13 +1,11 @@
 #include "exactpixels/png.hpp"
 
+#include "exactpixels/atomic_file.hpp"
 #include "exactpixels/error.hpp"
 
 #include <fmt/format.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
-
-#include <cstring>
-#include <system_error>
 
 namespace exactpixels {
 
@@ -16,24 +14,10 @@ void write_png(const std::filesystem::path& path, const Framebuffer& frame) {
         throw Error(fmt::format("{}: cannot write an empty {}x{} image", path.string(),
                                 frame.width(), frame.height()));
     }
-    std::filesystem::path temporary = path;
-    temporary += ".partial";
-    const int stride = frame.width() * 4;
-    const bool written = stbi_write_png(temporary.c_str(), frame.width(), frame.height(),
-                                        4, frame.pixels().data(), stride) != 0;
-    std::error_code ignored;
-    if (!written) {
-        std::filesystem::remove(temporary, ignored);
-        throw Error(fmt::format("{}: cannot write PNG file ({})", path.string(),
-                                std::strerror(errno)));
-    }
-    std::error_code renamed;
-    std::filesystem::rename(temporary, path, renamed);
-    if (renamed) {
-        std::filesystem::remove(temporary, ignored);
-        throw Error(fmt::format("{}: cannot write PNG file ({})", path.string(),
-                                renamed.message()));
-    }
+    write_atomically(path, "PNG", [&](const std::filesystem::path& temporary) {
+        return stbi_write_png(temporary.c_str(), frame.width(), frame.height(), 4,
+                              frame.pixels().data(), frame.width() * 4) != 0;
+    });
 }
 
 Framebuffer read_png(const std::filesystem::path& path) {

@@ -97,14 +97,6 @@ Plane plane(const std::array<Point2, 3>& p, const std::array<double, 3>& c) {
     return {p[0], c[0], gradient_closed_form<double>(p, c)};
 }
 
-template <class Real> PerspectiveSpan<Real> as_real(const PerspectiveSpan<double>& s) {
-    return {Real(s.u_w),  Real(s.v_w),    Real(s.one_w), Real(s.du_w),
-            Real(s.dv_w), Real(s.done_w), s.count};
-}
-template <class Real> AffineSpan<Real> as_real(const AffineSpan<double>& s) {
-    return {Real(s.u), Real(s.v), Real(s.du), Real(s.dv), s.count};
-}
-
 /// Runs chapter 3's mapper `m` on one span in Real arithmetic.
 template <class Real, class Emit>
 void run_real(SpanMapper m, const PerspectiveSpan<Real>& ps, const AffineSpan<Real>& as,
@@ -174,7 +166,8 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
         return plane(p, {value(tv[0], 0), value(tv[1], 1), value(tv[2], 2)});
     };
     // Texture stage setup: only for textured meshes.
-    const bool affine_exact = constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
+    const bool affine_exact =
+        constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
     const RenderOptions& options = m.scene.options;
     MapperSettings settings{.kind = options.mapper.kind,
                             .span = options.mapper.span,
@@ -260,7 +253,7 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
             };
             switch (options.precision) {
             case Precision::float32:
-                run_real(mapper, as_real<float>(ps), as_real<float>(as), real);
+                run_real(mapper, converted<float>(ps), converted<float>(as), real);
                 break;
             case Precision::float64:
                 run_real(mapper, ps, as, real);

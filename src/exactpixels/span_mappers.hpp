@@ -48,6 +48,18 @@ template <class Real> struct AffineSpan {
     int count; ///< pixels in the span, >= 1
 };
 
+/// The same span with every quantity converted to Real (a float inner loop set up in
+/// double).
+template <class Real> PerspectiveSpan<Real> converted(const PerspectiveSpan<double>& s) {
+    return {Real(s.u_w),  Real(s.v_w),    Real(s.one_w), Real(s.du_w),
+            Real(s.dv_w), Real(s.done_w), s.count};
+}
+
+/// The same span with every quantity converted to Real.
+template <class Real> AffineSpan<Real> converted(const AffineSpan<double>& s) {
+    return {Real(s.u), Real(s.v), Real(s.du), Real(s.dv), s.count};
+}
+
 /// A texture coordinate in the Real type of a mapper.
 template <class Real> struct UV {
     Real u; ///< texels

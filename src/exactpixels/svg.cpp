@@ -1,5 +1,7 @@
 #include "exactpixels/svg.hpp"
 
+#include "exactpixels/atomic_file.hpp"
+
 #include "exactpixels/error.hpp"
 
 #include <fmt/format.h>
@@ -148,26 +150,12 @@ std::string SvgDiagram::str() const {
 }
 
 void SvgDiagram::write(const std::filesystem::path& path) const {
-    std::filesystem::path temporary = path;
-    temporary += ".partial";
-    std::error_code ignored;
-    {
+    write_atomically(path, "SVG", [&](const std::filesystem::path& temporary) {
         std::ofstream file(temporary, std::ios::binary);
         file << str();
         file.close();
-        if (!file) {
-            std::filesystem::remove(temporary, ignored);
-            throw Error(fmt::format("{}: cannot write SVG file ({})", path.string(),
-                                    std::strerror(errno)));
-        }
-    }
-    std::error_code renamed;
-    std::filesystem::rename(temporary, path, renamed);
-    if (renamed) {
-        std::filesystem::remove(temporary, ignored);
-        throw Error(fmt::format("{}: cannot write SVG file ({})", path.string(),
-                                renamed.message()));
-    }
+        return static_cast<bool>(file);
+    });
 }
 
 } // namespace exactpixels

@@ -79,15 +79,6 @@ struct Plane {
     }
 };
 
-template <class Real> PerspectiveSpan<Real> converted(const PerspectiveSpan<double>& s) {
-    return {Real(s.u_w),  Real(s.v_w),    Real(s.one_w), Real(s.du_w),
-            Real(s.dv_w), Real(s.done_w), s.count};
-}
-
-template <class Real> AffineSpan<Real> converted(const AffineSpan<double>& s) {
-    return {Real(s.u), Real(s.v), Real(s.du), Real(s.dv), s.count};
-}
-
 /// Runs the chosen Real mapper on one span.
 template <class Real, class Emit>
 void map_span_real(const PerspectiveSpan<Real>& ps, const AffineSpan<Real>& as,
