@@ -17,8 +17,8 @@
 // random orientation and position, scaled to the exact area before snapping. The
 // fixed-point variants get the vertices already snapped (snapping belongs to vertex
 // processing); the float and naive variants get them as float pixels.
-#include "exactpixels/edge_rasterizer.hpp"
-#include "exactpixels/naive_rasterizer.hpp"
+#include "exactpixels/raster/edge_rasterizer.hpp"
+#include "exactpixels/raster/naive_rasterizer.hpp"
 
 #include <benchmark/benchmark.h>
 

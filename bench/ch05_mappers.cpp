@@ -18,8 +18,8 @@
 //   --once=NAME
 // counts the instructions of exactly one drawing
 // (chapters/05-accuracy-cost/callgrind.sh).
-#include "exactpixels/accuracy_scenes.hpp"
-#include "exactpixels/mapper_error.hpp"
+#include "exactpixels/lab/accuracy_scenes.hpp"
+#include "exactpixels/texture/texel_error.hpp"
 
 #include <benchmark/benchmark.h>
 

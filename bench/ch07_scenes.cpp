@@ -1,8 +1,8 @@
 // Chapter 7 benchmark: rendering the shipped perspective scenes with `auto` against
 // `exact` (and `affine`, the cheapest and wrong). Run pinned to one core for real
 // numbers: taskset -c 1 build/bin/bench_ch07_scenes
-#include "exactpixels/scene_loader.hpp"
-#include "exactpixels/scene_renderer.hpp"
+#include "exactpixels/scene/scene_loader.hpp"
+#include "exactpixels/scene/scene_renderer.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -15,8 +15,7 @@ namespace {
 void render(benchmark::State& state, const std::string& name, const std::string& mapper) {
     Scene scene = load_scene(shipped_scene_folder() / (name + ".toml"));
     if (mapper != "auto") {
-        scene.options.mapper = {
-            false, mapper == "exact" ? MapperKind::exact : MapperKind::affine, 16};
+        scene.options.mapper = {false, parse_mapper(mapper).value()};
     }
     long long pixels = 0, divides = 0;
     for (auto _ : state) {

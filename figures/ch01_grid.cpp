@@ -1,10 +1,10 @@
 // Figure: a triangle on a 12 x 9 pixel grid. Covered pixels are shaded and their centres
 // drawn solid, uncovered centres hollow; the split edge's point 4 and the gradient of a
 // value c are drawn as arrows. Writes ch01_grid.svg into the folder argv[1].
-#include "exactpixels/error.hpp"
-#include "exactpixels/gradients.hpp"
-#include "exactpixels/scanline.hpp"
-#include "exactpixels/svg.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/raster/gradients.hpp"
+#include "exactpixels/raster/scanline.hpp"
+#include "support/svg.hpp"
 
 #include <cstdio>
 #include <filesystem>

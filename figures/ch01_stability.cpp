@@ -1,7 +1,7 @@
 // Figure data: the gradient stability study of chapter 1. Writes ch01_stability.md (the
 // table the chapter pulls in) and ch01_stability.dat (for ch01_stability.gp) into the
 // folder argv[1].
-#include "exactpixels/gradient_stability.hpp"
+#include "exactpixels/raster/gradient_stability.hpp"
 
 #include <cstdio>
 #include <filesystem>

@@ -4,8 +4,8 @@
 // slivers) are drawn at growing distances from the origin by the fixed-point and float
 // rasterizers and the naive one, counting centres covered by no triangle (gaps) or by
 // two or more (overlaps). Writes ch02_float_table.md into the folder argv[1].
-#include "exactpixels/edge_rasterizer.hpp"
-#include "exactpixels/naive_rasterizer.hpp"
+#include "exactpixels/raster/edge_rasterizer.hpp"
+#include "exactpixels/raster/naive_rasterizer.hpp"
 
 #include <fmt/format.h>
 

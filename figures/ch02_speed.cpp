@@ -8,7 +8,7 @@
 // (Mpix/s per variant against triangle area, for ch02_speed.gp). When a benchmark ran
 // several times, the median of its runs is used. A missing or unreadable CSV is an
 // error naming the file.
-#include "exactpixels/error.hpp"
+#include "exactpixels/base/error.hpp"
 
 #include <fmt/format.h>
 

@@ -4,10 +4,10 @@
 // to exactly one triangle, and the square's bottom and right sides to neither. Right:
 // the naive "all barycentrics >= 0" test gives the diagonal's centres to both (red).
 // Writes ch02_ties.svg into the folder argv[1].
-#include "exactpixels/edge_rasterizer.hpp"
-#include "exactpixels/error.hpp"
-#include "exactpixels/naive_rasterizer.hpp"
-#include "exactpixels/svg.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/raster/edge_rasterizer.hpp"
+#include "exactpixels/raster/naive_rasterizer.hpp"
+#include "support/svg.hpp"
 
 #include <cstdio>
 #include <filesystem>

@@ -1,11 +1,11 @@
 // Chapter 3 figures: the floor and the wall by each mapper, error heat maps, u along one
 // span (data for ch03_span_u.gp), and the measured tables the chapter pulls in.
 // Usage: fig_ch03_mappers FIGURE_DIR
-#include "exactpixels/error.hpp"
-#include "exactpixels/perspective_error.hpp"
-#include "exactpixels/perspective_scenes.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/span_mappers.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/lab/perspective_scenes.hpp"
+#include "exactpixels/texture/perspective_error.hpp"
+#include "exactpixels/texture/span_mappers.hpp"
 
 #include <fmt/format.h>
 
@@ -26,11 +26,11 @@ struct Variant {
     MapperSettings settings;
 };
 const Variant variants[] = {
-    {"exact", {.kind = MapperKind::exact}},
-    {"affine", {.kind = MapperKind::affine}},
-    {"subdivided, N = 16", {.kind = MapperKind::subdivided, .span = 16}},
-    {"quadratic", {.kind = MapperKind::quadratic}},
-    {"quadratic, N = 16", {.kind = MapperKind::quadratic_subdivided, .span = 16}},
+    {"exact", {.mapper = {MapperKind::exact}}},
+    {"affine", {.mapper = {MapperKind::affine}}},
+    {"subdivided, N = 16", {.mapper = {MapperKind::subdivided, 16}}},
+    {"quadratic", {.mapper = {MapperKind::quadratic}}},
+    {"quadratic, N = 16", {.mapper = {MapperKind::quadratic_subdivided, 16}}},
 };
 constexpr int panel_w = 240, panel_h = 180, gap = 4;
 

@@ -3,11 +3,11 @@
 // Left: rule 1 everywhere; right: the rule chosen from du/dx < 0. Pixels showing a
 // texel that is shown twice are outlined; the column of the F that never shows is named.
 // Usage: fig_ch04_direction FIGURE_DIR
-#include "exactpixels/error.hpp"
-#include "exactpixels/rounding.hpp"
-#include "exactpixels/svg.hpp"
-#include "exactpixels/texture.hpp"
-#include "exactpixels/texture_mapper.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/texture/rounding.hpp"
+#include "exactpixels/texture/texture.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
+#include "support/svg.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -38,10 +38,10 @@ TexelMap mirrored_quad(const Texture& t, int frame_width, int frame_height, int 
     TexelMap map(frame_width, frame_height);
     for (const std::array<TexturedVertex, 3>& tri :
          {std::array{tl, tr, br}, std::array{tl, br, bl}}) {
-        MapperSettings s{.kind = MapperKind::exact,
+        MapperSettings s{.mapper = {MapperKind::exact},
                          .precision = Precision::fixed,
                          .wrap = Wrap::clamp};
-        s.rounding = choose ? choose_rounding(tri, s.kind) : TexelRounding{};
+        s.rounding = choose ? choose_rounding(tri, s.mapper.kind) : TexelRounding{};
         map_textured_triangle(map, tri, s);
     }
     return map;

@@ -12,9 +12,9 @@
 //   ch05_table_SCENE.dat   ratio, worst, mean error, front flag, name (for gnuplot)
 // Times come from the CSV; every error is deterministic (the benchmark's counters, or
 // recomputed here for the picks table).
-#include "exactpixels/accuracy_scenes.hpp"
-#include "exactpixels/error.hpp"
-#include "exactpixels/mapper_error.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/lab/accuracy_scenes.hpp"
+#include "exactpixels/texture/texel_error.hpp"
 
 #include <fmt/format.h>
 

@@ -1,7 +1,7 @@
 // Chapter 6: the error of u along a 4096-pixel span in float, stepped (u += du) and
 // evaluated afresh (u0 + k du), against the same u0 and du in double.
 // Usage: fig_ch06_drift FIGURE_DIR  (writes ch06_drift.dat; ch06_drift.gp plots it)
-#include "exactpixels/span_mappers.hpp"
+#include "exactpixels/texture/span_mappers.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -5,10 +5,10 @@
 // on the wrong side of the screen, and the triangle drawn between the three screen
 // points covers the sky instead of the floor (drawn flat red: no mapper accepts w < 0).
 // Right: clipped at the near plane first, then projected and textured (the "F").
-#include "exactpixels/clipping.hpp"
-#include "exactpixels/error.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/scanline.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/raster/scanline.hpp"
+#include "exactpixels/texture/clipping.hpp"
 
 #include <cstdio>
 #include <filesystem>

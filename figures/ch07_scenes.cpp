@@ -2,9 +2,9 @@
 // the time, divides and texel error of `auto` against `exact` and `affine`, as Markdown
 // fragments pulled into the chapter (ch07_reports.md, ch07_auto_vs_exact.md).
 // Usage: fig_ch07_scenes FIGURE_DIR
-#include "exactpixels/error.hpp"
-#include "exactpixels/scene_loader.hpp"
-#include "exactpixels/scene_renderer.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/scene/scene_loader.hpp"
+#include "exactpixels/scene/scene_renderer.hpp"
 
 #include <fmt/format.h>
 
@@ -48,11 +48,9 @@ int main(int argc, char** argv) {
             }
             for (const char* mapper : {"auto", "exact", "affine"}) {
                 Scene variant = scene;
-                variant.options.mapper = {std::string(mapper) == "auto",
-                                          std::string(mapper) == "affine"
-                                              ? MapperKind::affine
-                                              : MapperKind::exact,
-                                          16};
+                const std::string word = mapper;
+                variant.options.mapper = {word == "auto",
+                                          parse_mapper(word).value_or(Mapper{})};
                 const TexelError e = check_against_exact(variant);
                 table += fmt::format("| {} | {} | {} | {:.2f} | {:.3f} | {:.4f} |\n",
                                      name, mapper, render_scene(variant).report.divides(),

@@ -14,7 +14,7 @@
 // Label `bookcheck`: runs in the `book` workflow after the book is built.
 #include "support/process.hpp"
 
-#include "exactpixels/png.hpp"
+#include "exactpixels/base/png.hpp"
 
 #include <doctest/doctest.h>
 
@@ -32,8 +32,9 @@ using exactpixels::testing::run_command;
 
 namespace {
 
-// How far a listing or an equation may stick out into the margin: 5 pt (1.8 mm), less than
-// one character of the listing font, so no code character is ever outside the text block.
+// How far a listing or an equation may stick out into the margin: 5 pt (1.8 mm), less
+// than one character of the listing font, so no code character is ever outside the text
+// block.
 constexpr double overfull_limit_pt = 5.0;
 
 std::string read_text(const fs::path& path) {
@@ -65,10 +66,13 @@ enum class Place { text, listing, equation };
 // What each line of a LaTeX file is part of: a listing (verbatim environments, as Pandoc
 // writes code), a display equation, or running text. Index 0 is line 1.
 std::vector<Place> places_of(const std::string& tex) {
-    static const std::regex listing_begin(R"(\\begin\{(Highlighting|verbatim|Verbatim)\})");
+    static const std::regex listing_begin(
+        R"(\\begin\{(Highlighting|verbatim|Verbatim)\})");
     static const std::regex listing_end(R"(\\end\{(Highlighting|verbatim|Verbatim)\})");
-    static const std::regex math_begin(R"(\\\[|\\begin\{(equation|align|gather|multline)\*?\})");
-    static const std::regex math_end(R"(\\\]|\\end\{(equation|align|gather|multline)\*?\})");
+    static const std::regex math_begin(
+        R"(\\\[|\\begin\{(equation|align|gather|multline)\*?\})");
+    static const std::regex math_end(
+        R"(\\\]|\\end\{(equation|align|gather|multline)\*?\})");
     std::vector<Place> places;
     Place now = Place::text;
     for (const auto& line : lines_of(tex)) {
@@ -90,14 +94,16 @@ std::vector<Place> places_of(const std::string& tex) {
 
 // Problems the LaTeX log of `tex` reports. `notes` receives what is worth reading but
 // does not fail (overfull prose).
-std::vector<std::string> latex_log_problems(const std::string& log, const std::string& tex,
+std::vector<std::string> latex_log_problems(const std::string& log,
+                                            const std::string& tex,
                                             std::vector<std::string>& notes) {
     std::vector<std::string> problems;
     const std::vector<Place> places = places_of(tex);
     const auto tex_lines = lines_of(tex);
     static const std::regex overfull(
         R"(Overfull \\hbox \(([0-9.]+)pt too wide\) (in paragraph at lines|in alignment at lines|detected at line) ([0-9]+)(--([0-9]+))?)");
-    for (std::sregex_iterator it(log.begin(), log.end(), overfull), end; it != end; ++it) {
+    for (std::sregex_iterator it(log.begin(), log.end(), overfull), end; it != end;
+         ++it) {
         const double width = std::stod((*it)[1]);
         const std::size_t first = std::stoul((*it)[3]);
         const std::size_t last = (*it)[5].matched ? std::stoul((*it)[5]) : first;
@@ -108,12 +114,14 @@ std::vector<std::string> latex_log_problems(const std::string& log, const std::s
             }
         }
         const std::string where = first <= tex_lines.size() ? tex_lines[first - 1] : "";
-        const std::string what = place == Place::listing   ? "a listing"
+        const std::string what = place == Place::listing    ? "a listing"
                                  : place == Place::equation ? "an equation"
                                                             : "text";
-        const std::string message = what + " " + (*it)[1].str() + " pt wider than the page "
-                                    "(.tex line " + std::to_string(first) + ": " +
-                                    where.substr(0, 100) + ")";
+        const std::string message = what + " " + (*it)[1].str() +
+                                    " pt wider than the page "
+                                    "(.tex line " +
+                                    std::to_string(first) + ": " + where.substr(0, 100) +
+                                    ")";
         if (place != Place::text && width > overfull_limit_pt) {
             problems.push_back(message);
         } else if (width > overfull_limit_pt) {
@@ -124,12 +132,13 @@ std::vector<std::string> latex_log_problems(const std::string& log, const std::s
     // overfull listing line; book/latex/header.tex measures every line and logs this.
     static const std::regex wide_line(
         R"(exactpixels-wide-listing-line: ([0-9.]+)pt too wide at line ([0-9]+))");
-    for (std::sregex_iterator it(log.begin(), log.end(), wide_line), end; it != end; ++it) {
+    for (std::sregex_iterator it(log.begin(), log.end(), wide_line), end; it != end;
+         ++it) {
         const std::size_t line = std::stoul((*it)[2]);
         const std::string where = line <= tex_lines.size() ? tex_lines[line - 1] : "";
-        const std::string message = "a listing line " + (*it)[1].str() +
-                                    " pt wider than the page (.tex line " +
-                                    std::to_string(line) + ": " + where.substr(0, 100) + ")";
+        const std::string message =
+            "a listing line " + (*it)[1].str() + " pt wider than the page (.tex line " +
+            std::to_string(line) + ": " + where.substr(0, 100) + ")";
         if (std::stod((*it)[1]) > overfull_limit_pt) {
             problems.push_back(message);
         } else {
@@ -137,21 +146,27 @@ std::vector<std::string> latex_log_problems(const std::string& log, const std::s
         }
     }
     static const std::regex missing_file(R"(File `([^']+)' not found)");
-    for (std::sregex_iterator it(log.begin(), log.end(), missing_file), end; it != end; ++it) {
+    for (std::sregex_iterator it(log.begin(), log.end(), missing_file), end; it != end;
+         ++it) {
         problems.push_back("file not found by LaTeX: " + (*it)[1].str());
     }
-    static const std::regex undefined(R"(LaTeX Warning: (Reference|Citation) `([^']+)' )");
-    for (std::sregex_iterator it(log.begin(), log.end(), undefined), end; it != end; ++it) {
+    static const std::regex undefined(
+        R"(LaTeX Warning: (Reference|Citation) `([^']+)' )");
+    for (std::sregex_iterator it(log.begin(), log.end(), undefined), end; it != end;
+         ++it) {
         problems.push_back("undefined " + (*it)[1].str() + " '" + (*it)[2].str() + "'");
     }
     if (log.find("There were undefined references") != std::string::npos) {
         problems.push_back("LaTeX: there were undefined references");
     }
     if (log.find("Label(s) may have changed") != std::string::npos) {
-        problems.push_back("LaTeX: labels may have changed (the build needs one more pass)");
+        problems.push_back(
+            "LaTeX: labels may have changed (the build needs one more pass)");
     }
-    static const std::regex missing_char(R"(Missing character: There is no (.+?) in font)");
-    for (std::sregex_iterator it(log.begin(), log.end(), missing_char), end; it != end; ++it) {
+    static const std::regex missing_char(
+        R"(Missing character: There is no (.+?) in font)");
+    for (std::sregex_iterator it(log.begin(), log.end(), missing_char), end; it != end;
+         ++it) {
         problems.push_back("a character the font lacks was dropped: " + (*it)[1].str());
     }
     std::vector<std::string> unique;
@@ -166,7 +181,8 @@ std::vector<std::string> latex_log_problems(const std::string& log, const std::s
 // Every "??" in the text of the PDF, with the words around it.
 std::vector<std::string> unresolved_marks(const std::string& text) {
     std::vector<std::string> found;
-    for (auto at = text.find("??"); at != std::string::npos; at = text.find("??", at + 2)) {
+    for (auto at = text.find("??"); at != std::string::npos;
+         at = text.find("??", at + 2)) {
         const auto from = at < 40 ? 0 : at - 40;
         std::string context = text.substr(from, 90);
         std::replace(context.begin(), context.end(), '\n', ' ');
@@ -219,31 +235,35 @@ TEST_CASE("the PDF check catches overfull listings and equations, missing figure
     fs::create_directories(folder);
     const std::string long_code(150, 'x');
     // The book's own preamble additions, so the check is tested against what they log.
-    const std::string header = std::string(EXACTPIXELS_SOURCE_DIR) + "/book/latex/header.tex";
-    const std::string tex = "\\documentclass{article}\n"
-                            "\\usepackage{graphicx}\n"
-                            "\\input{" + header + "}\n"
-                            "\\begin{document}\n"
-                            "See Section~\\ref{sec:nowhere}.\n"
-                            "\n"
-                            "\\begin{Verbatim}\n" +
-                            long_code +
-                            "\n"
-                            "\\end{Verbatim}\n"
-                            "\n"
-                            "\\begin{verbatim}\n" +
-                            long_code +
-                            "\n"
-                            "\\end{verbatim}\n"
-                            "\n"
-                            "Some text.\n"
-                            "\\[ a_1 + a_2 + a_3 + a_4 + a_5 + a_6 + a_7 + a_8 + a_9 + a_{10} "
-                            "+ a_{11} + a_{12} + a_{13} + a_{14} + a_{15} + a_{16} + a_{17} + "
-                            "a_{18} + a_{19} + a_{20} + a_{21} + a_{22} + a_{23} + a_{24} "
-                            "+ a_{25} + a_{26} + a_{27} + a_{28} + a_{29} + a_{30} \\]\n"
-                            "\n"
-                            "\\includegraphics{ch99_missing.pdf}\n"
-                            "\\end{document}\n";
+    const std::string header =
+        std::string(EXACTPIXELS_SOURCE_DIR) + "/book/latex/header.tex";
+    const std::string tex =
+        "\\documentclass{article}\n"
+        "\\usepackage{graphicx}\n"
+        "\\input{" +
+        header +
+        "}\n"
+        "\\begin{document}\n"
+        "See Section~\\ref{sec:nowhere}.\n"
+        "\n"
+        "\\begin{Verbatim}\n" +
+        long_code +
+        "\n"
+        "\\end{Verbatim}\n"
+        "\n"
+        "\\begin{verbatim}\n" +
+        long_code +
+        "\n"
+        "\\end{verbatim}\n"
+        "\n"
+        "Some text.\n"
+        "\\[ a_1 + a_2 + a_3 + a_4 + a_5 + a_6 + a_7 + a_8 + a_9 + a_{10} "
+        "+ a_{11} + a_{12} + a_{13} + a_{14} + a_{15} + a_{16} + a_{17} + "
+        "a_{18} + a_{19} + a_{20} + a_{21} + a_{22} + a_{23} + a_{24} "
+        "+ a_{25} + a_{26} + a_{27} + a_{28} + a_{29} + a_{30} \\]\n"
+        "\n"
+        "\\includegraphics{ch99_missing.pdf}\n"
+        "\\end{document}\n";
     run_pdflatex(folder, tex);
     const std::string log = read_text(folder / "doc.log");
     REQUIRE_MESSAGE(!log.empty(), "pdflatex did not run (texlive-latex-base missing?)");
@@ -257,7 +277,7 @@ TEST_CASE("the PDF check catches overfull listings and equations, missing figure
             return p.find(what) != std::string::npos;
         });
     };
-    CHECK(has("a listing line"));      // the Verbatim (Pandoc's highlighted code)
+    CHECK(has("a listing line")); // the Verbatim (Pandoc's highlighted code)
     CHECK(std::any_of(problems.begin(), problems.end(), [](const std::string& p) {
         return p.rfind("a listing ", 0) == 0 && p.rfind("a listing line", 0) != 0;
     })); // the plain verbatim block: a real Overfull \hbox
@@ -272,11 +292,14 @@ TEST_CASE("the PDF check catches overfull listings and equations, missing figure
     fs::remove_all(folder);
 }
 
-TEST_CASE("overfull prose is listed but does not fail; small overfull boxes are allowed") {
-    const std::string tex = "line 1\n\\begin{Highlighting}[]\ncode\n\\end{Highlighting}\nprose\n";
-    const std::string log = "Overfull \\hbox (4.9pt too wide) in paragraph at lines 2--4\n"
-                            "Overfull \\hbox (30.0pt too wide) in paragraph at lines 5--5\n"
-                            "Overfull \\hbox (5.1pt too wide) in paragraph at lines 2--4\n";
+TEST_CASE(
+    "overfull prose is listed but does not fail; small overfull boxes are allowed") {
+    const std::string tex =
+        "line 1\n\\begin{Highlighting}[]\ncode\n\\end{Highlighting}\nprose\n";
+    const std::string log =
+        "Overfull \\hbox (4.9pt too wide) in paragraph at lines 2--4\n"
+        "Overfull \\hbox (30.0pt too wide) in paragraph at lines 5--5\n"
+        "Overfull \\hbox (5.1pt too wide) in paragraph at lines 2--4\n";
     std::vector<std::string> notes;
     const auto problems = latex_log_problems(log, tex, notes);
     REQUIRE(problems.size() == 1);
@@ -320,22 +343,24 @@ TEST_CASE("every page of the built PDF book prints without a fault") {
     int figure_count = 0;
     for (const auto& figure : figures_of(tex)) {
         ++figure_count;
-        const fs::path path = fs::path(figure).is_absolute() ? fs::path(figure)
-                                                              : latex / figure;
+        const fs::path path =
+            fs::path(figure).is_absolute() ? fs::path(figure) : latex / figure;
         if (!fs::exists(path) || fs::file_size(path) == 0) {
             problems.push_back("figure missing or empty: " + figure);
             continue;
         }
         if (log.find("<" + figure) == std::string::npos) {
-            problems.push_back("figure not included by LaTeX (no '<" + figure + "' in the log)");
+            problems.push_back("figure not included by LaTeX (no '<" + figure +
+                               "' in the log)");
         }
         fs::path png = path;
         if (path.extension() == ".pdf") {
             png = scratch / "figure.png";
-            const auto r = run_command("pdftoppm -r 30 -png -singlefile " + quoted(path) + " " +
-                                       quoted(scratch / "figure"));
+            const auto r = run_command("pdftoppm -r 30 -png -singlefile " + quoted(path) +
+                                       " " + quoted(scratch / "figure"));
             if (r.exit_code != 0) {
-                problems.push_back("pdftoppm cannot render figure " + figure + ": " + r.err);
+                problems.push_back("pdftoppm cannot render figure " + figure + ": " +
+                                   r.err);
                 continue;
             }
         }
@@ -346,22 +371,24 @@ TEST_CASE("every page of the built PDF book prints without a fault") {
 
     // Every page to PNG; the count must match what pdfinfo says.
     const auto info = run_command("pdfinfo " + quoted(pdf));
-    REQUIRE_MESSAGE(info.exit_code == 0, "pdfinfo failed (install poppler-utils): " << info.err);
+    REQUIRE_MESSAGE(info.exit_code == 0,
+                    "pdfinfo failed (install poppler-utils): " << info.err);
     std::smatch pages_match;
     REQUIRE(std::regex_search(info.out, pages_match, std::regex(R"(Pages:\s+([0-9]+))")));
     const int pages = std::stoi(pages_match[1]);
     const fs::path page_dir = book / "pages";
     fs::remove_all(page_dir);
     fs::create_directories(page_dir);
-    const auto rendered =
-        run_command("pdftoppm -r 40 -png " + quoted(pdf) + " " + quoted(page_dir / "page"));
+    const auto rendered = run_command("pdftoppm -r 40 -png " + quoted(pdf) + " " +
+                                      quoted(page_dir / "page"));
     CHECK_MESSAGE(rendered.exit_code == 0, rendered.err);
     CHECK_MESSAGE(rendered.err.empty(), "pdftoppm complained: " << rendered.err);
     int png_count = 0;
     for (const auto& entry : fs::directory_iterator(page_dir)) {
         if (entry.path().extension() == ".png") {
             ++png_count;
-            CHECK_MESSAGE(has_content(entry.path()), entry.path().string() << " is blank");
+            CHECK_MESSAGE(has_content(entry.path()), entry.path().string()
+                                                         << " is blank");
         }
     }
     CHECK(png_count == pages);

@@ -1,8 +1,8 @@
 // Chapter 0 tests: the framebuffer's conventions, the "F" pattern, PNG round trips and
 // the all-or-nothing PNG writer.
-#include "exactpixels/error.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/test_pattern.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/base/test_pattern.hpp"
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>

@@ -1,8 +1,8 @@
 // Chapter 1 tests, part 1: the gradient identities. Where the claim is exact algebra the
 // test runs the library's own templates in exact rational arithmetic; where it is a
 // floating-point claim it states its tolerance and why.
-#include "exactpixels/gradient_stability.hpp"
-#include "exactpixels/gradients.hpp"
+#include "exactpixels/raster/gradient_stability.hpp"
+#include "exactpixels/raster/gradients.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>
@@ -75,7 +75,8 @@ double shape_factor(const PlaneSamples<double>& s) {
 }
 
 // The size of the terms a gradient formula adds up: (largest |c_i - c_j|) / (longest
-// edge) + |g|. Rounding errors are about eps kappa times this (chapter 1, eq. 1.10).
+// edge) + |g|. Rounding errors are about eps kappa times this (chapter 1,
+// @eq:error-estimate).
 double term_size(const PlaneSamples<double>& s, double gradient_norm) {
     double longest = 0, c_range = 0;
     for (int i = 0; i < 3; ++i) {
@@ -161,9 +162,9 @@ TEST_CASE("split edge and closed form agree on random triangles" *
           doctest::description("points: 2; exercise: ch01-closed-form")) {
     // Both formulas divide a difference of products by a difference of products. The
     // products round by eps relative, so the error is about eps kappa times the size
-    // of the terms (eq. 1.10): the test allows 32 eps kappa (|delta c| / L + |g|) for
-    // each method against the exact gradient of the same input, in float and double
-    // (the worst seen over these trials is about 11; the test reports it).
+    // of the terms (@eq:error-estimate): the test allows 32 eps kappa (|delta c| / L +
+    // |g|) for each method against the exact gradient of the same input, in float and
+    // double (the worst seen over these trials is about 11; the test reports it).
     std::mt19937_64 random(13);
     double worst_double = 0, worst_float = 0;
     int checked = 0;
@@ -326,7 +327,7 @@ TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
 
 TEST_CASE("the stability study's reference is exact" *
           doctest::description("points: 1; exercise: ch01-closed-form")) {
-    // exact_gradient computes eq. 1.7 in 128-bit integers; check it against the
+    // exact_gradient computes @eq:closed-form in 128-bit integers; check it against the
     // library's closed form run in Rational arithmetic on the same inputs.
     for (const double delta : {1e-2, 1e-9, 0.0}) {
         for (const PlaneSamples<double>& s : stability_triangles(delta, 50, 7, false)) {

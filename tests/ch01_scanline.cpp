@@ -1,9 +1,9 @@
 // Chapter 1 tests, part 2: the scanline rasterizer. Coverage is checked pixel for pixel
 // (ASCII masks, and an exact brute-force reference written straight from the top-left
 // rule's definition), watertightness by counting hits, attributes against the plane.
-#include "exactpixels/error.hpp"
-#include "exactpixels/gradients.hpp"
-#include "exactpixels/scanline.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/raster/gradients.hpp"
+#include "exactpixels/raster/scanline.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,8 +1,8 @@
 // Chapter 2 tests: the edge function's identities (sum, stepping, barycentrics, the
 // gradient), the top-left rule as a bias, and the exact fixed-point range.
 #include "ch02_grid.hpp"
-#include "exactpixels/edge_function.hpp"
-#include "exactpixels/gradients.hpp"
+#include "exactpixels/raster/edge_function.hpp"
+#include "exactpixels/raster/gradients.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>
@@ -46,7 +46,7 @@ TEST_CASE("the three edge functions sum to twice the area at every point, exactl
         // Each value equals the 128-bit reference (no overflow anywhere in the range) ...
         REQUIRE(Int128{e0} == wide_edge(v[1], v[2], p));
         REQUIRE(Int128{area2} == wide_edge(v[0], v[1], v[2]));
-        // ... and the identity (eq. 2.3) holds exactly.
+        // ... and the identity (@eq:edge-sum) holds exactly.
         REQUIRE(e0 + e1 + e2 == area2);
     }
 }
@@ -65,7 +65,8 @@ TEST_CASE("incremental edge values equal direct evaluation bit for bit") {
             for (int y = r.y_begin; y < r.y_end; ++y, row += e.step_y()) {
                 std::int64_t w = row;
                 for (int x = r.x_begin; x < r.x_end; ++x, w += e.step_x()) {
-                    // Stepped (eq. 2.5) == direct (eq. 2.1 plus the bias).
+                    // Stepped (@eq:edge-steps) == direct (@eq:edge-function plus the
+                    // bias).
                     const FixedPoint2 b{e.a.x + e.dx, e.a.y + e.dy};
                     REQUIRE(w == e.at(x, y));
                     REQUIRE(w ==

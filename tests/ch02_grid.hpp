@@ -2,8 +2,8 @@
 // and every rasterizer of chapters 1 and 2 behind one name.
 #pragma once
 
-#include "exactpixels/edge_rasterizer.hpp"
-#include "exactpixels/scanline.hpp"
+#include "exactpixels/raster/edge_rasterizer.hpp"
+#include "exactpixels/raster/scanline.hpp"
 
 #include <array>
 #include <cstdint>

@@ -2,9 +2,9 @@
 // meshes, agreement between the traversals and with chapter 1's scanline rasterizer,
 // invariances, block classification, the range limits, and where float differs.
 #include "ch02_grid.hpp"
-#include "exactpixels/edge_rasterizer.hpp"
-#include "exactpixels/naive_rasterizer.hpp"
-#include "exactpixels/scanline.hpp"
+#include "exactpixels/raster/edge_rasterizer.hpp"
+#include "exactpixels/raster/naive_rasterizer.hpp"
+#include "exactpixels/raster/scanline.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>

@@ -1,8 +1,8 @@
 // Chapter 3 tests: the span mappers against the perspective projection they model and
 // against the error bounds the chapter derives.
-#include "exactpixels/perspective_error.hpp"
-#include "exactpixels/span_mappers.hpp"
-#include "exactpixels/texture_mapper.hpp"
+#include "exactpixels/texture/perspective_error.hpp"
+#include "exactpixels/texture/span_mappers.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,8 +1,8 @@
 // Chapter 3 tests: Pursey's quadratic and Thellier's form of it, forward differencing,
 // and the closed-form errors of the affine and quadratic mappers, checked in exact
 // rational arithmetic wherever the claim is exact.
-#include "exactpixels/perspective_error.hpp"
-#include "exactpixels/quadratic.hpp"
+#include "exactpixels/texture/perspective_error.hpp"
+#include "exactpixels/texture/quadratic.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>

@@ -1,12 +1,12 @@
 // Chapter 3 tests: textures, and textured triangles drawn by every mapper through
 // chapter 1's scanline rasterizer.
-#include "exactpixels/error.hpp"
-#include "exactpixels/perspective_scenes.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/scanline.hpp"
-#include "exactpixels/test_pattern.hpp"
-#include "exactpixels/texture.hpp"
-#include "exactpixels/texture_mapper.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/base/test_pattern.hpp"
+#include "exactpixels/lab/perspective_scenes.hpp"
+#include "exactpixels/raster/scanline.hpp"
+#include "exactpixels/texture/texture.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>
@@ -118,7 +118,7 @@ TEST_CASE("a screen-aligned F is drawn unflipped by every mapper" *
             const auto vertex = [](double x, double y) {
                 return TexturedVertex{{x, y}, 2.0, {(x - 10.0) / 2.0, (y - 4.0) / 2.0}};
             };
-            const MapperSettings settings{kind, 4, precision, {}, Wrap::clamp};
+            const MapperSettings settings{{kind, 4}, precision, {}, Wrap::clamp};
             draw_textured_triangle(frame, {vertex(10, 4), vertex(20, 4), vertex(20, 18)},
                                    f, settings);
             draw_textured_triangle(frame, {vertex(10, 4), vertex(20, 18), vertex(10, 18)},
@@ -143,7 +143,7 @@ TEST_CASE("every mapper covers exactly the scanline rasterizer's pixels") {
     const PerspectiveScene scene = wall_scene(96, 72);
     for (const MapperKind kind : all_kinds) {
         TexelMap map(96, 72);
-        map_scene(map, scene, MapperSettings{.kind = kind});
+        map_scene(map, scene, MapperSettings{.mapper = {kind}});
         std::vector<bool> covered(96 * 72, false);
         for (const auto& t : scene.triangles) {
             const std::array<FixedPoint2, 3> v{snap_to_subpixel(t[0].position),
@@ -261,7 +261,7 @@ TEST_CASE("disagreement with the exact mapper falls as the approximation improve
     map_scene(exact, scene, {});
     const auto differ = [&](MapperKind kind, int span) {
         TexelMap m(320, 240);
-        map_scene(m, scene, {.kind = kind, .span = span});
+        map_scene(m, scene, {.mapper = {kind, span}});
         int count = 0;
         for (std::size_t at = 0; at < m.covered.size(); ++at) {
             count += m.covered[at] && (m.i[at] != exact.i[at] || m.j[at] != exact.j[at]);
@@ -305,8 +305,9 @@ TEST_CASE("bad triangles and settings fail naming the value, and draw nothing") 
     CHECK_THROWS_WITH_AS(
         draw_textured_triangle(frame, huge_uv, t, {.precision = Precision::fixed}),
         doctest::Contains("20000"), Error);
-    CHECK_THROWS_WITH_AS(draw_textured_triangle(frame, good, t, {.span = 1}),
-                         doctest::Contains("span = 1"), Error);
+    CHECK_THROWS_WITH_AS(
+        draw_textured_triangle(frame, good, t, {.mapper = {MapperKind::exact, 1}}),
+        doctest::Contains("span = 1"), Error);
     CHECK(frame == before); // nothing drawn by any failed call
     draw_textured_triangle(frame, good, t, {});
     CHECK(frame != before); // and the good triangle does draw

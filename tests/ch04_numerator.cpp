@@ -1,7 +1,8 @@
-// Chapter 4 tests: under perspective, the numerator of dc/dx (eq. 4.7) is the same at
-// every point of a row (eq. 4.8), even across 1/w = 0, and its sign is the sign of
-// dc/dx; in float it is within a stated bound; per row it can differ across a triangle.
-#include "exactpixels/rounding.hpp"
+// Chapter 4 tests: under perspective, the numerator of dc/dx (@eq:numerator) is the same
+// at every point of a row (@eq:numerator-constant), even across 1/w = 0, and its sign is
+// the sign of dc/dx; in float it is within a stated bound; per row it can differ across a
+// triangle.
+#include "exactpixels/texture/rounding.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>
@@ -64,8 +65,9 @@ Rational along_x(const Coordinate& c, const Rational& t, bool q_part) {
 
 TEST_CASE("the numerator is the same at every point of a row, exactly") {
     // Moving along x by any amount t adds t * dp/dx to p and t * dq/dx to q; the
-    // numerator dp/dx q - p dq/dx gains t (dp/dx dq/dx - dp/dx dq/dx) = 0 (eq. 4.8).
-    // Moving along y by s changes it by s (dp/dx dq/dy - dp/dy dq/dx): linear in y.
+    // numerator dp/dx q - p dq/dx gains t (dp/dx dq/dx - dp/dx dq/dx) = 0
+    // (@eq:numerator-constant). Moving along y by s changes it by s (dp/dx dq/dy - dp/dy
+    // dq/dx): linear in y.
     std::mt19937 random(48);
     std::uniform_int_distribution<int> step(-5000, 5000);
     for (int i = 0; i < span_count; ++i) {
@@ -267,7 +269,7 @@ TEST_CASE("with rounding per row, every row samples with its own rule") {
                                               {{10.0, 74.5}, 1.0, {0.0, 64.0}}}};
     MapperSettings settings;
     settings.precision = Precision::fixed;
-    settings.rounding_per_row = true;
+    settings.row_rounding = choose_rounding_on_row;
     TexelMap map(96, 96);
     map_textured_triangle(map, wall, settings);
     int pixels = 0;

@@ -2,10 +2,10 @@
 // rounding chosen per triangle. 1:1 and magnified, pixel-aligned and offset by half a
 // pixel (every sample a tie), the texture running forwards and mirrored; and the broken
 // variant that always uses rule 1, with the texels it skips and doubles counted.
-#include "exactpixels/rounding.hpp"
-#include "exactpixels/test_pattern.hpp"
-#include "exactpixels/texture.hpp"
-#include "exactpixels/texture_mapper.hpp"
+#include "exactpixels/base/test_pattern.hpp"
+#include "exactpixels/texture/rounding.hpp"
+#include "exactpixels/texture/texture.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
 
 #include <doctest/doctest.h>
 
@@ -42,17 +42,18 @@ enum class Rounding { chosen, always_rule1 };
 MapperSettings settings_for(MapperKind kind, Precision precision,
                             Wrap wrap = Wrap::clamp) {
     MapperSettings s;
-    s.kind = kind;
+    s.mapper.kind = kind;
     s.precision = precision;
-    s.span = 4; // short pieces: the subdivided mappers really subdivide these quads
+    s.mapper.span =
+        4; // short pieces: the subdivided mappers really subdivide these quads
     s.wrap = wrap;
     return s;
 }
 
 MapperSettings with_rounding(MapperSettings s, const std::array<TexturedVertex, 3>& t,
                              Rounding rounding) {
-    s.rounding =
-        rounding == Rounding::chosen ? choose_rounding(t, s.kind) : TexelRounding{};
+    s.rounding = rounding == Rounding::chosen ? choose_rounding(t, s.mapper.kind)
+                                              : TexelRounding{};
     return s;
 }
 

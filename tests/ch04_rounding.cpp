@@ -1,7 +1,7 @@
-// Chapter 4 tests: the two rounding rules, the single floor with a modifier (eq. 4.4),
-// and the choice of rule from the gradient's signs.
-#include "exactpixels/error.hpp"
-#include "exactpixels/rounding.hpp"
+// Chapter 4 tests: the two rounding rules, the single floor with a modifier
+// (@eq:modifier), and the choice of rule from the gradient's signs.
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/texture/rounding.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>

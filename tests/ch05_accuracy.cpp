@@ -1,8 +1,8 @@
 // Chapter 5 tests: the error measure of the benchmark, its scenes, and its agreement
 // with chapter 3's closed-form bound for the affine mapper.
-#include "exactpixels/accuracy_scenes.hpp"
-#include "exactpixels/mapper_error.hpp"
-#include "exactpixels/perspective_error.hpp"
+#include "exactpixels/lab/accuracy_scenes.hpp"
+#include "exactpixels/texture/perspective_error.hpp"
+#include "exactpixels/texture/texel_error.hpp"
 
 #include <doctest/doctest.h>
 

@@ -3,8 +3,8 @@
 // through the clip agree with a ray traced through each pixel centre within what uv
 // changes over 1/256 px there (the snap of the projected corners); shared cut edges
 // agree bit for bit.
-#include "exactpixels/clipping.hpp"
-#include "exactpixels/error.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/texture/clipping.hpp"
 
 #include <doctest/doctest.h>
 
@@ -105,7 +105,7 @@ TEST_CASE("drawn through the clip, every pixel gets the texel a traced ray finds
             }
             map_textured_triangle(
                 map, pieces.triangles[static_cast<std::size_t>(k)],
-                {MapperKind::exact, 16, Precision::float64, {}, Wrap::repeat});
+                {{MapperKind::exact}, Precision::float64, {}, Wrap::repeat});
         }
         for (int y = 0; y < 240; ++y) {
             for (int x = 0; x < 320; ++x) {

@@ -2,11 +2,11 @@
 // the fixed-point limits, zero area after snapping, vertex order and winding, and input
 // that is not a number. Each test states its tolerance; "exact" means pixel for pixel
 // against an independent brute-force test in 128-bit integers.
-#include "exactpixels/edge_rasterizer.hpp"
-#include "exactpixels/error.hpp"
-#include "exactpixels/fixed_point.hpp"
-#include "exactpixels/scanline.hpp"
-#include "exactpixels/texture_mapper.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/fixed_point.hpp"
+#include "exactpixels/raster/edge_rasterizer.hpp"
+#include "exactpixels/raster/scanline.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>
@@ -268,7 +268,7 @@ TEST_CASE("rotating the vertex order or reversing the winding changes no pixel")
         }
         for (const MapperKind kind : {MapperKind::exact, MapperKind::affine,
                                       MapperKind::quadratic, MapperKind::subdivided}) {
-            const MapperSettings s{kind, 8, Precision::float64, {}, Wrap::repeat};
+            const MapperSettings s{{kind, 8}, Precision::float64, {}, Wrap::repeat};
             TexelMap first(vp.width, vp.height);
             map_textured_triangle(first, t, s);
             for (const auto& o : orders) {

@@ -1,12 +1,12 @@
 // Chapter 6, hard cases of arithmetic: near-zero y-deltas in the gradient setup, tiny
 // triangles far from the origin, triangles nearly edge-on to the camera, and long spans
 // stepped in float. Each test states its tolerance and where it comes from.
-#include "exactpixels/fixed_point.hpp"
-#include "exactpixels/gradient_stability.hpp"
-#include "exactpixels/gradients.hpp"
-#include "exactpixels/quadratic.hpp"
-#include "exactpixels/span_mappers.hpp"
-#include "exactpixels/texture_mapper.hpp"
+#include "exactpixels/base/fixed_point.hpp"
+#include "exactpixels/raster/gradient_stability.hpp"
+#include "exactpixels/raster/gradients.hpp"
+#include "exactpixels/texture/quadratic.hpp"
+#include "exactpixels/texture/span_mappers.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
 
 #include <doctest/doctest.h>
 

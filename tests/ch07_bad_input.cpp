@@ -1,8 +1,8 @@
 // Chapter 7 tests: every kind of bad scene is rejected with a message naming the file,
 // the line and column, and the key path; the CLI exits with 2 and writes no file.
-#include "exactpixels/error.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/scene_loader.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/scene/scene_loader.hpp"
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>

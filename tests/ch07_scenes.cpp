@@ -1,11 +1,11 @@
 // Chapter 7 tests: the shipped scenes render; each mesh runs only the stages it calls
 // for; `auto` stays within its budget; the derived bounds and divide counts hold.
-#include "exactpixels/perspective_error.hpp"
-#include "exactpixels/scene_loader.hpp"
-#include "exactpixels/scene_pipeline.hpp"
-#include "exactpixels/scene_renderer.hpp"
-#include "exactpixels/span_mappers.hpp"
-#include "exactpixels/texture.hpp"
+#include "exactpixels/scene/scene_loader.hpp"
+#include "exactpixels/scene/scene_pipeline.hpp"
+#include "exactpixels/scene/scene_renderer.hpp"
+#include "exactpixels/texture/perspective_error.hpp"
+#include "exactpixels/texture/span_mappers.hpp"
+#include "exactpixels/texture/texture.hpp"
 
 #include <doctest/doctest.h>
 
@@ -23,7 +23,7 @@ Scene shipped(const std::string& name) {
 }
 
 Scene with_mapper(Scene scene, MapperKind kind) {
-    scene.options.mapper = {false, kind, 16};
+    scene.options.mapper = {false, {kind, 16}};
     return scene;
 }
 
@@ -282,10 +282,8 @@ TEST_CASE("auto picks the cheapest mapper whose bound is within the budget" *
     }
     CHECK(choose_span_mapper(steep, 0.01).mapper.kind == MapperKind::exact);
     // The chord's bound over the whole span: (sqrt 40 - 1) / (sqrt 40 + 1) * 500 = 363.
-    CHECK(choose_span_mapper(steep, 364.0).mapper ==
-          SpanMapper{MapperKind::subdivided, 200});
-    CHECK(choose_span_mapper(steep, 362.0).mapper !=
-          SpanMapper{MapperKind::subdivided, 200});
+    CHECK(choose_span_mapper(steep, 364.0).mapper == Mapper{MapperKind::subdivided, 200});
+    CHECK(choose_span_mapper(steep, 362.0).mapper != Mapper{MapperKind::subdivided, 200});
 }
 
 TEST_CASE("mapper_divides counts every division chapter 3's mappers perform") {

@@ -266,6 +266,22 @@ end
 ---------------------------------------------------------------------------------------
 -- Listings pulled from source
 
+-- Code comments refer to the book by label (@eq:name, @sec:name, ...), so that a number
+-- never goes stale; a listing shows the number instead: "eq. 2.8", "section 1.2".
+local code_word = { eq = "eq.", fig = "figure", lst = "listing", tbl = "table",
+                    sec = "section", ch = "chapter" }
+local function resolve_code_references(dir, code)
+  return (code:gsub("@(%a+):([%w_%-]*[%w])", function(kind, name)
+    local label = kind .. ":" .. name
+    if not code_word[kind] then return nil end
+    local entry = labels[label]
+    if not entry then
+      fail(dir, "@" .. label, "unknown reference '@" .. label .. "' in a listing's code")
+    end
+    return code_word[kind] .. " " .. entry.number
+  end))
+end
+
 local language_of = { hpp = "cpp", cpp = "cpp", h = "cpp", txt = "text", toml = "toml",
                       cmake = "cmake", lua = "lua", sh = "bash", gp = "gnuplot" }
 
@@ -381,7 +397,7 @@ local function render_block(block, counters, state)
       if not file or not name then
         fail(dir, "snippet", "a snippet block needs file=\"...\" and name=\"...\"")
       end
-      local code = extract_region(dir, file, name)
+      local code = resolve_code_references(dir, extract_region(dir, file, name))
       local extension = file:match("%.([%w]+)$") or ""
       local listing = pandoc.CodeBlock(code, { class = language_of[extension] or "text" })
       local caption = pandoc.Para({ caption_prefix("Listing", number), pandoc.Space(),

@@ -1,8 +1,8 @@
 // Chapter 0 example: draw the asymmetric "F" test pattern and write it as a PNG.
 // Usage: ch00-example [OUTPUT_DIR]   (writes OUTPUT_DIR/ch00_f.png; default: .)
-#include "exactpixels/error.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/test_pattern.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/base/test_pattern.hpp"
 
 #include <cstdio>
 #include <filesystem>

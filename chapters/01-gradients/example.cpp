@@ -1,9 +1,9 @@
 // Chapter 1 example: a Gouraud-shaded triangle, drawn by the scanline rasterizer with
 // red, green and blue stepped across it from the three vertices.
 // Usage: ch01-example [OUTPUT_DIR]   (writes OUTPUT_DIR/ch01_gouraud.png; default: .)
-#include "exactpixels/error.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/scanline.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/raster/scanline.hpp"
 
 #include <cstdio>
 #include <filesystem>

@@ -2,10 +2,10 @@
 // 8 x 8 blocks, each pixel coloured by its barycentric weights (red, green and blue at
 // the three vertices). Every pixel is drawn exactly once: the example counts and checks.
 // Usage: ch02-example [OUTPUT_DIR]   (writes OUTPUT_DIR/ch02_mesh.png; default: .)
-#include "exactpixels/edge_rasterizer.hpp"
-#include "exactpixels/error.hpp"
-#include "exactpixels/framebuffer.hpp"
-#include "exactpixels/png.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/framebuffer.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/raster/edge_rasterizer.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -30,7 +30,8 @@ int main(int argc, char** argv) {
     for (int k = 0; k < 12; ++k) {
         const std::array<FixedPoint2, 3> v{snap_in_range(hub), rim(k), rim(k + 1)};
         edge_rasterize_blocks(v, Viewport{size, size}, [&](int x, int y) {
-            const auto l = barycentric(v, fixed_pixel_centre(x, y)); // eq. 2.4
+            const auto l =
+                barycentric(v, fixed_pixel_centre(x, y)); // @eq:edge-barycentric
             frame.at(x, y) = to_rgba8({l[0], l[1], l[2]});
             ++hits[y * size + x];
         });

@@ -3,9 +3,9 @@
 // Writes OUTPUT_DIR/ch03_example.png (640 x 240). With TEXTURE.png the floor wears that
 // image instead of the checkerboard; a missing or unreadable texture is an error, and
 // then nothing is written.
-#include "exactpixels/error.hpp"
-#include "exactpixels/perspective_scenes.hpp"
-#include "exactpixels/png.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/lab/perspective_scenes.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -21,8 +21,8 @@ int main(int argc, char** argv) {
             floor.texture = load_texture(argv[2]); // throws Error naming the file
         }
         Framebuffer exact(320, 240, rgba(20, 30, 60)), affine = exact;
-        draw_scene(exact, floor, MapperSettings{.kind = MapperKind::exact});
-        draw_scene(affine, floor, MapperSettings{.kind = MapperKind::affine});
+        draw_scene(exact, floor, MapperSettings{.mapper = {MapperKind::exact}});
+        draw_scene(affine, floor, MapperSettings{.mapper = {MapperKind::affine}});
 
         Framebuffer both(640, 240);
         for (int y = 0; y < 240; ++y) {

@@ -2,11 +2,11 @@
 // tie), forwards and mirrored in u, in v and in both. Top row: the rounding chosen per
 // triangle; bottom row: rule 1 everywhere. Writes ch04_mirrors.png, enlarged 8 times.
 // Usage: ch04-example [OUTPUT_DIR]   (default: .)
-#include "exactpixels/error.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/rounding.hpp"
-#include "exactpixels/texture.hpp"
-#include "exactpixels/texture_mapper.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/texture/rounding.hpp"
+#include "exactpixels/texture/texture.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
 
 #include <cstdio>
 #include <filesystem>
@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
                 MapperSettings settings{.precision = Precision::fixed,
                                         .wrap = Wrap::clamp};
                 if (row == 0) {
-                    settings.rounding = choose_rounding(triangle, settings.kind);
+                    settings.rounding = choose_rounding(triangle, settings.mapper.kind);
                 }
                 draw_textured_triangle(frame, triangle, f, settings);
             }

@@ -1,9 +1,9 @@
 // Chapter 5 example: the grazing floor drawn by three mappers, with each one's error.
 // Usage: ch05-example [OUTPUT_DIR]   (writes OUTPUT_DIR/ch05_floor_*.png; default: .)
-#include "exactpixels/accuracy_scenes.hpp"
-#include "exactpixels/error.hpp"
-#include "exactpixels/mapper_error.hpp"
-#include "exactpixels/png.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/lab/accuracy_scenes.hpp"
+#include "exactpixels/texture/texel_error.hpp"
 
 #include <cstdio>
 #include <filesystem>

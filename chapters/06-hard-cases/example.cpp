@@ -1,9 +1,9 @@
 // Chapter 6 example: a textured floor that runs behind the camera, clipped at the near
 // plane, projected and drawn; prints what the clip made of each triangle.
 // Usage: ch06-example [OUTPUT_DIR]   (writes OUTPUT_DIR/ch06_floor.png; default: .)
-#include "exactpixels/clipping.hpp"
-#include "exactpixels/error.hpp"
-#include "exactpixels/png.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/texture/clipping.hpp"
 
 #include <cstdio>
 #include <filesystem>

@@ -1,9 +1,9 @@
 // Chapter 7 example: render every shipped scene and print what each one ran.
 // Usage: ch07-example [OUTPUT_DIR]   (writes OUTPUT_DIR/ch07_<scene>.png; default: .)
-#include "exactpixels/error.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/scene_loader.hpp"
-#include "exactpixels/scene_renderer.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/scene/scene_loader.hpp"
+#include "exactpixels/scene/scene_renderer.hpp"
 
 #include <cstdio>
 #include <filesystem>

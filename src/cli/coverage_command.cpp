@@ -6,8 +6,8 @@
 // input: a message naming the line and the value on stderr, exit code 2.
 #include "commands.hpp"
 
-#include "exactpixels/edge_rasterizer.hpp"
-#include "exactpixels/error.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/raster/edge_rasterizer.hpp"
 
 #include <fmt/format.h>
 

@@ -12,9 +12,15 @@ int main(int argc, char** argv) {
     app.require_subcommand(0, 1);
 
     int exit_code = 0;
+    // Each subcommand is there when the library layer it needs is (an assignment kit
+    // carries only its chapter's layers; see src/CMakeLists.txt).
     exactpixels::cli::add_pattern_command(app, exit_code);
+#ifdef EXACTPIXELS_HAS_RASTER
     exactpixels::cli::add_coverage_command(app, exit_code);
+#endif
+#ifdef EXACTPIXELS_HAS_SCENE
     exactpixels::cli::add_render_command(app, exit_code);
+#endif
 
     CLI11_PARSE(app, argc, argv);
     if (app.get_subcommands().empty()) {

@@ -1,8 +1,8 @@
 #include "commands.hpp"
 
-#include "exactpixels/error.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/test_pattern.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/base/test_pattern.hpp"
 
 #include <fmt/format.h>
 

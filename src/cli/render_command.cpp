@@ -1,9 +1,9 @@
 #include "commands.hpp"
 
-#include "exactpixels/error.hpp"
-#include "exactpixels/png.hpp"
-#include "exactpixels/scene_loader.hpp"
-#include "exactpixels/scene_renderer.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/png.hpp"
+#include "exactpixels/scene/scene_loader.hpp"
+#include "exactpixels/scene/scene_renderer.hpp"
 
 #include <fmt/format.h>
 

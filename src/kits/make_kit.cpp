@@ -5,25 +5,27 @@
 //   make-kit restore --source ROOT --kit DIR
 //   make-kit list --source ROOT
 //
-// `kit` writes DIR as a self-contained CMake project: all of src/ but src/kits/ (the
-// library, the command-line program and their CMakeLists.txt, minus the line that adds
-// src/kits), chapter NN's example folder without its text, its tests (tests/chNN_*,
-// tests/fixtures/chNN*), the test headers (tests/*.hpp) and support files (tests/support/). Every exercise region
-// of chapter NN (see book/AUTHORING.md, "Exercise regions") is replaced by its stub between
-// two plain comments,
+// `kit` writes DIR as a self-contained CMake project: of src/, the library layers that
+// chapter NN's code includes and those beneath them (src/exactpixels/layers.txt), the
+// command-line program and the CMakeLists.txt files (minus the line that adds src/kits),
+// chapter NN's example folder, its tests (tests/chNN_*, tests/fixtures/chNN*), the test
+// headers they include (tests/*.hpp) and the support files (tests/support/). Every
+// exercise region of chapter NN (see book/AUTHORING.md, "Exercise regions") is replaced
+// by its stub between two plain comments,
 //     // EXERCISE ch02-edge-bias: one-line hint
 //     ...stub...
 //     // END EXERCISE ch02-edge-bias
-// while every other chapter keeps its solution; every marker line (`//>`, `//<`, `//|`) is
-// removed. The template folder supplies the kit's CMakeLists.txt, README.md and grade.cmake
-// (with @CHAPTER@-style placeholders). DIR is deleted first if it holds an earlier kit.
+// while every other chapter keeps its solution; every marker line (`//>`, `//<`, `//|`)
+// is removed. The template folder supplies the kit's CMakeLists.txt, README.md and
+// grade.cmake (with @CHAPTER@-style placeholders). DIR is deleted first if it holds an
+// earlier kit.
 //
 // `restore` puts the solution of every exercise back between those comments in a kit
 // (the teacher's copy; the kit tests use it to prove the stubs are the only difference).
 // `list` prints every exercise region and the tests that declare points for it.
 //
-// The kit is checked while it is made: every exercise region of chapter NN must be named by
-// a test of chapter NN with points > 0, and every exercise a test names must exist.
+// The kit is checked while it is made: every exercise region of chapter NN must be named
+// by a test of chapter NN with points > 0, and every exercise a test names must exist.
 // Errors name file and line and make the program exit with status 1.
 #include <algorithm>
 #include <cctype>
@@ -107,7 +109,8 @@ bool starts_with(std::string_view text, std::string_view prefix) {
     return text.substr(0, prefix.size()) == prefix;
 }
 
-std::string replace_all(std::string text, const std::string& from, const std::string& to) {
+std::string replace_all(std::string text, const std::string& from,
+                        const std::string& to) {
     std::string::size_type at = 0;
     while ((at = text.find(from, at)) != std::string::npos) {
         text.replace(at, from.size(), to);
@@ -120,7 +123,8 @@ std::string where(const fs::path& file, std::size_t line) {
     return file.generic_string() + ":" + std::to_string(line);
 }
 
-/// "chNN-name": the prefix ch, two digits, a dash, then lower-case letters, digits, dashes.
+/// "chNN-name": the prefix ch, two digits, a dash, then lower-case letters, digits,
+/// dashes.
 bool valid_exercise_id(std::string_view id) {
     if (id.size() < 6 || !starts_with(id, "ch") || !std::isdigit(id[2]) ||
         !std::isdigit(id[3]) || id[4] != '-') {
@@ -133,8 +137,8 @@ bool valid_exercise_id(std::string_view id) {
 }
 
 bool is_code_file(const fs::path& path) {
-    static const std::set<std::string> extensions = {".cpp", ".hpp", ".h", ".cc", ".inl",
-                                                     ".ipp"};
+    static const std::set<std::string> extensions = {".cpp", ".hpp", ".h",
+                                                     ".cc",  ".inl", ".ipp"};
     return extensions.count(path.extension().string()) != 0;
 }
 
@@ -143,13 +147,13 @@ bool is_code_file(const fs::path& path) {
 
 /// One `//> exercise ID: hint` ... `//< exercise ID` region of solution code.
 struct Region {
-    std::string id;                     // e.g. "ch02-edge-bias"
-    std::string hint;                   // the one-line hint after the colon
-    fs::path file;                      // relative to the source root
-    std::size_t line = 0;               // of the opening marker, 1-based
-    std::vector<std::string> solution;  // the code lines, markers removed
-    std::vector<std::string> stub;      // the uncommented stub lines
-    std::size_t kit_line = 0;           // of the EXERCISE comment in the kit, if stubbed
+    std::string id;                    // e.g. "ch02-edge-bias"
+    std::string hint;                  // the one-line hint after the colon
+    fs::path file;                     // relative to the source root
+    std::size_t line = 0;              // of the opening marker, 1-based
+    std::vector<std::string> solution; // the code lines, markers removed
+    std::vector<std::string> stub;     // the uncommented stub lines
+    std::size_t kit_line = 0;          // of the EXERCISE comment in the kit, if stubbed
     std::string chapter() const { return id.substr(0, 4); }
 };
 
@@ -162,8 +166,9 @@ struct Processed {
     std::vector<Region> regions;    // every exercise region found in it
 };
 
-/// Reads the markers of one file. Regions of `stub_chapter` ("ch02") are replaced by their
-/// stubs between the kit's EXERCISE comments; all other regions keep their solution.
+/// Reads the markers of one file. Regions of `stub_chapter` ("ch02") are replaced by
+/// their stubs between the kit's EXERCISE comments; all other regions keep their
+/// solution.
 Processed process_file(const fs::path& rel, const std::string& text,
                        const std::string& stub_chapter) {
     Processed result;
@@ -173,8 +178,9 @@ Processed process_file(const fs::path& rel, const std::string& text,
         const std::string& line = lines[i];
         const auto first = line.find_first_not_of(" \t");
         const std::string indent = line.substr(0, first == std::string::npos ? 0 : first);
-        const std::string_view rest =
-            first == std::string::npos ? std::string_view{} : std::string_view(line).substr(first);
+        const std::string_view rest = first == std::string::npos
+                                          ? std::string_view{}
+                                          : std::string_view(line).substr(first);
         const bool stubbing = open && open->chapter() == stub_chapter;
         if (starts_with(rest, "//>") || starts_with(rest, "//<")) {
             const std::string_view body = trim(rest.substr(3));
@@ -184,24 +190,27 @@ Processed process_file(const fs::path& rel, const std::string& text,
             }
             if (rest[2] == '>') {
                 if (open) {
-                    throw KitError(where(rel, i + 1) + ": exercise region inside region " +
-                                   open->id + " (opened at line " +
-                                   std::to_string(open->line) + ")");
+                    throw KitError(where(rel, i + 1) +
+                                   ": exercise region inside region " + open->id +
+                                   " (opened at line " + std::to_string(open->line) +
+                                   ")");
                 }
                 const std::string_view spec = trim(body.substr(8));
                 const auto colon = spec.find(':');
                 const std::string id(trim(spec.substr(0, colon)));
-                std::string hint(colon == std::string_view::npos ? std::string_view{}
-                                                                 : trim(spec.substr(colon + 1)));
+                std::string hint(colon == std::string_view::npos
+                                     ? std::string_view{}
+                                     : trim(spec.substr(colon + 1)));
                 const std::size_t open_line = i + 1;
-                // A hint too long for one line, as clang-format reflows it: the next lines
-                // at the same indent read "//word" (no space after the slashes).
+                // A hint too long for one line, as clang-format reflows it: the next
+                // lines at the same indent read "//word" (no space after the slashes).
                 while (i + 1 < lines.size() && starts_with(lines[i + 1], indent + "//") &&
                        lines[i + 1].size() > indent.size() + 2 &&
                        std::string_view(" /<>|!").find(lines[i + 1][indent.size() + 2]) ==
                            std::string_view::npos) {
-                    hint += " " + std::string(trim(
-                                      std::string_view(lines[++i]).substr(indent.size() + 2)));
+                    hint += " " +
+                            std::string(trim(
+                                std::string_view(lines[++i]).substr(indent.size() + 2)));
                 }
                 if (!valid_exercise_id(id)) {
                     throw KitError(where(rel, open_line) + ": exercise ID '" + id +
@@ -231,7 +240,8 @@ Processed process_file(const fs::path& rel, const std::string& text,
             }
         } else if (starts_with(rest, "//|")) {
             if (!open) {
-                throw KitError(where(rel, i + 1) + ": stub line '//|' outside any exercise region");
+                throw KitError(where(rel, i + 1) +
+                               ": stub line '//|' outside any exercise region");
             }
             std::string_view stub = rest.substr(3);
             if (starts_with(stub, " ")) {
@@ -285,7 +295,8 @@ std::map<std::string, Region> all_regions(const fs::path& root) {
             const auto [it, fresh] = regions.emplace(region.id, region);
             if (!fresh) {
                 throw KitError(where(rel, region.line) + ": exercise " + region.id +
-                               " is also defined at " + where(it->second.file, it->second.line));
+                               " is also defined at " +
+                               where(it->second.file, it->second.line));
             }
         }
     }
@@ -306,8 +317,8 @@ struct TestDecl {
 };
 
 std::size_t line_of(const std::string& text, std::size_t offset) {
-    return 1 + static_cast<std::size_t>(
-                   std::count(text.begin(), text.begin() + static_cast<long>(offset), '\n'));
+    return 1 + static_cast<std::size_t>(std::count(
+                   text.begin(), text.begin() + static_cast<long>(offset), '\n'));
 }
 
 /// The string literal starting at text[at] == '"' (escapes kept as written).
@@ -368,7 +379,8 @@ std::vector<TestDecl> test_declarations(const fs::path& root, const fs::path& re
             while (!rest.empty()) {
                 const auto semi = rest.find(';');
                 const std::string_view item = trim(rest.substr(0, semi));
-                rest = semi == std::string_view::npos ? std::string_view{} : rest.substr(semi + 1);
+                rest = semi == std::string_view::npos ? std::string_view{}
+                                                      : rest.substr(semi + 1);
                 const auto colon = item.find(':');
                 if (colon == std::string_view::npos) {
                     continue;
@@ -377,12 +389,14 @@ std::vector<TestDecl> test_declarations(const fs::path& root, const fs::path& re
                 const std::string value(trim(item.substr(colon + 1)));
                 if (key == "points") {
                     const bool digits =
-                        !value.empty() && std::all_of(value.begin(), value.end(), [](char c) {
+                        !value.empty() &&
+                        std::all_of(value.begin(), value.end(), [](char c) {
                             return std::isdigit(static_cast<unsigned char>(c));
                         });
                     if (!digits) {
                         throw KitError(where(rel, test.line) + ": test \"" + test.name +
-                                       "\": points '" + value + "' is not a whole number");
+                                       "\": points '" + value +
+                                       "' is not a whole number");
                     }
                     test.points = std::stoi(value);
                 } else if (key == "exercise") {
@@ -432,7 +446,51 @@ std::optional<fs::path> chapter_folder(const fs::path& root, const std::string& 
     return found.empty() ? std::nullopt : std::optional<fs::path>(found.front());
 }
 
-/// The relative paths of every file the kit of chapter NN takes from the source tree.
+/// The library's layers (src/exactpixels/layers.txt): for each layer, itself and the
+/// layers beneath it that its code may include.
+std::map<std::string, std::vector<std::string>> read_layers(const fs::path& root) {
+    std::map<std::string, std::vector<std::string>> layers;
+    const fs::path file = root / "src/exactpixels/layers.txt";
+    if (!fs::exists(file)) {
+        return layers;
+    }
+    for (const auto& line : split_lines(read_text(file))) {
+        std::istringstream words(line);
+        std::string layer, beneath;
+        if (line.empty() || line[0] == '#' || !(words >> layer)) {
+            continue;
+        }
+        layers[layer] = {layer};
+        while (words >> beneath) {
+            layers[layer].push_back(beneath);
+        }
+    }
+    return layers;
+}
+
+/// The layers `text` includes ("exactpixels/LAYER/file.hpp") with those beneath them.
+void add_included_layers(const std::string& text,
+                         const std::map<std::string, std::vector<std::string>>& layers,
+                         std::set<std::string>& used) {
+    const std::string marker = "#include \"exactpixels/";
+    for (auto at = text.find(marker); at != std::string::npos;
+         at = text.find(marker, at + 1)) {
+        const auto begin = at + marker.size();
+        const auto slash = text.find('/', begin);
+        if (slash == std::string::npos) {
+            break;
+        }
+        const auto found = layers.find(text.substr(begin, slash - begin));
+        if (found != layers.end()) {
+            used.insert(found->second.begin(), found->second.end());
+        }
+    }
+}
+
+/// The relative paths of every file the kit of chapter NN takes from the source tree:
+/// the chapter's folder, its tests and the test headers they include, the test support
+/// files, and of the library only the layers that this code reaches (with the layers
+/// beneath them), so that a chapter's kit needs only its own chapters' packages.
 std::vector<fs::path> kit_files(const fs::path& root, const std::string& number) {
     std::vector<fs::path> files;
     auto add_tree = [&](const fs::path& rel, auto&& keep) {
@@ -451,11 +509,6 @@ std::vector<fs::path> kit_files(const fs::path& root, const std::string& number)
         }
     };
     const auto everything = [](const fs::path&) { return true; };
-    // All of src/ but the kit maker itself: the library, the command-line program and
-    // their CMakeLists.txt files, which the kit's top-level CMakeLists.txt includes.
-    add_tree("src", [](const fs::path& file) {
-        return !starts_with(file.generic_string(), "src/kits/");
-    });
     add_tree("tests/support", everything);
     add_tree(".clang-format", everything);
     if (const auto folder = chapter_folder(root, number)) {
@@ -464,23 +517,57 @@ std::vector<fs::path> kit_files(const fs::path& root, const std::string& number)
         add_tree(*folder, everything);
     }
     const std::string prefix = "ch" + number;
+    std::vector<fs::path> test_headers;
     for (const char* top : {"tests", "tests/fixtures"}) {
         if (!fs::is_directory(root / top)) {
             continue;
         }
         for (const auto& entry : fs::directory_iterator(root / top)) {
             const std::string name = entry.path().filename().string();
-            // Headers shared by the tests (e.g. a grid helper) come along in every kit.
-            const bool header = std::string(top) == "tests" && entry.is_regular_file() &&
-                                (entry.path().extension() == ".hpp" ||
-                                 entry.path().extension() == ".h");
-            if (header || starts_with(name, prefix + "_") || starts_with(name, prefix + "-") ||
-                name == prefix ||
-                (starts_with(name, prefix + ".") && entry.is_regular_file())) {
+            if (std::string(top) == "tests" && entry.is_regular_file() &&
+                (entry.path().extension() == ".hpp" ||
+                 entry.path().extension() == ".h")) {
+                test_headers.push_back(fs::relative(entry.path(), root));
+            } else if (starts_with(name, prefix + "_") ||
+                       starts_with(name, prefix + "-") || name == prefix ||
+                       (starts_with(name, prefix + ".") && entry.is_regular_file())) {
                 add_tree(fs::relative(entry.path(), root), everything);
             }
         }
     }
+    // A header shared by the tests (e.g. a grid helper) comes along when a test of the
+    // kit includes it.
+    std::string code;
+    for (const auto& rel : files) {
+        if (is_code_file(rel)) {
+            code += read_text(root / rel);
+        }
+    }
+    for (const auto& header : test_headers) {
+        if (code.find("#include \"" + header.filename().string() + "\"") !=
+            std::string::npos) {
+            files.push_back(header);
+            code += read_text(root / header);
+        }
+    }
+    // The library: the layers the chapter's code includes, and those beneath them. The
+    // base layer always comes (the command-line program needs it).
+    const auto layers = read_layers(root);
+    std::set<std::string> used = {"base"};
+    add_included_layers(code, layers, used);
+    add_tree("src", [&](const fs::path& file) {
+        const std::string path = file.generic_string();
+        if (starts_with(path, "src/kits/") || starts_with(path, "src/fuzz/") ||
+            starts_with(path, "src/checks/")) {
+            return false;
+        }
+        if (starts_with(path, "src/exactpixels/")) {
+            const std::string rest = path.substr(std::string("src/exactpixels/").size());
+            const auto slash = rest.find('/');
+            return slash == std::string::npos || used.count(rest.substr(0, slash)) > 0;
+        }
+        return true;
+    });
     std::sort(files.begin(), files.end());
     files.erase(std::unique(files.begin(), files.end()), files.end());
     return files;
@@ -509,8 +596,9 @@ std::string book_exercises(const fs::path& chapter_md) {
                 if (open == std::string::npos || close == std::string::npos) {
                     break;
                 }
-                text = text.substr(0, open) + "\"" + text.substr(open + 1, at - open - 1) +
-                       "\"" + text.substr(close + 1);
+                text = text.substr(0, open) + "\"" +
+                       text.substr(open + 1, at - open - 1) + "\"" +
+                       text.substr(close + 1);
             }
             kept.push_back(text);
         }
@@ -530,7 +618,8 @@ std::string chapter_title(const fs::path& chapter_md) {
             if (starts_with(line, "# ")) {
                 std::string title(trim(std::string_view(line).substr(2)));
                 const auto attributes = title.find(" {");
-                return attributes == std::string::npos ? title : title.substr(0, attributes);
+                return attributes == std::string::npos ? title
+                                                       : title.substr(0, attributes);
             }
         }
     }
@@ -611,7 +700,8 @@ void make_kit(const Options& options) {
         }
         if (test.points <= 0) {
             throw KitError(where(test.file, test.line) + ": test \"" + test.name +
-                           "\" checks exercise " + test.exercise + " but declares no points");
+                           "\" checks exercise " + test.exercise +
+                           " but declares no points");
         }
         points_for[test.exercise] += test.points;
         tests_for[test.exercise].push_back(test.name);
@@ -693,14 +783,14 @@ void make_kit(const Options& options) {
         book = "(The chapter text has no exercise section yet.)\n";
     }
     const bool has_example = folder && fs::exists(root / *folder / "example.cpp");
-    // The Debian packages: the book's base list, plus toml++ if the library reads scenes.
-    std::string packages =
-        "cmake g++ make pkg-config doctest-dev libglm-dev libstb-dev libfmt-dev libcli11-dev";
-    for (const auto& [rel, text] : kit) {
-        if (rel.filename() == "CMakeLists.txt" && text.find("tomlplusplus") != std::string::npos) {
-            packages += " libtomlplusplus-dev";
-            break;
-        }
+    // The Debian packages: the book's base list, plus toml++ if the kit has the scene
+    // layer (the only one that reads TOML).
+    std::string packages = "cmake g++ make pkg-config doctest-dev libglm-dev libstb-dev "
+                           "libfmt-dev libcli11-dev";
+    if (std::any_of(kit.begin(), kit.end(), [](const auto& file) {
+            return starts_with(file.first.generic_string(), "src/exactpixels/scene/");
+        })) {
+        packages += " libtomlplusplus-dev";
     }
     const std::map<std::string, std::string> values = {
         {"@PACKAGES@", packages},
@@ -728,8 +818,8 @@ void make_kit(const Options& options) {
               << stubbed.size() << " exercise" << (stubbed.size() == 1 ? "" : "s") << ", "
               << tests.size() << " test cases, " << total << " points)\n";
     for (const auto& region : stubbed) {
-        std::cout << "  " << region.id << "  " << where(region.file, region.kit_line) << "  "
-                  << points_for[region.id] << " points\n";
+        std::cout << "  " << region.id << "  " << where(region.file, region.kit_line)
+                  << "  " << points_for[region.id] << " points\n";
     }
 }
 
@@ -760,7 +850,8 @@ void restore_kit(const Options& options) {
         for (std::size_t i = 0; i < lines.size(); ++i) {
             out.push_back(lines[i]);
             const std::string_view body = trim(lines[i]);
-            if (!starts_with(body, kit_begin) || body.find(':') == std::string_view::npos) {
+            if (!starts_with(body, kit_begin) ||
+                body.find(':') == std::string_view::npos) {
                 continue;
             }
             const std::string_view spec = body.substr(kit_begin.size());
@@ -770,14 +861,16 @@ void restore_kit(const Options& options) {
             }
             const auto region = regions.find(id);
             if (region == regions.end()) {
-                throw KitError(where(rel, i + 1) + ": the source tree has no exercise " + id);
+                throw KitError(where(rel, i + 1) + ": the source tree has no exercise " +
+                               id);
             }
             std::size_t end = i + 1;
             while (end < lines.size() && trim(lines[end]) != kit_end + id) {
                 ++end;
             }
             if (end == lines.size()) {
-                throw KitError(where(rel, i + 1) + ": no '" + kit_end + id + "' after it");
+                throw KitError(where(rel, i + 1) + ": no '" + kit_end + id +
+                               "' after it");
             }
             out.insert(out.end(), region->second.solution.begin(),
                        region->second.solution.end());
@@ -817,8 +910,9 @@ void list_regions(const Options& options) {
 
 Options parse(int argc, char** argv) {
     if (argc < 2) {
-        throw KitError("usage: make-kit kit|restore|list --source ROOT [options]; see the "
-                       "top of src/kits/make_kit.cpp");
+        throw KitError(
+            "usage: make-kit kit|restore|list --source ROOT [options]; see the "
+            "top of src/kits/make_kit.cpp");
     }
     Options options;
     options.command = argv[1];
@@ -847,8 +941,8 @@ Options parse(int argc, char** argv) {
     if (options.source.empty()) {
         throw KitError("--source ROOT is required");
     }
-    if (options.command == "kit" &&
-        (options.template_dir.empty() || options.chapter.empty() || options.out.empty())) {
+    if (options.command == "kit" && (options.template_dir.empty() ||
+                                     options.chapter.empty() || options.out.empty())) {
         throw KitError("make-kit kit wants --template, --chapter and --out");
     }
     if (options.command == "restore" && options.kit.empty()) {
@@ -869,7 +963,8 @@ int main(int argc, char** argv) {
         } else if (options.command == "list") {
             list_regions(options);
         } else {
-            throw KitError("unknown command '" + options.command + "' (kit, restore, list)");
+            throw KitError("unknown command '" + options.command +
+                           "' (kit, restore, list)");
         }
     } catch (const std::exception& error) {
         std::cerr << "make-kit: " << error.what() << "\n";

@@ -1,0 +1,86 @@
+// fixed_point.hpp: screen coordinates snapped to 8 sub-pixel bits.
+//
+// Usage:
+//   FixedPoint2 p = snap_to_subpixel({10.3, 4.0});  // {2637, 1024}: units of 1/256 px
+//
+// A fixed-point coordinate X stands for the real coordinate X / 256 in pixels (origin
+// top-left, y down). Snapping rounds to the nearest 1/256 px, halves rounding up
+// (towards +infinity), so a shift of the whole input by a multiple of 1/256 px never
+// changes how it snaps. Chapter 2 derives the coordinate range for which rasterizing
+// snapped triangles is exact (@eq:edge-range): |x|, |y| <= max_fixed_coordinate (2^28
+// units = 2^20 px = 1048576 px). snap_in_range and check_fixed_range reject anything
+// outside with an Error naming the value; nothing is ever wrapped around.
+#pragma once
+
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/types.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdint>
+
+namespace exactpixels {
+
+/// A screen point in fixed point: x and y in units of 1/256 px (subpixel_scale).
+struct FixedPoint2 {
+    std::int64_t x = 0; ///< x in 1/256 px
+    std::int64_t y = 0; ///< y in 1/256 px
+    /// Points are equal when both coordinates are.
+    friend constexpr bool operator==(FixedPoint2, FixedPoint2) = default;
+};
+
+//> snap
+/// The nearest fixed-point value to v pixels (halves round up). v must be finite and
+/// within the range chapter 2 documents; callers check it first.
+inline std::int64_t snap_to_subpixel(double v) {
+    return static_cast<std::int64_t>(std::floor(v * subpixel_scale + 0.5));
+}
+
+/// The nearest fixed-point point to p (each coordinate snapped on its own).
+inline FixedPoint2 snap_to_subpixel(Point2 p) {
+    return {snap_to_subpixel(p.x), snap_to_subpixel(p.y)};
+}
+//< snap
+
+//> fixed-range
+/// The largest |x| or |y| in 1/256 px for which the fixed-point rasterizers are exact:
+/// 2^28 (2^20 px). Every edge function value is then below 2^60 in magnitude and the
+/// sum of all three below 2^62, inside int64 (@eq:edge-range).
+inline constexpr std::int64_t max_fixed_coordinate = std::int64_t{1} << 28;
+/// max_fixed_coordinate in pixels: 1048576 px.
+inline constexpr double max_fixed_coordinate_px =
+    static_cast<double>(max_fixed_coordinate) / subpixel_scale;
+//< fixed-range
+
+/// Throws Error naming the value unless |p.x| and |p.y| are at most max_fixed_coordinate.
+inline void check_fixed_range(FixedPoint2 p) {
+    for (const std::int64_t value : {p.x, p.y}) {
+        if (value < -max_fixed_coordinate || value > max_fixed_coordinate) {
+            throw Error(fmt::format("fixed-point coordinate {} (1/256 px) is outside the "
+                                    "exact range [-2^28, 2^28]",
+                                    value));
+        }
+    }
+}
+
+/// snap_to_subpixel(p) after checking p: throws Error naming the value when a
+/// coordinate is not finite or its magnitude exceeds max_fixed_coordinate_px.
+inline FixedPoint2 snap_in_range(Point2 p) {
+    for (const double value : {p.x, p.y}) {
+        if (!(std::abs(value) <= max_fixed_coordinate_px)) { // false for NaN too
+            throw Error(fmt::format("coordinate {} px is outside the exact fixed-point "
+                                    "range [-1048576, 1048576]",
+                                    value));
+        }
+    }
+    return snap_to_subpixel(p);
+}
+
+/// The point in pixels that a fixed-point point stands for (exact in double).
+inline Point2 to_pixels(FixedPoint2 p) {
+    return {static_cast<double>(p.x) / subpixel_scale,
+            static_cast<double>(p.y) / subpixel_scale};
+}
+
+} // namespace exactpixels

@@ -1,0 +1,97 @@
+// scene.hpp: a scene as the renderer sees it, after loading and checking (chapter 7).
+//
+// Usage:
+//   Scene scene = load_scene("chapters/07-scenes/scenes/corridor.toml"); //
+//   scene_loader.hpp RenderResult result = render_scene(scene);                     //
+//   scene_renderer.hpp
+//
+// World space: x right, y up, z forward (away from a camera at the default pose), the
+// same handedness as view space. The camera looks from `position` at `target`; view
+// space has the eye at the origin, x right, y up and z the depth along the view
+// direction (z > 0 in front), as chapter 3's pinhole (perspective.hpp); the depth z is
+// the w of chapter 3. Colours are linear RGB in [0, 1]; texture coordinates are in
+// texels (texel (i, j) covers [i, i+1) x [j, j+1)). Everything in a Scene has been
+// checked by the loader: sizes in range, numbers finite, no degenerate triangle.
+#pragma once
+
+#include "exactpixels/base/types.hpp"
+#include "exactpixels/texture/texture.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
+
+#include <array>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace exactpixels {
+
+/// How the camera maps view space to the screen.
+enum class Projection {
+    perspective, ///< a pinhole: screen position x / z, depth w = z varies
+    orthographic ///< parallel rays: screen position x, depth w = 1 everywhere
+};
+
+/// The camera of a scene.
+struct SceneCamera {
+    Projection projection = Projection::perspective; ///< pinhole or parallel
+    double fov_degrees = 60.0; ///< perspective: vertical field of view, (0, 180)
+    double view_height = 2.0;  ///< orthographic: world units from top to bottom
+    glm::dvec3 position = {0.0, 0.0, -4.0}; ///< the eye, world units
+    glm::dvec3 target = {0.0, 0.0, 0.0};    ///< the point seen at the image centre
+    glm::dvec3 up = {0.0, 1.0, 0.0};        ///< which way is up on screen
+    double near = 0.1; ///< perspective: the near plane's depth, world units, > 0
+};
+
+/// One corner of a mesh triangle in world space.
+struct SceneVertex {
+    glm::dvec3 position;             ///< world units
+    TexCoord uv = {0.0, 0.0};        ///< texels (used only when the mesh has a texture)
+    Colour colour = {1.0, 1.0, 1.0}; ///< linear RGB (used only with vertex colours)
+};
+
+/// The mapper a scene asks for: one of chapter 3's, or `auto` (choose per span).
+struct MapperChoice {
+    bool automatic = true; ///< choose per span within the error budget
+    Mapper mapper = {};    ///< the mapper when not automatic
+};
+
+/// The render options of a scene.
+struct RenderOptions {
+    Precision precision = Precision::float64; ///< the mappers' inner-loop arithmetic
+    MapperChoice mapper = {};                 ///< which mapper, or auto
+    double budget = 0.5;  ///< auto: the largest texel error allowed, texels, > 0
+    bool rounding = true; ///< chapter 4's rounding modifier (false: rule 1 everywhere)
+};
+
+/// A named texture of a scene.
+struct SceneTexture {
+    std::string name; ///< the key under [textures]
+    Texture texture;  ///< the texels
+};
+
+/// A mesh: triangles and the effects they call for.
+struct SceneMesh {
+    std::string name;                                  ///< for messages and reports
+    std::vector<std::array<SceneVertex, 3>> triangles; ///< world space, none degenerate
+    std::optional<std::size_t> texture;                ///< index into Scene::textures
+    Wrap wrap = Wrap::repeat;                          ///< how its texture repeats
+    bool vertex_colours = false;     ///< interpolate SceneVertex::colour
+    Colour colour = {1.0, 1.0, 1.0}; ///< the flat colour (texels are multiplied by it)
+    bool cull_back = false;          ///< skip triangles whose back faces the camera
+    std::string origin; ///< "FILE:LINE:COLUMN: mesh[k]", where the mesh was defined
+};
+
+/// A loaded, checked scene.
+struct Scene {
+    std::filesystem::path file;          ///< where it was read from (for messages)
+    int width = 320;                     ///< image width, pixels, [1, 8192]
+    int height = 240;                    ///< image height, pixels, [1, 8192]
+    Colour background = {0.0, 0.0, 0.0}; ///< linear RGB of uncovered pixels
+    SceneCamera camera = {};             ///< how the scene is seen
+    RenderOptions options = {};          ///< precision, mapper, budget, rounding
+    std::vector<SceneTexture> textures;  ///< named textures
+    std::vector<SceneMesh> meshes;       ///< drawn in order (later meshes on top)
+};
+
+} // namespace exactpixels

@@ -1,0 +1,678 @@
+#include "exactpixels/scene/scene_loader.hpp"
+
+#include "exactpixels/base/error.hpp"
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+#ifndef EXACTPIXELS_SCENES_DIR
+#define EXACTPIXELS_SCENES_DIR "chapters/07-scenes/scenes"
+#endif
+
+namespace exactpixels {
+
+namespace {
+
+const char* type_name(const toml::node& node) {
+    switch (node.type()) {
+    case toml::node_type::table:
+        return "a table";
+    case toml::node_type::array:
+        return "an array";
+    case toml::node_type::string:
+        return "a string";
+    case toml::node_type::integer:
+        return "an integer";
+    case toml::node_type::floating_point:
+        return "a float";
+    case toml::node_type::boolean:
+        return "a boolean";
+    case toml::node_type::date:
+    case toml::node_type::time:
+    case toml::node_type::date_time:
+        return "a date or time";
+    default:
+        return "nothing";
+    }
+}
+
+/// Where a message points: the file, and the line and column in it.
+struct Context {
+    std::string file;
+    std::filesystem::path folder;
+
+    [[noreturn]] void fail(const toml::source_region& where, const std::string& path,
+                           const std::string& message) const {
+        throw Error(fmt::format("{}:{}:{}: {}: {}", file, where.begin.line,
+                                where.begin.column, path, message));
+    }
+};
+
+//> table-reader
+/// One TOML table being read: every key read is recorded, and finish() rejects the
+/// keys nobody asked for, naming the allowed ones.
+class TableReader {
+  public:
+    TableReader(const Context& context, const toml::table& table, std::string path,
+                std::vector<std::string> allowed)
+        : context_(context), table_(table), path_(std::move(path)),
+          allowed_(std::move(allowed)) {}
+
+    /// The value at `key`, or nullptr when absent.
+    const toml::node* find(const std::string& key) const {
+        assert(std::find(allowed_.begin(), allowed_.end(), key) != allowed_.end());
+        return table_.get(key);
+    }
+    /// The value at `key`; an Error naming the table when it is absent.
+    const toml::node& require(const std::string& key) const {
+        const toml::node* node = find(key);
+        if (node == nullptr) {
+            context_.fail(table_.source(), path_,
+                          fmt::format("the required key '{}' is missing", key));
+        }
+        return *node;
+    }
+    /// Rejects every key of the table that is not an allowed one.
+    void finish() const {
+        for (auto&& [key, node] : table_) {
+            const std::string name(key.str());
+            if (std::find(allowed_.begin(), allowed_.end(), name) == allowed_.end()) {
+                context_.fail(key.source(), child(name),
+                              fmt::format("unknown key (allowed here: {})",
+                                          fmt::join(allowed_, ", ")));
+            }
+        }
+    }
+    /// The key path of a child: "image.width", "mesh[2].uv".
+    std::string child(const std::string& key) const {
+        return path_.empty() ? key : path_ + "." + key;
+    }
+    const Context& context() const { return context_; }
+    const toml::table& table() const { return table_; }
+    const std::string& path() const { return path_; }
+
+  private:
+    const Context& context_;
+    const toml::table& table_;
+    std::string path_;
+    std::vector<std::string> allowed_;
+};
+//< table-reader
+
+//> read-number
+/// A finite number in [lo, hi] (integers are accepted where a float is asked for).
+double read_number(const Context& c, const toml::node& node, const std::string& path,
+                   double lo, double hi) {
+    if (!node.is_number()) {
+        c.fail(node.source(), path,
+               fmt::format("expected a number, got {}", type_name(node)));
+    }
+    const double value = node.value<double>().value();
+    if (!std::isfinite(value)) {
+        c.fail(node.source(), path, fmt::format("{} is not a finite number", value));
+    }
+    if (value < lo || value > hi) {
+        c.fail(node.source(), path,
+               fmt::format("{} is out of range (allowed: {} to {})", value, lo, hi));
+    }
+    return value;
+}
+//< read-number
+
+/// A number that must be strictly above `lo` (a size, a distance, a budget).
+double read_positive(const Context& c, const toml::node& node, const std::string& path,
+                     double lo, double hi) {
+    const double value = read_number(c, node, path, lo, hi);
+    if (!(value > lo)) {
+        c.fail(node.source(), path, fmt::format("{} must be greater than {}", value, lo));
+    }
+    return value;
+}
+
+int read_integer(const Context& c, const toml::node& node, const std::string& path,
+                 int lo, int hi) {
+    if (!node.is_integer()) {
+        c.fail(node.source(), path,
+               fmt::format("expected an integer, got {}", type_name(node)));
+    }
+    const std::int64_t value = node.as_integer()->get();
+    if (value < lo || value > hi) {
+        c.fail(node.source(), path,
+               fmt::format("{} is out of range (allowed: {} to {})", value, lo, hi));
+    }
+    return static_cast<int>(value);
+}
+
+std::string read_string(const Context& c, const toml::node& node,
+                        const std::string& path) {
+    if (!node.is_string()) {
+        c.fail(node.source(), path,
+               fmt::format("expected a string, got {}", type_name(node)));
+    }
+    return node.as_string()->get();
+}
+
+bool read_bool(const Context& c, const toml::node& node, const std::string& path) {
+    if (!node.is_boolean()) {
+        c.fail(node.source(), path,
+               fmt::format("expected true or false, got {}", type_name(node)));
+    }
+    return node.as_boolean()->get();
+}
+
+/// One of a list of words.
+std::size_t read_choice(const Context& c, const toml::node& node, const std::string& path,
+                        const std::vector<std::string>& words) {
+    const std::string word = read_string(c, node, path);
+    const auto found = std::find(words.begin(), words.end(), word);
+    if (found == words.end()) {
+        c.fail(node.source(), path,
+               fmt::format("'{}' is not one of: {}", word, fmt::join(words, ", ")));
+    }
+    return static_cast<std::size_t>(found - words.begin());
+}
+
+const toml::array& read_array(const Context& c, const toml::node& node,
+                              const std::string& path, std::size_t min_size,
+                              std::size_t max_size) {
+    if (!node.is_array()) {
+        c.fail(node.source(), path,
+               fmt::format("expected an array, got {}", type_name(node)));
+    }
+    const toml::array& array = *node.as_array();
+    if (array.size() < min_size || array.size() > max_size) {
+        c.fail(node.source(), path,
+               min_size == max_size
+                   ? fmt::format("expected {} elements, got {}", min_size, array.size())
+                   : fmt::format("expected {} to {} elements, got {}", min_size, max_size,
+                                 array.size()));
+    }
+    return array;
+}
+
+/// N numbers in [lo, hi]: a point, a size, a colour.
+template <int N>
+glm::vec<N, double> read_vector(const Context& c, const toml::node& node,
+                                const std::string& path, double lo, double hi) {
+    const toml::array& array = read_array(c, node, path, N, N);
+    glm::vec<N, double> result{};
+    for (int k = 0; k < N; ++k) {
+        result[k] = read_number(c, *array.get(static_cast<std::size_t>(k)),
+                                fmt::format("{}[{}]", path, k), lo, hi);
+    }
+    return result;
+}
+
+/// World coordinates are kept within +-1e6 units so that every product stays finite.
+constexpr double world_limit = 1e6;
+/// Texture coordinates are kept within +-2^20 texels.
+constexpr double uv_limit = 1 << 20;
+
+glm::dvec3 read_point(const Context& c, const toml::node& node, const std::string& path) {
+    return read_vector<3>(c, node, path, -world_limit, world_limit);
+}
+
+Colour read_colour(const Context& c, const toml::node& node, const std::string& path) {
+    return read_vector<3>(c, node, path, 0.0, 1.0);
+}
+
+/// A list of `count` N-vectors (count = 0: any number >= 1).
+template <int N>
+std::vector<glm::vec<N, double>> read_vectors(const Context& c, const toml::node& node,
+                                              const std::string& path, std::size_t count,
+                                              double lo, double hi) {
+    const std::size_t max_count = static_cast<std::size_t>(3 * max_scene_triangles);
+    const toml::array& array =
+        read_array(c, node, path, count == 0 ? 1 : count, count == 0 ? max_count : count);
+    std::vector<glm::vec<N, double>> result;
+    for (std::size_t k = 0; k < array.size(); ++k) {
+        result.push_back(
+            read_vector<N>(c, *array.get(k), fmt::format("{}[{}]", path, k), lo, hi));
+    }
+    return result;
+}
+
+void read_image(const TableReader& t, Scene& scene) {
+    const Context& c = t.context();
+    if (const auto* n = t.find("width")) {
+        scene.width = read_integer(c, *n, t.child("width"), 1, max_image_side);
+    }
+    if (const auto* n = t.find("height")) {
+        scene.height = read_integer(c, *n, t.child("height"), 1, max_image_side);
+    }
+    if (static_cast<long long>(scene.width) * scene.height > max_image_pixels) {
+        c.fail(t.table().source(), t.path(),
+               fmt::format("{} x {} pixels is more than the {} allowed", scene.width,
+                           scene.height, max_image_pixels));
+    }
+    if (const auto* n = t.find("background")) {
+        scene.background = read_colour(c, *n, t.child("background"));
+    }
+    t.finish();
+}
+
+void read_camera(const TableReader& t, SceneCamera& camera) {
+    const Context& c = t.context();
+    if (const auto* n = t.find("projection")) {
+        camera.projection = read_choice(c, *n, t.child("projection"),
+                                        {"perspective", "orthographic"}) == 0
+                                ? Projection::perspective
+                                : Projection::orthographic;
+    }
+    if (const auto* n = t.find("fov")) {
+        camera.fov_degrees = read_positive(c, *n, t.child("fov"), 0.0, 179.0);
+    }
+    if (const auto* n = t.find("view_height")) {
+        camera.view_height =
+            read_positive(c, *n, t.child("view_height"), 0.0, world_limit);
+    }
+    if (const auto* n = t.find("near")) {
+        camera.near = read_positive(c, *n, t.child("near"), 0.0, world_limit);
+    }
+    if (const auto* n = t.find("position")) {
+        camera.position = read_point(c, *n, t.child("position"));
+    }
+    if (const auto* n = t.find("target")) {
+        camera.target = read_point(c, *n, t.child("target"));
+    }
+    if (const auto* n = t.find("up")) {
+        camera.up = read_point(c, *n, t.child("up"));
+    }
+    // The view direction and up must span a plane (chapter 7, @eq:scene-look-at).
+    const glm::dvec3 forward = camera.target - camera.position;
+    if (glm::length(glm::cross(forward, camera.up)) <=
+            1e-12 * glm::length(forward) * glm::length(camera.up) ||
+        glm::length(forward) == 0.0) {
+        c.fail(t.table().source(), t.path(),
+               "the camera looks along its up direction, or at its own position");
+    }
+    t.finish();
+}
+
+MapperChoice read_mapper(const Context& c, const toml::node& node,
+                         const std::string& path) {
+    const std::string word = read_string(c, node, path);
+    if (word == "auto") {
+        return {};
+    }
+    if (const std::optional<Mapper> mapper = parse_mapper(word)) {
+        return {false, *mapper};
+    }
+    for (const char* prefix : {"subdivided:", "quadratic:"}) {
+        if (word.rfind(prefix, 0) == 0) {
+            c.fail(node.source(), path,
+                   fmt::format("'{}': the span after '{}' must be a whole number of "
+                               "pixels from {} to {}",
+                               word, prefix, min_mapper_span, max_mapper_span));
+        }
+    }
+    c.fail(node.source(), path,
+           fmt::format("'{}' is not a mapper (allowed: auto, exact, affine, "
+                       "quadratic, subdivided:N, quadratic:N)",
+                       word));
+}
+
+void read_render(const TableReader& t, RenderOptions& options) {
+    const Context& c = t.context();
+    if (const auto* n = t.find("precision")) {
+        const std::size_t k =
+            read_choice(c, *n, t.child("precision"), {"float", "double", "fixed"});
+        options.precision =
+            std::array{Precision::float32, Precision::float64, Precision::fixed}[k];
+    }
+    if (const auto* n = t.find("mapper")) {
+        options.mapper = read_mapper(c, *n, t.child("mapper"));
+    }
+    if (const auto* n = t.find("budget")) {
+        options.budget = read_positive(c, *n, t.child("budget"), 0.0, 1e6);
+    }
+    if (const auto* n = t.find("rounding")) {
+        options.rounding = read_bool(c, *n, t.child("rounding"));
+    }
+    t.finish();
+}
+
+//> read-texture
+Texture read_texture(const TableReader& t) {
+    const Context& c = t.context();
+    const std::size_t kind = read_choice(c, t.require("kind"), t.child("kind"),
+                                         {"checkerboard", "grid", "f", "png"});
+    const auto size = [&] {
+        const toml::node& node = t.require("size");
+        const toml::array& array = read_array(c, node, t.child("size"), 2, 2);
+        return glm::ivec2{
+            read_integer(c, *array.get(0), t.child("size") + "[0]", 1, max_texture_side),
+            read_integer(c, *array.get(1), t.child("size") + "[1]", 1, max_texture_side)};
+    };
+    if (kind == 0 || kind == 1) { // checkerboard, grid
+        const glm::ivec2 s = size();
+        const char* key = kind == 0 ? "square" : "spacing";
+        const int cell =
+            read_integer(c, t.require(key), t.child(key), 1, max_texture_side);
+        t.finish();
+        if (kind == 0) {
+            return checkerboard_texture(s.x, s.y, cell);
+        }
+        std::vector<Rgba8> texels; // lines one texel wide every `cell` texels
+        for (int j = 0; j < s.y; ++j) {
+            for (int i = 0; i < s.x; ++i) {
+                const bool line = i % cell == 0 || j % cell == 0;
+                texels.push_back(line ? rgba(250, 210, 60) : rgba(30, 40, 70));
+            }
+        }
+        return Texture(s.x, s.y, std::move(texels));
+    }
+    if (kind == 2) { // the "F"
+        const int cell = read_integer(c, t.require("cell"), t.child("cell"), 1, 256);
+        t.finish();
+        return f_texture(cell);
+    }
+    const toml::node& file = t.require("file");
+    const std::filesystem::path path = c.folder / read_string(c, file, t.child("file"));
+    t.finish();
+    try {
+        return load_texture(path);
+    } catch (const Error& error) { // names the path and the reason
+        c.fail(file.source(), t.child("file"), error.what());
+    }
+}
+//< read-texture
+
+/// The quad a-b-c-d as two triangles sharing the diagonal a-c.
+void add_quad(SceneMesh& mesh, const std::array<SceneVertex, 4>& q) {
+    mesh.triangles.push_back({q[0], q[1], q[2]});
+    mesh.triangles.push_back({q[0], q[2], q[3]});
+}
+
+/// A vertex on a plane spanned by two axes, uv = texels_per_unit * plane coordinates.
+SceneVertex planar_vertex(glm::dvec3 p, glm::dvec2 plane, double texels_per_unit) {
+    return {p, plane * texels_per_unit, {1.0, 1.0, 1.0}};
+}
+
+//> read-primitive
+/// Fills mesh.triangles from the primitive the mesh table describes.
+void read_primitive(const TableReader& t, SceneMesh& mesh, std::size_t primitive) {
+    const Context& c = t.context();
+    const auto tpu = [&] {
+        const toml::node* n = t.find("texels_per_unit");
+        return n ? read_positive(c, *n, t.child("texels_per_unit"), 0.0, 1e6) : 16.0;
+    };
+    const auto optional_vectors = [&](const char* key, std::size_t count, auto tag,
+                                      double lo, double hi) {
+        constexpr int N = decltype(tag)::value;
+        const toml::node* n = t.find(key);
+        return n ? read_vectors<N>(c, *n, t.child(key), count, lo, hi)
+                 : std::vector<glm::vec<N, double>>{};
+    };
+    using Two = std::integral_constant<int, 2>;
+    using Three = std::integral_constant<int, 3>;
+    if (primitive == 0 || primitive == 1) { // triangles, quad
+        const char* key = primitive == 0 ? "positions" : "corners";
+        const std::vector<glm::dvec3> p =
+            read_vectors<3>(c, t.require(key), t.child(key), primitive == 1 ? 4 : 0,
+                            -world_limit, world_limit);
+        if (primitive == 0 && p.size() % 3 != 0) {
+            c.fail(t.require(key).source(), t.child(key),
+                   fmt::format("{} points do not make whole triangles (need a "
+                               "multiple of 3)",
+                               p.size()));
+        }
+        const auto uv = optional_vectors("uv", p.size(), Two{}, -uv_limit, uv_limit);
+        const auto rgb = optional_vectors("colours", p.size(), Three{}, 0.0, 1.0);
+        mesh.vertex_colours = !rgb.empty();
+        std::vector<SceneVertex> v(p.size());
+        for (std::size_t k = 0; k < p.size(); ++k) {
+            v[k] = {p[k], uv.empty() ? TexCoord{} : uv[k],
+                    rgb.empty() ? Colour{1.0, 1.0, 1.0} : rgb[k]};
+        }
+        if (primitive == 1) {
+            add_quad(mesh, {v[0], v[1], v[2], v[3]});
+        } else {
+            for (std::size_t k = 0; k < v.size(); k += 3) {
+                mesh.triangles.push_back({v[k], v[k + 1], v[k + 2]});
+            }
+        }
+    } else if (primitive == 2) { // box: six faces, outward, counter-clockwise outside
+        const glm::dvec3 centre = read_point(c, t.require("centre"), t.child("centre"));
+        const glm::dvec3 h =
+            0.5 * read_vector<3>(c, t.require("size"), t.child("size"), 0.0, world_limit);
+        const double s = tpu();
+        for (int axis = 0; axis < 3; ++axis) {
+            for (const double side : {-1.0, 1.0}) {
+                const int a = (axis + 1) % 3, b = (axis + 2) % 3; // the face's axes
+                std::array<SceneVertex, 4> q;
+                const double corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+                for (int k = 0; k < 4; ++k) {
+                    glm::dvec3 p = centre;
+                    p[axis] += side * h[axis];
+                    // Walk the face one way on the + side and the other way on the -
+                    // side, so that every face is counter-clockwise seen from outside.
+                    const double ca = corners[k][0], cb = corners[k][1] * side;
+                    p[a] += ca * h[a];
+                    p[b] += cb * h[b];
+                    q[static_cast<std::size_t>(k)] = planar_vertex(
+                        p, {(ca + 1) * h[a], (1 - corners[k][1]) * h[b]}, s);
+                }
+                add_quad(mesh, q);
+            }
+        }
+    } else if (primitive == 3) { // floor: a horizontal rectangle at height y
+        const double y =
+            read_number(c, t.require("y"), t.child("y"), -world_limit, world_limit);
+        const glm::dvec2 x =
+            read_vector<2>(c, t.require("x"), t.child("x"), -world_limit, world_limit);
+        const glm::dvec2 z =
+            read_vector<2>(c, t.require("z"), t.child("z"), -world_limit, world_limit);
+        const double s = tpu();
+        add_quad(mesh, {planar_vertex({x[0], y, z[0]}, {x[0], -z[0]}, s),
+                        planar_vertex({x[0], y, z[1]}, {x[0], -z[1]}, s),
+                        planar_vertex({x[1], y, z[1]}, {x[1], -z[1]}, s),
+                        planar_vertex({x[1], y, z[0]}, {x[1], -z[0]}, s)});
+    } else { // fan: a disc of `segments` triangles around a centre, facing -z
+        const glm::dvec3 centre = read_point(c, t.require("centre"), t.child("centre"));
+        const double radius =
+            read_positive(c, t.require("radius"), t.child("radius"), 0.0, world_limit);
+        const int segments =
+            read_integer(c, t.require("segments"), t.child("segments"), 3, 4096);
+        const auto rim = optional_vectors("rim_colours", 0, Three{}, 0.0, 1.0);
+        const toml::node* hub = t.find("centre_colour");
+        mesh.vertex_colours = !rim.empty() || hub != nullptr;
+        const Colour hub_colour =
+            hub ? read_colour(c, *hub, t.child("centre_colour")) : Colour{1.0, 1.0, 1.0};
+        const double s = tpu();
+        const auto rim_vertex = [&](int k) {
+            const double angle = 2.0 * std::numbers::pi * (k % segments) / segments;
+            const glm::dvec2 d{std::cos(angle), std::sin(angle)};
+            SceneVertex v = planar_vertex(centre + radius * glm::dvec3{d.x, d.y, 0.0},
+                                          radius * glm::dvec2{1.0 + d.x, 1.0 - d.y}, s);
+            if (!rim.empty()) {
+                v.colour = rim[static_cast<std::size_t>(k % segments) % rim.size()];
+            }
+            return v;
+        };
+        SceneVertex middle = planar_vertex(centre, {radius, radius}, s);
+        middle.colour = hub_colour;
+        for (int k = 0; k < segments; ++k) {
+            mesh.triangles.push_back({middle, rim_vertex(k), rim_vertex(k + 1)});
+        }
+    }
+}
+//< read-primitive
+
+const std::vector<std::string> primitive_keys[5] = {
+    {"positions", "uv", "colours"},
+    {"corners", "uv", "colours"},
+    {"centre", "size", "texels_per_unit"},
+    {"y", "x", "z", "texels_per_unit"},
+    {"centre", "radius", "segments", "rim_colours", "centre_colour", "texels_per_unit"},
+};
+
+SceneMesh read_mesh(const Context& c, const toml::table& table, const std::string& path,
+                    const Scene& scene) {
+    // Which keys are allowed depends on the primitive: read it first.
+    const toml::node* kind_node = table.get("primitive");
+    if (kind_node == nullptr) {
+        c.fail(table.source(), path, "the required key 'primitive' is missing");
+    }
+    const std::size_t primitive = read_choice(
+        c, *kind_node, path + ".primitive", {"triangles", "quad", "box", "floor", "fan"});
+    std::vector<std::string> allowed{"primitive", "name",   "texture",
+                                     "wrap",      "colour", "cull"};
+    allowed.insert(allowed.end(), primitive_keys[primitive].begin(),
+                   primitive_keys[primitive].end());
+    const TableReader t(c, table, path, allowed);
+    SceneMesh mesh;
+    mesh.name = path;
+    mesh.origin = fmt::format("{}:{}:{}: {}", c.file, table.source().begin.line,
+                              table.source().begin.column, path);
+    if (const auto* n = t.find("name")) {
+        mesh.name = read_string(c, *n, t.child("name"));
+    }
+    if (const auto* n = t.find("texture")) {
+        const std::string name = read_string(c, *n, t.child("texture"));
+        const auto found =
+            std::find_if(scene.textures.begin(), scene.textures.end(),
+                         [&](const SceneTexture& s) { return s.name == name; });
+        if (found == scene.textures.end()) {
+            c.fail(n->source(), t.child("texture"),
+                   fmt::format("no texture named '{}' under [textures]", name));
+        }
+        mesh.texture = static_cast<std::size_t>(found - scene.textures.begin());
+    }
+    if (const auto* n = t.find("wrap")) {
+        mesh.wrap = read_choice(c, *n, t.child("wrap"), {"repeat", "clamp"}) == 0
+                        ? Wrap::repeat
+                        : Wrap::clamp;
+    }
+    if (const auto* n = t.find("colour")) {
+        mesh.colour = read_colour(c, *n, t.child("colour"));
+    }
+    if (const auto* n = t.find("cull")) {
+        mesh.cull_back = read_choice(c, *n, t.child("cull"), {"none", "back"}) == 1;
+    }
+    read_primitive(t, mesh, primitive);
+    t.finish();
+    // A triangle of zero area in the world has no plane to interpolate on: reject it
+    // here rather than draw nothing later.
+    for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+        const auto& tri = mesh.triangles[k];
+        const glm::dvec3 e1 = tri[1].position - tri[0].position;
+        const glm::dvec3 e2 = tri[2].position - tri[0].position;
+        const double area2 = glm::length(glm::cross(e1, e2));
+        if (!(area2 > 1e-12 * glm::length(e1) * glm::length(e2))) {
+            c.fail(table.source(), path,
+                   fmt::format("triangle {} is degenerate (its corners are collinear or "
+                               "coincide, so it has no area)",
+                               k));
+        }
+    }
+    return mesh;
+}
+
+} // namespace
+
+Scene parse_scene(std::string_view text, const std::filesystem::path& file,
+                  const std::filesystem::path& folder) {
+    const Context c{file.string(), folder};
+    toml::table root;
+    try {
+        root = toml::parse(text, file.string());
+    } catch (const toml::parse_error& error) {
+        c.fail(error.source(), "(syntax)", std::string(error.description()));
+    }
+    Scene scene;
+    scene.file = file;
+    const TableReader top(c, root, "", {"image", "camera", "render", "textures", "mesh"});
+    const auto section = [&](const char* key) -> const toml::table* {
+        const toml::node* n = top.find(key);
+        if (n != nullptr && !n->is_table()) {
+            c.fail(n->source(), key,
+                   fmt::format("expected a table, got {}", type_name(*n)));
+        }
+        return n ? n->as_table() : nullptr;
+    };
+    if (const toml::table* t = section("image")) {
+        read_image(TableReader(c, *t, "image", {"width", "height", "background"}), scene);
+    }
+    if (const toml::table* t = section("camera")) {
+        read_camera(TableReader(c, *t, "camera",
+                                {"projection", "fov", "view_height", "near", "position",
+                                 "target", "up"}),
+                    scene.camera);
+    }
+    if (const toml::table* t = section("render")) {
+        read_render(
+            TableReader(c, *t, "render", {"precision", "mapper", "budget", "rounding"}),
+            scene.options);
+    }
+    if (const toml::table* t = section("textures")) {
+        for (auto&& [key, node] : *t) {
+            const std::string path = "textures." + std::string(key.str());
+            if (!node.is_table()) {
+                c.fail(node.source(), path,
+                       fmt::format("expected a table, got {}", type_name(node)));
+            }
+            const TableReader reader(
+                c, *node.as_table(), path,
+                {"kind", "size", "square", "spacing", "cell", "file"});
+            scene.textures.push_back({std::string(key.str()), read_texture(reader)});
+        }
+    }
+    const toml::node* meshes = top.find("mesh");
+    if (meshes == nullptr) {
+        c.fail(root.source(), "mesh", "the scene has no [[mesh]]: nothing to draw");
+    }
+    const toml::array& list = read_array(c, *meshes, "mesh", 1, 100000);
+    long long triangles = 0;
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        const std::string path = fmt::format("mesh[{}]", k);
+        const toml::node& node = *list.get(k);
+        if (!node.is_table()) {
+            c.fail(node.source(), path,
+                   fmt::format("expected a table, got {}", type_name(node)));
+        }
+        scene.meshes.push_back(read_mesh(c, *node.as_table(), path, scene));
+        triangles += static_cast<long long>(scene.meshes.back().triangles.size());
+        if (triangles > max_scene_triangles) {
+            c.fail(
+                node.source(), path,
+                fmt::format("the scene has more than {} triangles", max_scene_triangles));
+        }
+    }
+    top.finish();
+    return scene;
+}
+
+Scene load_scene(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw Error(fmt::format("{}: cannot open the scene file", path.string()));
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (in.bad()) {
+        throw Error(fmt::format("{}: cannot read the scene file", path.string()));
+    }
+    return parse_scene(text.str(), path, path.parent_path());
+}
+
+std::filesystem::path shipped_scene_folder() {
+    return EXACTPIXELS_SCENES_DIR;
+}
+
+std::vector<std::filesystem::path> shipped_scenes() {
+    const std::filesystem::path folder = shipped_scene_folder();
+    return {folder / "corridor.toml", folder / "horizon.toml", folder / "gouraud.toml",
+            folder / "sprites.toml", folder / "near_plane.toml"};
+}
+
+} // namespace exactpixels

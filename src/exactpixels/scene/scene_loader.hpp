@@ -1,0 +1,49 @@
+// scene_loader.hpp: reading a scene from a TOML file, checking every value on the way.
+//
+// Usage:
+//   Scene scene = load_scene("scenes/floor.toml");   // throws Error on any bad input
+//   Scene same = parse_scene(text, "floor.toml", "scenes"); // from a string
+//
+// The format is documented in chapter 7 (@sec:scene-format). Every message of a thrown
+// Error starts with `FILE:LINE:COLUMN: KEY.PATH:` (the place of the offending value, or
+// of the table that lacks a required key), then says what is wrong and what is
+// allowed. Rejected: TOML syntax errors, unknown keys, values of the wrong type,
+// values out of range (sizes, field of view, budget...), NaN and infinities, missing or
+// unreadable texture files, and degenerate meshes (a triangle of zero area). Texture
+// file paths are relative to the scene file's folder.
+#pragma once
+
+#include "exactpixels/scene/scene.hpp"
+
+#include <filesystem>
+#include <string_view>
+
+namespace exactpixels {
+
+/// The largest image side, pixels.
+inline constexpr int max_image_side = 8192;
+/// The largest image, pixels (2^24: 64 MiB of RGBA8).
+inline constexpr long long max_image_pixels = 1LL << 24;
+/// The largest procedural texture side, texels.
+inline constexpr int max_texture_side = 4096;
+/// The most triangles a scene may hold.
+inline constexpr long long max_scene_triangles = 1 << 20;
+
+/// Parses and checks a scene given as TOML text. `file` names it in messages; texture
+/// paths are resolved against `folder`. Throws Error (see above) on any bad input.
+Scene parse_scene(std::string_view text, const std::filesystem::path& file,
+                  const std::filesystem::path& folder);
+
+/// Reads, parses and checks the scene file at `path`. Throws Error naming the path when
+/// it cannot be read, and as parse_scene does for bad content.
+Scene load_scene(const std::filesystem::path& path);
+
+/// The folder of the scenes that ship with chapter 7 (chapters/07-scenes/scenes in the
+/// source tree this library was built from).
+std::filesystem::path shipped_scene_folder();
+
+/// The shipped scenes, in the order the chapter presents them (the first is the one
+/// `exactpixels render` draws when given no scene).
+std::vector<std::filesystem::path> shipped_scenes();
+
+} // namespace exactpixels

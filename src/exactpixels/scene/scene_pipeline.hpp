@@ -1,0 +1,71 @@
+// scene_pipeline.hpp: which stages a mesh needs, and which mapper `auto` picks for a
+// span.
+//
+// Usage:
+//   MeshStages stages = plan_mesh(mesh);                // what this mesh pays for
+//   AutoChoice c = choose_span_mapper(span, 0.5);       // auto: cheapest within 0.5
+//   long long d = mapper_divides(c.mapper, span.count); // divides that mapper performs
+//
+// A stage runs only when the mesh calls for it (chapter 7, @sec:only-what-is-needed):
+// no texture, no texture coordinates and no sampling; no vertex colours, no colour
+// interpolation; depth w constant over a triangle, the affine mapper, which is exact
+// there and divides nothing; every corner in front of the near plane, no clipping.
+// Spans are chapter 3's PerspectiveSpan: u/w, v/w and 1/w at the first pixel centre and
+// their change per pixel; errors are in texels of texture coordinate.
+#pragma once
+
+#include "exactpixels/scene/scene.hpp"
+#include "exactpixels/texture/span_mappers.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
+
+namespace exactpixels {
+
+/// The stages a mesh's pipeline is built from.
+struct MeshStages {
+    bool texture = false; ///< texture coordinates are interpolated and sampled
+    bool colour = false;  ///< vertex colours are interpolated
+    bool tint = false;    ///< a flat colour other than white multiplies the texels
+};
+
+/// The stages `mesh` calls for (the per-triangle choices, perspective or not and
+/// clipping or not, are made per triangle by the renderer).
+MeshStages plan_mesh(const SceneMesh& mesh);
+
+/// True when the three depths are equal: u and v are then linear on screen and the
+/// affine mapper is exact (@eq:scene-constant-w).
+bool constant_depth(double w0, double w1, double w2);
+
+/// The worst error of the quadratic mapper over a span of depth ratio r, as a fraction
+/// of the span's texel extent: the bound of @eq:scene-quadratic-bound, the smaller of
+/// (sqrt 3 / 18) (s - 1)^2 / (s + 1) and (s - 1)^2 / (4 (s + 1) sqrt s), s = max(r, 1/r).
+/// r > 0. Never below the true worst error (quadratic_error_max of chapter 3), and
+/// within a factor 3.1 of it for r in [1/64, 64].
+double quadratic_error_bound(double r);
+
+/// The worst texel error of the chord from pixel k0 to pixel k1 of the span (the exact
+/// values at both ends joined by a straight line), from chapter 3's affine bound
+/// (@eq:affine-bound): the larger of the bounds for u and for v.
+double chord_error_bound(const PerspectiveSpan<double>& s, int k0, int k1);
+
+/// The same for Pursey's parabola from pixel k0 to pixel k1 (@eq:scene-quadratic-bound).
+double parabola_error_bound(const PerspectiveSpan<double>& s, int k0, int k1);
+
+/// The result of the auto choice for one span: the mapper and the divides spent
+/// choosing it (the bounds need the exact values at the ends).
+struct AutoChoice {
+    Mapper mapper;         ///< the cheapest mapper within the budget
+    long long divides = 0; ///< divides the choice itself performed
+};
+
+/// `auto` for one span whose depth varies: the mapper with the fewest divides whose
+/// derived error bound is within `budget` texels, trying in order the chord (one
+/// subdivided piece), the quadratic, subdivided pieces of halving length, and exact.
+/// budget > 0.
+AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget);
+
+/// How many divides chapter 3's mapper performs on a span of `count` pixels (the same
+/// for every precision): exact count; affine 0; subdivided 1 + 3 P; quadratic 10;
+/// quadratic subdivided 10 P; P = ceil(count / span) pieces (@eq:scene-divides).
+long long mapper_divides(Mapper mapper, int count);
+
+} // namespace exactpixels

@@ -1,0 +1,380 @@
+#include "exactpixels/scene/scene_renderer.hpp"
+
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/fixed_point.hpp"
+#include "exactpixels/raster/scanline.hpp"
+#include "exactpixels/raster/screen_plane.hpp"
+#include "exactpixels/scene/scene_pipeline.hpp"
+#include "exactpixels/texture/clipping.hpp"
+#include "exactpixels/texture/perspective.hpp"
+#include "exactpixels/texture/rounding.hpp"
+
+#include <fmt/format.h>
+
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+namespace exactpixels {
+
+long long RenderReport::divides() const {
+    long long total = auto_choice.divides;
+    for (const StageCounter& m : mappers) {
+        total += m.divides;
+    }
+    return total;
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The camera's axes in world space (@eq:scene-look-at).
+struct CameraFrame {
+    glm::dvec3 eye, right, up, forward;
+};
+
+CameraFrame camera_frame(const SceneCamera& camera) {
+    const glm::dvec3 forward = glm::normalize(camera.target - camera.position);
+    const glm::dvec3 right = glm::normalize(glm::cross(camera.up, forward));
+    return {camera.position, right, glm::cross(forward, right), forward};
+}
+
+//> project-vertex
+/// Chapter 3's pinhole for a perspective camera: the focal length in pixels from the
+/// vertical field of view, the view axis through the image centre (@eq:scene-focal).
+Pinhole pinhole(const Scene& scene) {
+    const double half_angle = 0.5 * scene.camera.fov_degrees * std::acos(-1.0) / 180.0;
+    return {0.5 * scene.height / std::tan(half_angle),
+            {0.5 * scene.width, 0.5 * scene.height}};
+}
+
+/// View space to screen: pixels (origin top-left, y down) and the depth w. The
+/// orthographic camera keeps x and y (scaled) and gives every point w = 1.
+TexturedVertex project_vertex(const Scene& scene, const Pinhole& camera,
+                              const ViewVertex& v) {
+    if (scene.camera.projection == Projection::perspective) {
+        return project(camera, v.position, v.uv); // w = z >= near > 0
+    }
+    const double scale = scene.height / scene.camera.view_height; // pixels per unit
+    return {camera.centre + scale * Point2{v.position.x, -v.position.y}, 1.0, v.uv};
+}
+//< project-vertex
+
+Rgba8 multiply(Rgba8 texel, const Colour& c) {
+    return to_rgba8(
+        Colour{texel.r / 255.0 * c.r, texel.g / 255.0 * c.g, texel.b / 255.0 * c.b});
+}
+
+/// Everything the per-triangle code needs about the mesh and the frame.
+struct MeshContext {
+    const Scene& scene;
+    const SceneMesh& mesh;
+    MeshStages stages;
+    const Texture* texture;
+    Framebuffer& frame;
+    TexelMap* coordinates;
+    RenderReport& report;
+    std::vector<Rgba8> row; // one span of shaded pixels
+};
+
+//> draw-triangle
+/// Rasterizes one projected triangle and runs the mesh's stages on its spans.
+void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
+                   const std::array<Colour, 3>& colours) {
+    RenderReport& report = m.report;
+    const Clock::time_point start = Clock::now();
+    std::array<FixedPoint2, 3> snapped{};
+    std::array<Point2, 3> p{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        snapped[k] = snap_in_range(tv[k].position); // Error beyond +-2^20 px
+        p[k] = to_pixels(snapped[k]); // the planes run through the snapped corners
+    }
+    // Texture stage setup: only for textured meshes.
+    const bool affine_exact =
+        constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
+    const RenderOptions& options = m.scene.options;
+    const MapperSettings settings{.mapper = options.mapper.mapper,
+                                  .precision = options.precision,
+                                  .rounding = {},
+                                  .wrap = m.mesh.wrap};
+    TexturePlanes planes{};
+    TexelRounding perspective_rounding{}, affine_rounding{};
+    if (m.stages.texture) {
+        check_textured_triangle(tv, settings); // ranges of chapter 3's mappers
+        planes = texture_planes(p, tv);
+        if (options.rounding) { // chapter 4: ties go right, or down
+            perspective_rounding = choose_rounding(tv, MapperKind::exact);
+            affine_rounding = choose_rounding(tv, MapperKind::affine);
+        }
+        report.texture.triangles += 1;
+    }
+    // Colour stage setup: only for meshes with vertex colours.
+    std::array<ScreenPlane, 3> rgb{};
+    if (m.stages.colour) {
+        for (int c = 0; c < 3; ++c) {
+            rgb[static_cast<std::size_t>(c)] =
+                plane_through(p, {colours[0][c], colours[1][c], colours[2][c]});
+        }
+        report.colour.triangles += 1;
+    }
+    const Rgba8 flat = to_rgba8(m.mesh.colour);
+    if (!m.stages.texture && !m.stages.colour) {
+        report.flat.triangles += 1;
+    }
+    std::array<bool, 5> mapper_used{};
+    double shading_seconds = 0.0;
+    report.raster.triangles += 1;
+
+    scanline_spans(snapped, Viewport{m.frame.width(), m.frame.height()}, [&](Span s) {
+        const int count = s.x_end - s.x_begin;
+        const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
+        report.raster.spans += 1;
+        report.raster.pixels += count;
+        m.row.assign(static_cast<std::size_t>(count), flat);
+        //> texture-stage
+        if (m.stages.texture) {
+            const Clock::time_point t0 = Clock::now();
+            const PerspectiveSpan<double> ps = perspective_span(planes, s);
+            Mapper mapper = options.mapper.mapper;
+            if (affine_exact &&
+                (options.mapper.automatic || mapper.kind == MapperKind::affine)) {
+                mapper = {MapperKind::affine, 2}; // exact here, and no divide
+            } else if (options.mapper.automatic) {
+                const AutoChoice choice = choose_span_mapper(ps, options.budget);
+                mapper = choice.mapper;
+                report.auto_choice.spans += 1;
+                report.auto_choice.pixels += count;
+                report.auto_choice.divides += choice.divides;
+            }
+            const TexelRounding r = mapper.kind == MapperKind::affine
+                                        ? affine_rounding
+                                        : perspective_rounding;
+            map_span(mapper, options.precision, r, ps, affine_span(planes, s),
+                     [&](int k, int i, int j, double uu, double vv) {
+                         m.row[static_cast<std::size_t>(k)] =
+                             fetch_texel(*m.texture, i, j, m.mesh.wrap);
+                         if (m.coordinates != nullptr) {
+                             const std::size_t at =
+                                 static_cast<std::size_t>(s.y) *
+                                     static_cast<std::size_t>(m.frame.width()) +
+                                 static_cast<std::size_t>(s.x_begin + k);
+                             m.coordinates->covered[at] = true;
+                             m.coordinates->i[at] = i;
+                             m.coordinates->j[at] = j;
+                             m.coordinates->u[at] = uu;
+                             m.coordinates->v[at] = vv;
+                         }
+                     });
+            StageCounter& used = report.mappers[static_cast<std::size_t>(mapper.kind)];
+            const long long divides = mapper_divides(mapper, count);
+            used.triangles += mapper_used[static_cast<std::size_t>(mapper.kind)] ? 0 : 1;
+            mapper_used[static_cast<std::size_t>(mapper.kind)] = true;
+            used.spans += 1;
+            used.pixels += count;
+            used.divides += divides;
+            const double spent = seconds_since(t0);
+            used.seconds += spent;
+            report.texture.spans += 1;
+            report.texture.pixels += count;
+            report.texture.divides += divides;
+            report.texture.seconds += spent;
+            shading_seconds += spent;
+        }
+        //< texture-stage
+        //> colour-stage
+        if (m.stages.colour) { // colours are linear on screen: one add per channel
+            const Clock::time_point t0 = Clock::now();
+            Colour c{rgb[0].at(x, y), rgb[1].at(x, y), rgb[2].at(x, y)};
+            const Colour dc{rgb[0].g.dx, rgb[1].g.dx, rgb[2].g.dx};
+            for (Rgba8& pixel : m.row) {
+                pixel = m.stages.texture ? multiply(pixel, c) : to_rgba8(c);
+                c += dc;
+            }
+            report.colour.spans += 1;
+            report.colour.pixels += count;
+            const double spent = seconds_since(t0);
+            report.colour.seconds += spent;
+            shading_seconds += spent;
+        } else if (m.stages.texture && m.stages.tint) {
+            for (Rgba8& pixel : m.row) {
+                pixel = multiply(pixel, m.mesh.colour);
+            }
+        } else if (!m.stages.texture) {
+            report.flat.spans += 1;
+            report.flat.pixels += count;
+        }
+        //< colour-stage
+        for (int k = 0; k < count; ++k) {
+            m.frame.at(s.x_begin + k, s.y) = m.row[static_cast<std::size_t>(k)];
+        }
+        if (m.coordinates != nullptr && !m.stages.texture) {
+            for (int k = 0; k < count; ++k) { // an untextured pixel now
+                m.coordinates->covered[static_cast<std::size_t>(s.y) *
+                                           static_cast<std::size_t>(m.frame.width()) +
+                                       static_cast<std::size_t>(s.x_begin + k)] = false;
+            }
+        }
+    });
+    report.raster.seconds += seconds_since(start) - shading_seconds;
+}
+//< draw-triangle
+
+/// A triangle in view space with the colour of each corner.
+struct ClippedCorners {
+    std::array<ViewVertex, 3> view;
+    std::array<Colour, 3> colours;
+};
+
+/// Chapter 6's near-plane clipping of a triangle and its vertex colours. clip_near
+/// carries the texture coordinate; colours are linear along view-space edges too, so a
+/// second and third pass with the colour channels in place of uv cut them at the same
+/// parameter (the cut depends only on the positions).
+std::vector<ClippedCorners> clip_corners(const std::array<ViewVertex, 3>& view,
+                                         const std::array<Colour, 3>& colours,
+                                         double near, bool with_colours) {
+    const ClippedTriangles uv = clip_near(view, near);
+    std::vector<ClippedCorners> pieces(static_cast<std::size_t>(uv.count));
+    for (std::size_t t = 0; t < pieces.size(); ++t) {
+        pieces[t].view = uv.triangles[t];
+        pieces[t].colours = colours; // unused unless with_colours
+    }
+    if (with_colours) {
+        std::array<ViewVertex, 3> rg = view, b = view;
+        for (std::size_t k = 0; k < 3; ++k) {
+            rg[k].uv = {colours[k].r, colours[k].g};
+            b[k].uv = {colours[k].b, 0.0};
+        }
+        const ClippedTriangles crg = clip_near(rg, near), cb = clip_near(b, near);
+        for (std::size_t t = 0; t < pieces.size(); ++t) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                assert(crg.triangles[t][k].position == pieces[t].view[k].position);
+                pieces[t].colours[k] = {crg.triangles[t][k].uv.x,
+                                        crg.triangles[t][k].uv.y,
+                                        cb.triangles[t][k].uv.x};
+            }
+        }
+    }
+    return pieces;
+}
+
+/// Twice the signed screen area of the triangle; negative when it faces the camera
+/// (its corners run counter-clockwise as seen from its front).
+double screen_area2(const std::array<TexturedVertex, 3>& t) {
+    const Point2 a = t[1].position - t[0].position, b = t[2].position - t[0].position;
+    return a.x * b.y - a.y * b.x;
+}
+
+} // namespace
+
+//> render-scene
+RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
+    const Clock::time_point start = Clock::now();
+    RenderResult result{
+        Framebuffer(scene.width, scene.height, to_rgba8(scene.background)), {}};
+    RenderReport& report = result.report;
+    const CameraFrame camera = camera_frame(scene.camera);
+    const bool perspective = scene.camera.projection == Projection::perspective;
+    const Pinhole lens = pinhole(scene);
+    for (const SceneMesh& mesh : scene.meshes) {
+        MeshContext m{scene,
+                      mesh,
+                      plan_mesh(mesh),
+                      mesh.texture ? &scene.textures[*mesh.texture].texture : nullptr,
+                      result.image,
+                      coordinates,
+                      report,
+                      {}};
+        try {
+            for (const std::array<SceneVertex, 3>& triangle : mesh.triangles) {
+                const Clock::time_point t0 = Clock::now();
+                std::array<ViewVertex, 3> view{};
+                std::array<Colour, 3> colours{};
+                bool in_front = true;
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const glm::dvec3 d = triangle[k].position - camera.eye;
+                    view[k] = {{glm::dot(d, camera.right), glm::dot(d, camera.up),
+                                glm::dot(d, camera.forward)},
+                               triangle[k].uv};
+                    colours[k] = triangle[k].colour;
+                    in_front = in_front && view[k].position.z >= scene.camera.near;
+                }
+                report.geometry.triangles += 1;
+                //> clip-only-when-needed
+                std::vector<ClippedCorners> pieces{{view, colours}};
+                if (perspective && !in_front) { // the only triangles that pay for it
+                    const Clock::time_point c0 = Clock::now();
+                    pieces =
+                        clip_corners(view, colours, scene.camera.near, m.stages.colour);
+                    report.clipping.triangles += 1;
+                    report.clipping.seconds += seconds_since(c0);
+                }
+                //< clip-only-when-needed
+                std::vector<std::array<TexturedVertex, 3>> projected;
+                for (const ClippedCorners& piece : pieces) {
+                    std::array<TexturedVertex, 3> tv{};
+                    for (std::size_t k = 0; k < 3; ++k) {
+                        tv[k] = project_vertex(scene, lens, piece.view[k]);
+                    }
+                    projected.push_back(tv);
+                }
+                report.geometry.seconds += seconds_since(t0);
+                for (std::size_t k = 0; k < projected.size(); ++k) {
+                    if (mesh.cull_back && screen_area2(projected[k]) >= 0.0) {
+                        report.culling.triangles += 1;
+                        continue;
+                    }
+                    draw_triangle(m, projected[k], pieces[k].colours);
+                }
+            }
+        } catch (const Error& error) {
+            throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
+        }
+    }
+    report.seconds = seconds_since(start);
+    return result;
+}
+//< render-scene
+
+std::string format_report(const RenderReport& r) {
+    std::string out = fmt::format("{:<18} {:>10} {:>8} {:>10} {:>10} {:>10}\n", "stage",
+                                  "triangles", "spans", "pixels", "divides", "ms");
+    const auto line = [&](const std::string& name, const StageCounter& c, bool always) {
+        if (always || c.triangles > 0 || c.spans > 0) {
+            out +=
+                fmt::format("{:<18} {:>10} {:>8} {:>10} {:>10} {:>10.3f}\n", name,
+                            c.triangles, c.spans, c.pixels, c.divides, 1e3 * c.seconds);
+        }
+    };
+    line("geometry", r.geometry, true);
+    line("clipping", r.clipping, true);
+    line("culling", r.culling, false);
+    line("raster", r.raster, true);
+    line("flat colour", r.flat, true);
+    line("vertex colour", r.colour, true);
+    line("texture", r.texture, true);
+    line("auto choice", r.auto_choice, false);
+    for (std::size_t k = 0; k < r.mappers.size(); ++k) {
+        line(fmt::format("  mapper {}", mapper_kind_name(static_cast<MapperKind>(k))),
+             r.mappers[k], false);
+    }
+    out += fmt::format("total: {} divides, {:.3f} ms\n", r.divides(), 1e3 * r.seconds);
+    return out;
+}
+
+TexelError check_against_exact(const Scene& scene) {
+    TexelMap map(scene.width, scene.height), reference(scene.width, scene.height);
+    render_scene(scene, &map);
+    Scene exact = scene;
+    exact.options.mapper = {false, {MapperKind::exact}};
+    exact.options.precision = Precision::float64;
+    render_scene(exact, &reference);
+    return compare_texel_maps(reference, map);
+}
+
+} // namespace exactpixels

@@ -1,0 +1,75 @@
+// scene_renderer.hpp: drawing a loaded scene, running for each mesh only the stages it
+// calls for, and counting what ran.
+//
+// Usage:
+//   const Scene scene = load_scene("scenes/horizon.toml");
+//   RenderResult result = render_scene(scene);
+//   write_png("horizon.png", result.image);
+//   std::fputs(format_report(result.report).c_str(), stdout);
+//   TexelError e = check_against_exact(scene);   // worst and mean texel error
+//
+// Meshes are drawn in file order, each over the ones before (there is no depth buffer:
+// scenes are laid out so that the order is right, or use `cull = "back"` on closed
+// meshes). Coverage is chapter 1's fixed-point scanline rasterizer (vertices snapped to
+// 1/256 px, top-left rule); texture coordinates come from chapter 3's span mappers with
+// chapter 4's rounding; colours are interpolated linearly on screen. Timings are wall
+// clock seconds of a single run; counts are exact.
+#pragma once
+
+#include "exactpixels/base/framebuffer.hpp"
+#include "exactpixels/scene/scene.hpp"
+#include "exactpixels/texture/texel_error.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
+
+#include <array>
+#include <string>
+
+namespace exactpixels {
+
+/// What one stage did over a whole render.
+struct StageCounter {
+    long long triangles = 0; ///< triangles the stage ran on
+    long long spans = 0;     ///< row spans it ran on
+    long long pixels = 0;    ///< pixels it ran on
+    long long divides = 0;   ///< divides it performed
+    double seconds = 0.0;    ///< time spent in it
+};
+
+/// What ran while rendering a scene: one counter per stage and per mapper.
+struct RenderReport {
+    StageCounter geometry;    ///< triangles moved to view space and projected
+    StageCounter clipping;    ///< triangles that crossed the near plane
+    StageCounter culling;     ///< triangles skipped because their back faces the camera
+    StageCounter raster;      ///< coverage: the triangles, spans and pixels drawn
+    StageCounter flat;        ///< pixels written with the mesh's flat colour
+    StageCounter colour;      ///< vertex colours interpolated and applied
+    StageCounter texture;     ///< texture coordinates computed and texels sampled
+    StageCounter auto_choice; ///< spans whose mapper `auto` chose, and its divides
+    std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
+    double seconds = 0.0;                ///< the whole render
+
+    /// Every divide performed: the mappers' and auto's.
+    long long divides() const;
+};
+
+/// A rendered image and what it cost.
+struct RenderResult {
+    Framebuffer image;   ///< scene.width x scene.height
+    RenderReport report; ///< what ran
+};
+
+/// Renders the scene. When `coordinates` is given (scene-sized), it records at every
+/// pixel last written by a textured triangle the texel coordinate the mapper computed
+/// (and the indices it picked); pixels written by untextured triangles are uncovered.
+/// Throws Error naming the mesh (file, line, column, key path) when a triangle leaves
+/// the range the rasterizer or the mapper can handle exactly.
+RenderResult render_scene(const Scene& scene, TexelMap* coordinates = nullptr);
+
+/// The report as a table: one line per stage and per mapper that ran.
+std::string format_report(const RenderReport& report);
+
+/// Renders the scene as it asks and again with the exact mapper in double precision,
+/// and measures the texel error of the first against the second.
+TexelError check_against_exact(const Scene& scene);
+
+} // namespace exactpixels

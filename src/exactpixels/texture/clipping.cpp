@@ -1,0 +1,109 @@
+#include "exactpixels/texture/clipping.hpp"
+
+#include "exactpixels/base/error.hpp"
+
+#include <fmt/format.h>
+
+#include <cassert>
+#include <cmath>
+
+namespace exactpixels {
+
+namespace {
+void check_clip_input(const std::array<ViewVertex, 3>& v, double near) {
+    if (!std::isfinite(near) || !(near > 0.0)) {
+        throw Error(fmt::format("clip_near: near = {} (must be finite and > 0)", near));
+    }
+    for (int k = 0; k < 3; ++k) {
+        const ViewVertex& p = v[static_cast<std::size_t>(k)];
+        for (const double c :
+             {p.position.x, p.position.y, p.position.z, p.uv.x, p.uv.y}) {
+            if (!std::isfinite(c)) {
+                throw Error(fmt::format("clip_near: vertex {} has a coordinate {} "
+                                        "(position and uv must be finite)",
+                                        k, c));
+            }
+        }
+    }
+}
+} // namespace
+
+//> near-crossing
+ViewVertex near_crossing(const ViewVertex& inside, const ViewVertex& outside,
+                         double near) {
+    assert(inside.position.z >= near && outside.position.z < near);
+    // @eq:clip-t: the denominator is at least inside.z - near >= 0 plus a positive part.
+    const double t =
+        (inside.position.z - near) / (inside.position.z - outside.position.z);
+    ViewVertex p{inside.position + t * (outside.position - inside.position),
+                 inside.uv + t * (outside.uv - inside.uv)};
+    p.position.z = near; // on the plane exactly, whatever the rounding of t
+    return p;
+}
+//< near-crossing
+
+//> clip-near
+ClippedTriangles clip_near(const std::array<ViewVertex, 3>& v, double near) {
+    check_clip_input(v, near);
+    ClippedTriangles out{};
+    //> exercise ch06-clip-near: walk the edges, keep inside corners, add crossings.
+    std::array<ViewVertex, 4> polygon{}; // one plane cuts a triangle into <= 4 corners
+    int n = 0;
+    for (std::size_t k = 0; k < 3; ++k) {
+        const ViewVertex& a = v[k];
+        const ViewVertex& b = v[(k + 1) % 3];
+        const bool a_in = a.position.z >= near, b_in = b.position.z >= near;
+        if (a_in) {
+            polygon[static_cast<std::size_t>(n++)] = a;
+        }
+        if (a_in != b_in) { // the edge crosses: always interpolate inside -> outside
+            polygon[static_cast<std::size_t>(n++)] =
+                a_in ? near_crossing(a, b, near) : near_crossing(b, a, near);
+        }
+    }
+    // A fan from the first corner: 3 corners give 1 triangle, 4 give 2.
+    for (int k = 1; k + 1 < n; ++k) {
+        out.triangles[static_cast<std::size_t>(out.count++)] = {
+            polygon[0], polygon[static_cast<std::size_t>(k)],
+            polygon[static_cast<std::size_t>(k + 1)]};
+    }
+    //| const bool all_in = v[0].position.z >= near && v[1].position.z >= near &&
+    //|                     v[2].position.z >= near;
+    //| if (all_in) {
+    //|     out.triangles[0] = v; // stub: keep whole triangles, drop any that cross
+    //|     out.count = 1;
+    //| }
+    //< exercise ch06-clip-near
+    return out;
+}
+//< clip-near
+
+ProjectedTriangles clip_and_project(const Pinhole& camera,
+                                    const std::array<ViewVertex, 3>& v, double near) {
+    const ClippedTriangles c = clip_near(v, near);
+    ProjectedTriangles out{};
+    for (int k = 0; k < c.count; ++k) {
+        const auto& t = c.triangles[static_cast<std::size_t>(k)];
+        out.triangles[static_cast<std::size_t>(k)] = {
+            project(camera, t[0].position, t[0].uv),
+            project(camera, t[1].position, t[1].uv),
+            project(camera, t[2].position, t[2].uv)};
+    }
+    out.count = c.count;
+    return out;
+}
+
+void draw_view_triangle(Framebuffer& frame, const Pinhole& camera,
+                        const std::array<ViewVertex, 3>& v, double near,
+                        const Texture& texture, const MapperSettings& settings) {
+    const ProjectedTriangles p = clip_and_project(camera, v, near);
+    for (int k = 0; k < p.count; ++k) { // check every piece before drawing any
+        check_textured_triangle(p.triangles[static_cast<std::size_t>(k)], settings);
+    }
+    for (int k = 0; k < p.count; ++k) {
+        draw_textured_triangle(frame, p.triangles[static_cast<std::size_t>(k)], texture,
+                               settings);
+    }
+}
+
+} // namespace exactpixels

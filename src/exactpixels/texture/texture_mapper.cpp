@@ -1,0 +1,154 @@
+#include "exactpixels/texture/texture_mapper.hpp"
+
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/fixed_point.hpp"
+#include "exactpixels/raster/scanline.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace exactpixels {
+
+int real_texel_index(double u, std::int32_t bias) {
+    const std::int32_t offset = bias - texel_scale / 2; // b' in floor((U + b') / D)
+    if (offset >= 0) {
+        return static_cast<int>(std::floor(u + double(offset) / texel_scale));
+    }
+    // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1; bias = D/2 - 1
+    // makes this ceil(u) - 1, rule 2.
+    return static_cast<int>(std::ceil(u + double(offset + 1) / texel_scale)) - 1;
+}
+
+TexelMap::TexelMap(int width_, int height_)
+    : width(width_), height(height_),
+      covered(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_),
+              false),
+      i(covered.size(), 0), j(covered.size(), 0), u(covered.size(), 0.0),
+      v(covered.size(), 0.0) {
+    if (width_ < 0 || height_ < 0) {
+        throw Error(fmt::format("texel map: negative size {}x{}", width_, height_));
+    }
+}
+
+void check_textured_triangle(const std::array<TexturedVertex, 3>& v,
+                             const MapperSettings& settings) {
+    const double position_limit = max_fixed_coordinate_px;
+    const double uv_limit = settings.precision == Precision::fixed ? 16384.0 : 1e30;
+    const int span = settings.mapper.span;
+    for (int k = 0; k < 3; ++k) {
+        const TexturedVertex& p = v[static_cast<std::size_t>(k)];
+        for (const double c : {p.position.x, p.position.y}) {
+            if (!std::isfinite(c) || std::abs(c) > position_limit) {
+                throw Error(
+                    fmt::format("textured triangle: vertex {} has position {} px, "
+                                "not finite or beyond +-2^20 px",
+                                k, c));
+            }
+        }
+        if (!std::isfinite(p.w) || !(p.w > 0.0)) {
+            throw Error(fmt::format("textured triangle: vertex {} has depth w = {} "
+                                    "(w must be finite and > 0)",
+                                    k, p.w));
+        }
+        for (const double c : {p.uv.x, p.uv.y}) {
+            if (!std::isfinite(c) || std::abs(c) >= uv_limit) {
+                throw Error(fmt::format("textured triangle: vertex {} has texture "
+                                        "coordinate {} texels (must be finite, and below "
+                                        "2^14 in size for fixed point)",
+                                        k, c));
+            }
+        }
+    }
+    if (span < min_mapper_span || span > max_mapper_span) {
+        throw Error(fmt::format("mapper settings: span = {} pixels (must be in [{}, {}])",
+                                span, min_mapper_span, max_mapper_span));
+    }
+}
+
+TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
+                             const std::array<TexturedVertex, 3>& v) {
+    const auto plane = [&](auto value) {
+        return plane_through(corners, {value(v[0]), value(v[1]), value(v[2])});
+    };
+    // u/w, v/w and 1/w are linear in screen space (@eq:linear-in-screen); so are u and
+    // v of the affine mapper, by assumption.
+    return {plane([](const TexturedVertex& t) { return t.uv.x / t.w; }),
+            plane([](const TexturedVertex& t) { return t.uv.y / t.w; }),
+            plane([](const TexturedVertex& t) { return 1.0 / t.w; }),
+            plane([](const TexturedVertex& t) { return t.uv.x; }),
+            plane([](const TexturedVertex& t) { return t.uv.y; })};
+}
+
+PerspectiveSpan<double> perspective_span(const TexturePlanes& planes, Span s) {
+    const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
+    return {planes.u_w.at(x, y), planes.v_w.at(x, y), planes.one_w.at(x, y),
+            planes.u_w.g.dx,     planes.v_w.g.dx,     planes.one_w.g.dx,
+            s.x_end - s.x_begin};
+}
+
+AffineSpan<double> affine_span(const TexturePlanes& planes, Span s) {
+    const double x = s.x_begin + 0.5, y = s.y + 0.5;
+    return {planes.u.at(x, y), planes.v.at(x, y), planes.u.g.dx, planes.v.g.dx,
+            s.x_end - s.x_begin};
+}
+
+namespace {
+
+//> for-each-textured-pixel
+/// Rasterizes the triangle with chapter 1's fixed-point scanline spans and, for every
+/// covered pixel, calls pixel(x, y, i, j, u, v): the texel indices the mapper picked
+/// and the coordinate it computed (texels).
+template <class PixelFn>
+void for_each_textured_pixel(const std::array<TexturedVertex, 3>& v, Viewport viewport,
+                             const MapperSettings& settings, PixelFn&& pixel) {
+    check_textured_triangle(v, settings);
+    std::array<FixedPoint2, 3> snapped{};
+    std::array<Point2, 3> p{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        snapped[k] = snap_to_subpixel(v[k].position);
+        p[k] = to_pixels(snapped[k]); // the planes run through the snapped corners
+    }
+    const TexturePlanes planes = texture_planes(p, v);
+    scanline_spans(snapped, viewport, [&](Span s) {
+        const TexelRounding r = settings.row_rounding
+                                    ? settings.row_rounding(v, s.y + 0.5)
+                                    : settings.rounding;
+        map_span(settings.mapper, settings.precision, r, perspective_span(planes, s),
+                 affine_span(planes, s), [&](int k, int i, int j, double u, double vv) {
+                     pixel(s.x_begin + k, s.y, i, j, u, vv);
+                 });
+    });
+}
+//< for-each-textured-pixel
+
+} // namespace
+
+void map_textured_triangle(TexelMap& target, const std::array<TexturedVertex, 3>& v,
+                           const MapperSettings& settings) {
+    for_each_textured_pixel(v, Viewport{target.width, target.height}, settings,
+                            [&](int x, int y, int i, int j, double u, double vv) {
+                                const std::size_t at =
+                                    static_cast<std::size_t>(y) *
+                                        static_cast<std::size_t>(target.width) +
+                                    static_cast<std::size_t>(x);
+                                target.covered[at] = true;
+                                target.i[at] = i;
+                                target.j[at] = j;
+                                target.u[at] = u;
+                                target.v[at] = vv;
+                            });
+}
+
+//> draw-textured-triangle
+void draw_textured_triangle(Framebuffer& target, const std::array<TexturedVertex, 3>& v,
+                            const Texture& texture, const MapperSettings& settings) {
+    for_each_textured_pixel(v, Viewport{target.width(), target.height()}, settings,
+                            [&](int x, int y, int i, int j, double, double) {
+                                target.at(x, y) =
+                                    fetch_texel(texture, i, j, settings.wrap);
+                            });
+}
+//< draw-textured-triangle
+
+} // namespace exactpixels
