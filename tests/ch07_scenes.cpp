@@ -1,6 +1,7 @@
 // Chapter 7 tests: the shipped scenes render; each mesh runs only the stages it calls
 // for; `auto` stays within its budget; the derived bounds and divide counts hold.
 #include "exactpixels/perspective_error.hpp"
+#include "exactpixels/quadratic.hpp"
 #include "exactpixels/scene_loader.hpp"
 #include "exactpixels/scene_pipeline.hpp"
 #include "exactpixels/scene_renderer.hpp"
@@ -9,6 +10,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -286,6 +288,46 @@ TEST_CASE("auto picks the cheapest mapper whose bound is within the budget" *
           SpanMapper{MapperKind::subdivided, 200});
     CHECK(choose_span_mapper(steep, 362.0).mapper !=
           SpanMapper{MapperKind::subdivided, 200});
+}
+
+TEST_CASE("auto never picks a parabola that turns back inside its span") {
+    // Chapter 3's figure 3.3 span: depth ratio 4, 64 texels over 64 pixels. Its parabola
+    // is within a generous budget, but dips to -8/15 texel, outside the texels between
+    // its ends (@eq:pursey-overshoot); auto takes the next mapper instead.
+    const int count = 64;
+    const PerspectiveSpan<double> dip{
+        0.0, 0.0, 1.0, (64.0 / 4.0) / 63.0, 0.0, (1.0 / 4.0 - 1.0) / 63.0, count};
+    double lowest = 0.0;
+    map_span_quadratic(dip, [&](int, double u, double) { lowest = std::min(lowest, u); });
+    CHECK(lowest < -0.5);
+    CHECK(parabola_error_bound(dip, 0, count - 1) <= 100.0);
+    CHECK(choose_span_mapper(dip, 100.0).mapper.kind != MapperKind::quadratic);
+    // Random spans and budgets: whenever auto picks the parabola, its depth ratio is in
+    // [1/3, 3] and every value it hands out lies between its end values.
+    std::mt19937 rng(15);
+    std::uniform_real_distribution<double> depth(0.5, 50.0), tex(-300.0, 300.0),
+        budget(0.05, 50.0);
+    std::uniform_int_distribution<int> length(2, 400);
+    int parabolas = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const int n = length(rng) - 1;
+        const double w0 = depth(rng), w1 = depth(rng), u0 = tex(rng), u1 = tex(rng);
+        const PerspectiveSpan<double> s{
+            u0 / w0, 0.0, 1 / w0, (u1 / w1 - u0 / w0) / n, 0.0, (1 / w1 - 1 / w0) / n,
+            n + 1};
+        if (choose_span_mapper(s, budget(rng)).mapper.kind != MapperKind::quadratic) {
+            continue;
+        }
+        ++parabolas;
+        CHECK(pursey_is_monotonic(w1 / w0));
+        const double low = std::min(u0, u1), high = std::max(u0, u1);
+        const double slack = 1e-9 * (std::abs(u0) + std::abs(u1) + 1.0);
+        map_span_quadratic(s, [&](int, double u, double) {
+            CHECK(u >= low - slack);
+            CHECK(u <= high + slack);
+        });
+    }
+    CHECK(parabolas > 10);
 }
 
 TEST_CASE("mapper_divides counts every division chapter 3's mappers perform") {
