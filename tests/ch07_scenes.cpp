@@ -1,5 +1,6 @@
 // Chapter 7 tests: the shipped scenes render; each mesh runs only the stages it calls
 // for; `auto` stays within its budget; the derived bounds and divide counts hold.
+#include "exactpixels/gouraud_error.hpp"
 #include "exactpixels/perspective_error.hpp"
 #include "exactpixels/quadratic.hpp"
 #include "exactpixels/scene_loader.hpp"
@@ -328,6 +329,36 @@ TEST_CASE("auto never picks a parabola that turns back inside its span") {
         });
     }
     CHECK(parabolas > 10);
+}
+
+TEST_CASE(
+    "Gouraud colours are off by the affine error under perspective, and only then") {
+    // Orthographic sprites: w = 1 everywhere, screen-linear colours are exact (to the
+    // double rounding of stepping a plane, far below 1e-12).
+    CHECK(gouraud_perspective_error(shipped("sprites")).worst <= 1e-12);
+    const Scene gouraud = shipped("gouraud");
+    const auto only = [&](const std::string& name) {
+        Scene one = gouraud;
+        std::erase_if(one.meshes, [&](const SceneMesh& m) { return m.name != name; });
+        REQUIRE(one.meshes.size() == 1);
+        return gouraud_perspective_error(one);
+    };
+    // The fan lies in the plane z = 0, parallel to the screen: constant w, no error.
+    const GouraudError fan = only("fan");
+    CHECK(fan.pixels > 1000);
+    CHECK(fan.worst <= 1e-12);
+    // The tilted pair: corners at z from -0.5 to 1.5 seen from z = -5, so w from 4.5 to
+    // 6.5 (depth ratio at most 13/9), and no channel changes by more than 0.8 between
+    // corners. Chapter 3's affine bound for that span (@eq:affine-bound) caps the error,
+    // and the measured error is a sizeable part of it.
+    const GouraudError tilted = only("tilted pair");
+    const double bound = 0.8 * affine_error_bound(13.0 / 9.0);
+    MESSAGE("tilted pair: worst " << tilted.worst << ", bound " << bound);
+    CHECK(tilted.pixels > 1000);
+    CHECK(tilted.worst <= bound);
+    CHECK(tilted.worst > bound / 2);
+    // The whole scene: the figure program's table (tbl:gouraud-error) reports this.
+    CHECK(gouraud_perspective_error(gouraud).worst == tilted.worst);
 }
 
 TEST_CASE("mapper_divides counts every division chapter 3's mappers perform") {
