@@ -262,3 +262,61 @@ TEST_CASE("plain parentheses in HTML math do not stretch; \\left and \\right do"
     REQUIRE(fenced.exit_code == 0);
     CHECK(fenced.out.find("stretchy=\"true\"") != std::string::npos);
 }
+
+TEST_CASE("a claim the data contradicts fails naming the chapter line and the claim") {
+    FixtureBook book;
+    const std::string claim =
+        title + "Text.\n\nEvery variant [beats the naive rasterizer at 3 px]{.claim "
+                "data=\"ch07_facts.txt\" check=\"float8x8_over_naive_3px > 1\"}.\n";
+    // The data agrees: the text is shown as written, with no trace of the markup.
+    book.write("figures/ch07_facts.txt", "# speed over naive, 3 px\n"
+                                         "float8x8_over_naive_3px 1.24\n");
+    const auto agreed = book.render(claim);
+    REQUIRE(agreed.exit_code == 0);
+    CHECK(agreed.out.find("beats the naive rasterizer at 3 px") != std::string::npos);
+    CHECK(agreed.out.find("claim") == std::string::npos);
+    // The same claim on altered data fails the book, naming line 7 and quoting it.
+    book.write("figures/ch07_facts.txt", "float8x8_over_naive_3px 0.81\n");
+    const auto contradicted = book.render(claim);
+    CHECK(contradicted.exit_code != 0);
+    CHECK(contradicted.err.find(
+              "chapters/07-demo/chapter.md:7: error: claim contradicted") !=
+          std::string::npos);
+    CHECK(contradicted.err.find("beats the naive rasterizer at 3 px") !=
+          std::string::npos);
+    CHECK(contradicted.err.find("0.81") != std::string::npos);
+    // Facts can be compared with each other, and several conditions must all hold.
+    book.write("figures/ch07_facts.txt", "fixed 3.0\ndouble 2.5\n");
+    CHECK(book.render(title + "[fixed is slower]{.claim data=\"ch07_facts.txt\" "
+                              "check=\"fixed > double; fixed < 4\"}\n")
+              .exit_code == 0);
+    CHECK(book.render(title + "[fixed is faster]{.claim data=\"ch07_facts.txt\" "
+                              "check=\"fixed > double; fixed < double\"}\n")
+              .exit_code != 0);
+}
+
+TEST_CASE("a claim on missing data or an unknown name fails the book") {
+    FixtureBook book;
+    const auto missing = book.render(
+        title + "[a claim]{.claim data=\"ch07_gone.txt\" check=\"speed > 1\"}\n");
+    CHECK(missing.exit_code != 0);
+    CHECK(missing.err.find("ch07_gone.txt") != std::string::npos);
+    book.write("figures/ch07_facts.txt", "speed 2\n");
+    const auto unknown = book.render(
+        title + "[a claim]{.claim data=\"ch07_facts.txt\" check=\"sped > 1\"}\n");
+    CHECK(unknown.exit_code != 0);
+    CHECK(unknown.err.find("chapters/07-demo/chapter.md:5: error:") != std::string::npos);
+    CHECK(unknown.err.find("sped") != std::string::npos);
+}
+
+TEST_CASE("a fact span shows the measured value, formatted") {
+    FixtureBook book;
+    book.write("figures/ch07_facts.txt", "share 0.1834\n");
+    const auto result = book.render(
+        title + "It is []{.fact data=\"ch07_facts.txt\" name=\"share\" format=\"%.2f\"} "
+                "of it.\n");
+    REQUIRE(result.exit_code == 0);
+    CHECK(result.out.find("It is 0.18 of it.") != std::string::npos);
+    CHECK(book.render(title + "[]{.fact data=\"ch07_facts.txt\" name=\"nope\"}\n")
+              .exit_code != 0);
+}

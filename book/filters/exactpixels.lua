@@ -548,6 +548,89 @@ local function index_term(span)
   return out
 end
 
+-- Claims the build checks. A data file in the figure folder (written by a program the
+-- build runs, or copied there from a committed, dated full run) holds one fact per line,
+-- "NAME VALUE" with VALUE a number; "#" starts a comment.
+--   [text]{.claim data="FILE" check="NAME OP X; ..."}: every condition must hold, with OP
+--   one of < <= > >= == != and X a number or another NAME; the text is shown unchanged.
+--   []{.fact data="FILE" name="NAME" format="%.2f"}: the value itself, formatted.
+-- A contradicted claim, an unknown NAME or a missing FILE fails the build with
+-- "chapters/NN-slug/chapter.md:LINE: error: ..." quoting the claim.
+local fact_files = {}
+local function facts_of(dir, file, needle)
+  if fact_files[file] then return fact_files[file] end
+  local text = read_file(figures .. "/" .. file)
+  if not text then
+    fail(dir, needle, "claim data '" .. file .. "' was not made by the build")
+  end
+  local facts = {}
+  for _, line in ipairs(lines_of(text)) do
+    local name, value = line:gsub("#.*$", ""):match("^%s*([%w_%.%-]+)%s+(%S+)%s*$")
+    if name then
+      facts[name] = tonumber(value)
+      if not facts[name] then
+        fail(dir, needle, "claim data '" .. file .. "': '" .. name .. "' is not a number")
+      end
+    end
+  end
+  fact_files[file] = facts
+  return facts
+end
+
+local comparisons = {
+  ["<"] = function(a, b) return a < b end, ["<="] = function(a, b) return a <= b end,
+  [">"] = function(a, b) return a > b end, [">="] = function(a, b) return a >= b end,
+  ["=="] = function(a, b) return a == b end, ["!="] = function(a, b) return a ~= b end,
+}
+
+local function claim(span, dir)
+  local text = plain(pandoc.utils.stringify(span.content))
+  local file, check = span.attributes.data, span.attributes.check
+  local needle = check or text
+  if not file or not check then
+    fail(dir, text, "a .claim span needs data=\"FILE\" and check=\"NAME OP VALUE\": '"
+      .. text .. "'")
+  end
+  local facts = facts_of(dir, file, needle)
+  local function value_of(token)
+    local number = tonumber(token)
+    if number then return number end
+    if facts[token] == nil then
+      fail(dir, needle, "claim '" .. text .. "' uses '" .. token .. "', which " .. file
+        .. " does not define")
+    end
+    return facts[token]
+  end
+  for condition in (check .. ";"):gmatch("([^;]*);") do
+    if condition:match("%S") then
+      local left, op, right = condition:match("^%s*(%S+)%s*([<>=!]=?)%s*(%S+)%s*$")
+      if not left or not comparisons[op] then
+        fail(dir, needle, "claim '" .. text .. "': cannot read the check '" .. condition
+          .. "'")
+      end
+      local a, b = value_of(left), value_of(right)
+      if not comparisons[op](a, b) then
+        fail(dir, needle, string.format("claim contradicted by %s: %s is false (%s = %s, "
+          .. "%s = %s): '%s'", file, condition:gsub("^%s+", ""):gsub("%s+$", ""), left,
+          tostring(a), right, tostring(b), text))
+      end
+    end
+  end
+  return span.content
+end
+
+local function fact(span, dir)
+  local file, name = span.attributes.data, span.attributes.name
+  if not file or not name then
+    fail(dir, "{.fact", "a .fact span needs data=\"FILE\" and name=\"NAME\"")
+  end
+  local value = facts_of(dir, file, name)[name]
+  if value == nil then
+    fail(dir, name, "fact '" .. name .. "' is not in " .. file)
+  end
+  return pandoc.Str(string.format(span.attributes.format or "%g", value))
+end
+
 local function render_inlines(doc, dir_of_block)
   return doc:walk({
     Cite = function(cite)
@@ -561,6 +644,8 @@ local function render_inlines(doc, dir_of_block)
     Span = function(span)
       if span.classes:includes("test") then return test_reference(span, dir_of_block()) end
       if span.classes:includes("index") then return index_term(span) end
+      if span.classes:includes("claim") then return claim(span, dir_of_block()) end
+      if span.classes:includes("fact") then return fact(span, dir_of_block()) end
     end,
   })
 end
