@@ -320,3 +320,28 @@ TEST_CASE("a fact span shows the measured value, formatted") {
     CHECK(book.render(title + "[]{.fact data=\"ch07_facts.txt\" name=\"nope\"}\n")
               .exit_code != 0);
 }
+
+TEST_CASE("a claim can be checked against a committed Markdown table") {
+    FixtureBook book;
+    fs::create_directories(book.root / "chapters" / "07-demo");
+    book.write("chapters/07-demo/results.md", "Measured 2026-11-21.\n\n"
+                                              "| run | instructions per pixel |\n"
+                                              "|:--|--:|\n"
+                                              "| floor/exact_fixed | 139.9 |\n"
+                                              "| floor/exact_double | 124.8 |\n");
+    const std::string claim =
+        title +
+        "[exact fixed costs more work]{.claim data=\"chapters/07-demo/results.md\" "
+        "check=\"floor/exact_fixed > floor/exact_double\"}\n";
+    CHECK(book.render(claim).exit_code == 0);
+    book.write("chapters/07-demo/results.md", "| run | instructions per pixel |\n"
+                                              "|:--|--:|\n"
+                                              "| floor/exact_fixed | 119.9 |\n"
+                                              "| floor/exact_double | 124.8 |\n");
+    const auto contradicted = book.render(claim);
+    CHECK(contradicted.exit_code != 0);
+    CHECK(contradicted.err.find(
+              "chapters/07-demo/chapter.md:5: error: claim contradicted") !=
+          std::string::npos);
+    CHECK(contradicted.err.find("exact fixed costs more work") != std::string::npos);
+}

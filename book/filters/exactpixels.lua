@@ -556,16 +556,31 @@ end
 --   []{.fact data="FILE" name="NAME" format="%.2f"}: the value itself, formatted.
 -- A contradicted claim, an unknown NAME or a missing FILE fails the build with
 -- "chapters/NN-slug/chapter.md:LINE: error: ..." quoting the claim.
+-- A FILE with a "/" in it is a committed file of the source tree instead (a dated full
+-- run, e.g. chapters/05-accuracy-cost/callgrind_results.md): each row of its Markdown
+-- tables is a fact, named by its first cell, whose value is its last cell.
 local fact_files = {}
 local function facts_of(dir, file, needle)
   if fact_files[file] then return fact_files[file] end
-  local text = read_file(figures .. "/" .. file)
+  local committed = file:find("/", 1, true) ~= nil
+  local text = read_file((committed and root or figures) .. "/" .. file)
   if not text then
-    fail(dir, needle, "claim data '" .. file .. "' was not made by the build")
+    fail(dir, needle, "claim data '" .. file .. "' "
+      .. (committed and "does not exist" or "was not made by the build"))
   end
   local facts = {}
   for _, line in ipairs(lines_of(text)) do
-    local name, value = line:gsub("#.*$", ""):match("^%s*([%w_%.%-]+)%s+(%S+)%s*$")
+    local name, value
+    if committed then
+      local cells = {}
+      for cell in line:gmatch("|([^|]*)") do cells[#cells + 1] = cell:match("^%s*(.-)%s*$") end
+      if line:match("^|") and #cells >= 3 and cells[#cells] == "" then cells[#cells] = nil end
+      if line:match("^|") and #cells >= 2 and tonumber(cells[#cells]) then
+        name, value = cells[1], cells[#cells]
+      end
+    else
+      name, value = line:gsub("#.*$", ""):match("^%s*([%w_%.%-/]+)%s+(%S+)%s*$")
+    end
     if name then
       facts[name] = tonumber(value)
       if not facts[name] then
