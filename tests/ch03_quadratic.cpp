@@ -299,3 +299,22 @@ TEST_CASE("beyond r = 3 the parabola overshoots by (r-3)^2/(8(r^2-1)); -8/15 at 
     CHECK(exact_u(Rational(0), Rational(1), Rational(64), Rational(4), t / Rational(63)) >
           Rational(0));
 }
+
+TEST_CASE("the depth at the screen midpoint is 2 w0 w2 / (w0 + w2), not the mean") {
+    // 1/w is linear on screen: at t = 1/2 it is the mean of 1/w0 and 1/w2, so w there is
+    // the harmonic mean. The arithmetic mean (the source's z1) is larger unless w0 = w2;
+    // the source's u1 (perspective_midpoint) is the exact u at the same point.
+    std::mt19937 random(17);
+    std::uniform_int_distribution<int> depth(1, 500), texel(-300, 300);
+    for (int trial = 0; trial < 1000; ++trial) {
+        const Rational w0(depth(random), 3), w2(depth(random), 7);
+        const Rational half(1, 2);
+        const Rational one_w = (Rational(1) - half) / w0 + half / w2; // linear on screen
+        const Rational w_mid = Rational(1) / one_w;
+        CHECK(w_mid == Rational(2) * w0 * w2 / (w0 + w2));
+        CHECK((w_mid == (w0 + w2) / Rational(2)) == (w0 == w2));
+        CHECK(w_mid <= (w0 + w2) / Rational(2));
+        const Rational u0(texel(random)), u2(texel(random));
+        CHECK(perspective_midpoint(u0, w0, u2, w2) == exact_u(u0, w0, u2, w2, half));
+    }
+}

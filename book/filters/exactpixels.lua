@@ -428,6 +428,14 @@ local function render_block(block, counters, state)
 
   if block.t == "Div" or block.t == "BlockQuote" then
     block.content = render_blocks(block.content, counters, state, true)
+    -- ::: erratum: where the book corrects its source; a ruled box headed "Erratum" in
+    -- both formats (style.css for HTML, the eperratum environment of header.tex for PDF).
+    if block.t == "Div" and block.classes:includes("erratum") and not html then
+      local out = pandoc.List({ raw("latex", "\\begin{eperratum}") })
+      out:extend(block.content)
+      out:insert(raw("latex", "\\end{eperratum}"))
+      return out
+    end
     return { block }
   elseif block.t == "BulletList" or block.t == "OrderedList" then
     for i, item in ipairs(block.content) do
