@@ -267,7 +267,7 @@ TEST_CASE("Pursey's parabola is monotonic exactly when the depth ratio is in [1/
     CHECK(not_monotonic > 0);
 }
 
-TEST_CASE("beyond r = 3 the parabola overshoots by (r-3)^2/(8(r^2-1)); -8/15 at r = 4") {
+TEST_CASE("beyond r = 3 the parabola overshoots its ends; by 8/15 texel at r = 4") {
     // The extreme of a t^2 + b t + u0 is at t = -b / 2a with value u0 - b^2 / 4a: compare
     // it, exactly, with pursey_overshoot for r = i / j, on spans seen from either end.
     for (int i = 1; i <= 30; ++i) {
