@@ -345,3 +345,18 @@ TEST_CASE("a claim can be checked against a committed Markdown table") {
           std::string::npos);
     CHECK(contradicted.err.find("exact fixed costs more work") != std::string::npos);
 }
+
+TEST_CASE(
+    "a bibliography key is left for citeproc; a generated caption's reference resolves") {
+    FixtureBook book;
+    const auto cited = book.render(title + "Edge functions [@pineda1988].\n");
+    REQUIRE(cited.exit_code == 0);
+    CHECK(cited.out.find("data-cites=\"pineda1988\"") != std::string::npos);
+    book.write("figures/ch07_table.md",
+               "| a |\n|---|\n| 1 |\n\n: See @eq:first. {#tbl:t}\n");
+    const auto generated =
+        book.render(title + "$$ a = b $$ {#eq:first}\n\n"
+                            "```{.generated file=\"ch07_table.md\"}\n```\n");
+    REQUIRE(generated.exit_code == 0);
+    CHECK(generated.out.find("href=\"#eq:first\"") != std::string::npos);
+}

@@ -331,6 +331,7 @@ local function figure_path(dir, src)
 end
 
 local render_blocks
+local render_inlines
 
 local function render_block(block, counters, state)
   local kind, number = number_of(block, counters)
@@ -399,7 +400,10 @@ local function render_block(block, counters, state)
       if not text then
         fail(dir, file, "generated fragment '" .. file .. "' was not made by the build")
       end
-      return render_blocks(pandoc.read(text, "markdown").blocks, counters, state)
+      -- The fragment's own references, named tests and claims (its table captions cite
+      -- equations) resolve like the chapter's: the chapter's inlines were done already.
+      local fragment = render_inlines(pandoc.read(text, "markdown"), function() return dir end)
+      return render_blocks(fragment.blocks, counters, state)
     end
     for _, class in ipairs(block.classes) do
       if allowed_code_classes[class] then return { block } end
@@ -654,9 +658,12 @@ local function fact(span, dir)
   return pandoc.Str(string.format(span.attributes.format or "%g", value))
 end
 
-local function render_inlines(doc, dir_of_block)
+render_inlines = function(doc, dir_of_block)
   return doc:walk({
     Cite = function(cite)
+      -- A key without a colon is a bibliography entry (book/references.bib): left for
+      -- citeproc, which runs after this filter.
+      if not cite.citations[1].id:find(":", 1, true) then return nil end
       local out = pandoc.List()
       for i, citation in ipairs(cite.citations) do
         if i > 1 then out:insert(pandoc.Str(", ")) end
