@@ -360,3 +360,28 @@ TEST_CASE(
     REQUIRE(generated.exit_code == 0);
     CHECK(generated.out.find("href=\"#eq:first\"") != std::string::npos);
 }
+
+TEST_CASE(
+    "committed tables name rows by scene and column; checks may scale and add facts") {
+    FixtureBook book;
+    book.write("chapters/07-demo/run.md", "Measured 2026-11-21 on x86_64.\n\n"
+                                          ": Scene \"floor\" (35624 pixel writes).\n\n"
+                                          "| mapper | ns/px | × affine | front |\n"
+                                          "|:--|--:|--:|:-:|\n"
+                                          "| affine fixed | 5.77 | 1.00 |  |\n"
+                                          "| exact double | 13.12 | 2.27 | yes |\n");
+    const auto render = [&](const std::string& check) {
+        return book.render(
+            title + "[a claim]{.claim data=\"chapters/07-demo/run.md\" check=\"" + check +
+            "\"} and []{.fact data=\"chapters/07-demo/run.md\" "
+            "name=\"floor/exact_double#3\" format=\"%.2f\"} times.\n");
+    };
+    const auto good = render("floor/exact_double#2 <= 2.5*floor/affine_fixed#2; "
+                             "floor/exact_double#2+floor/affine_fixed#2 > 18");
+    REQUIRE(good.exit_code == 0);
+    CHECK(good.out.find("a claim and 2.27 times.") != std::string::npos);
+    const auto bad = render("floor/exact_double#2 <= 2*floor/affine_fixed#2");
+    CHECK(bad.exit_code != 0);
+    CHECK(bad.err.find("claim contradicted by chapters/07-demo/run.md") !=
+          std::string::npos);
+}

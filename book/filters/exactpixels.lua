@@ -581,16 +581,25 @@ local function facts_of(dir, file, needle)
       .. (committed and "does not exist" or "was not made by the build"))
   end
   local facts = {}
+  local scene
   for _, line in ipairs(lines_of(text)) do
     local name, value
-    if committed then
+    scene = line:match('^: Scene "([^"]+)"') or scene
+    if committed and line:match("^|") then
       local cells = {}
       for cell in line:gmatch("|([^|]*)") do cells[#cells + 1] = cell:match("^%s*(.-)%s*$") end
-      if line:match("^|") and #cells >= 3 and cells[#cells] == "" then cells[#cells] = nil end
-      if line:match("^|") and #cells >= 2 and tonumber(cells[#cells]) then
-        name, value = cells[1], cells[#cells]
+      if #cells >= 3 and cells[#cells] == "" then cells[#cells] = nil end
+      -- A row under a caption ': Scene "floor" ...' is named floor/its_first_cell; each
+      -- numeric cell is also a fact NAME#k (k = 2 for the second column, and so on).
+      local row = (scene and (scene .. "/") or "") .. cells[1]:gsub("%s+", "_")
+      for k = 2, #cells do
+        local number = tonumber((cells[k]:gsub("%s*%%$", "")))
+        if number then facts[row .. "#" .. k] = number end
       end
-    else
+      if #cells >= 2 and tonumber(cells[#cells]) then
+        name, value = row, cells[#cells]
+      end
+    elseif not committed then
       name, value = line:gsub("#.*$", ""):match("^%s*([%w_%.%-/]+)%s+(%S+)%s*$")
     end
     if name then
@@ -622,6 +631,16 @@ local function claim(span, dir)
   local function value_of(token)
     local number = tonumber(token)
     if number then return number end
+    if facts[token] ~= nil then return facts[token] end
+    local factor, rest = token:match("^([%d%.]+)%*(.+)$") -- e.g. 1.5*floor/affine_fixed#2
+    if factor then return tonumber(factor) * value_of(rest) end
+    for at in token:gmatch("()%+") do -- a sum of facts, e.g. a#2+b#2
+      local left, right = token:sub(1, at - 1), token:sub(at + 1)
+      if (tonumber(left) or facts[left] ~= nil or left:find("[*+]"))
+          and (tonumber(right) or facts[right] ~= nil or right:find("[*+]")) then
+        return value_of(left) + value_of(right)
+      end
+    end
     if facts[token] == nil then
       fail(dir, needle, "claim '" .. text .. "' uses '" .. token .. "', which " .. file
         .. " does not define")
