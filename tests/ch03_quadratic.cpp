@@ -244,7 +244,8 @@ TEST_CASE("u is linear along lines of constant 1/w and bends along every other l
     CHECK(bent > 1000);
 }
 
-TEST_CASE("Pursey's parabola is monotonic exactly when the depth ratio is in [1/3, 3]") {
+TEST_CASE("Pursey's parabola is monotonic exactly when the depth ratio is in [1/3, 3]" *
+          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
     // Slopes at both ends (@eq:pursey-slopes), exact, for every r = i / j with i, j in
     // 1..24, on spans of 64 texels and 37 pixel steps.
     const Rational du(64), n(37);
@@ -267,7 +268,8 @@ TEST_CASE("Pursey's parabola is monotonic exactly when the depth ratio is in [1/
     CHECK(not_monotonic > 0);
 }
 
-TEST_CASE("beyond r = 3 the parabola overshoots its ends; by 8/15 texel at r = 4") {
+TEST_CASE("beyond r = 3 the parabola overshoots its ends; by 8/15 texel at r = 4" *
+          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
     // The extreme of a t^2 + b t + u0 is at t = -b / 2a with value u0 - b^2 / 4a: compare
     // it, exactly, with pursey_overshoot for r = i / j, on spans seen from either end.
     for (int i = 1; i <= 30; ++i) {

@@ -291,7 +291,8 @@ TEST_CASE("auto picks the cheapest mapper whose bound is within the budget" *
           SpanMapper{MapperKind::subdivided, 200});
 }
 
-TEST_CASE("auto never picks a parabola that turns back inside its span") {
+TEST_CASE("auto never picks a parabola that turns back inside its span" *
+          doctest::description("points: 1; exercise: ch07-choose-mapper")) {
     // Chapter 3's figure 3.3 span: depth ratio 4, 64 texels over 64 pixels. Its parabola
     // is within a generous budget, but dips to -8/15 texel, outside the texels between
     // its ends (@eq:pursey-overshoot); auto takes the next mapper instead.
@@ -331,8 +332,8 @@ TEST_CASE("auto never picks a parabola that turns back inside its span") {
     CHECK(parabolas > 10);
 }
 
-TEST_CASE(
-    "Gouraud colours are off by the affine error under perspective, and only then") {
+TEST_CASE("Gouraud colours are off by the affine error under perspective, and only then" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     // Orthographic sprites: w = 1 everywhere, screen-linear colours are exact (to the
     // double rounding of stepping a plane, far below 1e-12).
     CHECK(gouraud_perspective_error(shipped("sprites")).worst <= 1e-12);

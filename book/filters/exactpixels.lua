@@ -569,8 +569,8 @@ end
 -- A contradicted claim, an unknown NAME or a missing FILE fails the build with
 -- "chapters/NN-slug/chapter.md:LINE: error: ..." quoting the claim.
 -- A FILE with a "/" in it is a committed file of the source tree instead (a dated full
--- run, e.g. chapters/05-accuracy-cost/callgrind_results.md): each row of its Markdown
--- tables is a fact, named by its first cell, whose value is its last cell.
+-- run, e.g. chapters/05-accuracy-cost/callgrind_results.md). In either kind, each row of
+-- a Markdown table is a fact, named by its first cell, whose value is its last cell.
 local fact_files = {}
 local function facts_of(dir, file, needle)
   if fact_files[file] then return fact_files[file] end
@@ -585,7 +585,7 @@ local function facts_of(dir, file, needle)
   for _, line in ipairs(lines_of(text)) do
     local name, value
     scene = line:match('^: Scene "([^"]+)"') or scene
-    if committed and line:match("^|") then
+    if line:match("^|") then
       local cells = {}
       for cell in line:gmatch("|([^|]*)") do cells[#cells + 1] = cell:match("^%s*(.-)%s*$") end
       if #cells >= 3 and cells[#cells] == "" then cells[#cells] = nil end
