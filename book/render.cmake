@@ -32,8 +32,13 @@ file(COPY_FILE ${ROOT}/book/style.css ${BOOK_DIR}/style.css)
 
 set(filter_env EP_ROOT=${ROOT} EP_FIGURES=${FIGURE_DIR} EP_ALL_CHAPTERS=${all_dirs}
     EP_OUT=${BOOK_DIR} EP_LATEX_FIGURES=${BOOK_DIR}/latex/figures)
+# Citations: after the book's filter, citeproc with the committed bibliography and style
+# (no network); each chapter page and the PDF end with the works they cite.
+set(citation_options --citeproc --bibliography=${ROOT}/book/references.bib
+    --csl=${ROOT}/book/exact-pixels.csl -M reference-section-title=References)
 set(html_options --from=markdown --to=html5 --standalone --mathml
     --template=${ROOT}/book/template.html --lua-filter=${ROOT}/book/filters/exactpixels.lua
+    ${citation_options}
     --highlight-style=pygments --metadata-file=${ROOT}/book/metadata.yaml)
 
 # One HTML page per chapter, with previous/next links.
@@ -124,7 +129,7 @@ run_or_fail("LaTeX of the book"
   ${CMAKE_COMMAND} -E env ${filter_env} EP_TARGET=latex "EP_CHAPTERS=${all_dirs}"
   ${PANDOC} --from=markdown --to=latex --standalone --top-level-division=chapter
   --number-sections --toc --toc-depth=2 --highlight-style=pygments
-  --lua-filter=${ROOT}/book/filters/exactpixels.lua
+  --lua-filter=${ROOT}/book/filters/exactpixels.lua ${citation_options}
   --metadata-file=${ROOT}/book/metadata.yaml
   --include-in-header=${ROOT}/book/latex/header.tex
   --include-after-body=${BOOK_DIR}/latex/back-matter.tex

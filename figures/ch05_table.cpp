@@ -8,7 +8,7 @@
 //                          front
 //   ch05_table_picks.md    the floor split by the depth ratio of each pixel's span: the
 //                          cheapest mapper whose worst error stays under half a texel
-//   ch05_table_targets.md  the two speed targets of the chapter, checked
+//   ch05_table_targets.md  the two speed targets of the chapter, as ratios (no verdict)
 //   ch05_table_SCENE.dat   ratio, worst, mean error, front flag, name (for gnuplot)
 // Times come from the CSV; every error is deterministic (the benchmark's counters, or
 // recomputed here for the picks table).
@@ -177,13 +177,15 @@ int main(int argc, char** argv) try {
     const auto exact_float = std::find_if(floor.begin(), floor.end(), [](const Row& r) {
         return r.mapper == "exact float";
     });
+    // No "met" verdict: this table is often made from the book build's quick run, whose
+    // times carry no claim (book/AUTHORING.md); the chapter judges the targets on the
+    // committed, dated full run.
     targets += fmt::format(
-        "| target | mapper | × affine | met |\n|:--|:--|--:|:-:|\n"
+        "| target | mapper | × affine |\n|:--|:--|--:|\n"
         "| cheapest with worst error under 1/2 texel on the floor: at most 1.5 | {} | "
-        "{:.2f} | {} |\n| exact mapper with a float divide: at most 3 | exact float | "
-        "{:.2f} | {} |\n",
-        best->mapper, best->ratio, best->ratio <= 1.5 ? "yes" : "no", exact_float->ratio,
-        exact_float->ratio <= 3.0 ? "yes" : "no");
+        "{:.2f} |\n| exact mapper with a float divide: at most 3 | exact float | "
+        "{:.2f} |\n",
+        best->mapper, best->ratio, exact_float->ratio);
     std::string never;
     for (std::size_t k = 0; k < mappers.size(); ++k) {
         bool on_a_front = false;

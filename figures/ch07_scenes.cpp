@@ -1,8 +1,10 @@
 // Chapter 7 figures: the report of every shipped scene, and for the perspective scenes
 // the time, divides and texel error of `auto` against `exact` and `affine`, as Markdown
-// fragments pulled into the chapter (ch07_reports.md, ch07_auto_vs_exact.md).
+// fragments pulled into the chapter (ch07_reports.md, ch07_auto_vs_exact.md), and the
+// error of Gouraud colours against perspective-correct ones (ch07_gouraud_error.md).
 // Usage: fig_ch07_scenes FIGURE_DIR
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/scene/gouraud_error.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 
@@ -56,6 +58,27 @@ int main(int argc, char** argv) {
                                      name, mapper, render_scene(variant).report.divides(),
                                      best_ms(variant, 7), e.worst, e.mean);
             }
+        }
+        std::string gouraud = "| scene | camera | pixels | worst (channel range) | worst "
+                              "(8-bit levels) | mean (8-bit levels) |\n"
+                              "|---|---|---:|---:|---:|---:|\n";
+        for (const std::filesystem::path& path : shipped_scenes()) {
+            const Scene scene = load_scene(path);
+            const GouraudError e = gouraud_perspective_error(scene);
+            if (e.pixels == 0) {
+                continue; // no vertex colours
+            }
+            gouraud += fmt::format(
+                "| {} | {} | {} | {:.4f} | {:.1f} | {:.2f} |\n", path.stem().string(),
+                scene.camera.projection == Projection::perspective ? "perspective"
+                                                                   : "orthographic",
+                e.pixels, e.worst, 255.0 * e.worst, 255.0 * e.mean);
+        }
+        gouraud += "\n: Gouraud colours (linear on screen) against perspective-correct "
+                   "colours on the shipped scenes with vertex colours, measured by "
+                   "`gouraud_perspective_error`. {#tbl:gouraud-error}\n";
+        if (!(std::ofstream(folder / "ch07_gouraud_error.md") << gouraud)) {
+            throw Error((folder / "ch07_gouraud_error.md").string() + ": cannot write");
         }
         std::ofstream(folder / "ch07_reports.md") << reports;
         std::ofstream(folder / "ch07_auto_vs_exact.md") << table;

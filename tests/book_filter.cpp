@@ -262,3 +262,126 @@ TEST_CASE("plain parentheses in HTML math do not stretch; \\left and \\right do"
     REQUIRE(fenced.exit_code == 0);
     CHECK(fenced.out.find("stretchy=\"true\"") != std::string::npos);
 }
+
+TEST_CASE("a claim the data contradicts fails naming the chapter line and the claim") {
+    FixtureBook book;
+    const std::string claim =
+        title + "Text.\n\nEvery variant [beats the naive rasterizer at 3 px]{.claim "
+                "data=\"ch07_facts.txt\" check=\"float8x8_over_naive_3px > 1\"}.\n";
+    // The data agrees: the text is shown as written, with no trace of the markup.
+    book.write("figures/ch07_facts.txt", "# speed over naive, 3 px\n"
+                                         "float8x8_over_naive_3px 1.24\n");
+    const auto agreed = book.render(claim);
+    REQUIRE(agreed.exit_code == 0);
+    CHECK(agreed.out.find("beats the naive rasterizer at 3 px") != std::string::npos);
+    CHECK(agreed.out.find("claim") == std::string::npos);
+    // The same claim on altered data fails the book, naming line 7 and quoting it.
+    book.write("figures/ch07_facts.txt", "float8x8_over_naive_3px 0.81\n");
+    const auto contradicted = book.render(claim);
+    CHECK(contradicted.exit_code != 0);
+    CHECK(contradicted.err.find(
+              "chapters/07-demo/chapter.md:7: error: claim contradicted") !=
+          std::string::npos);
+    CHECK(contradicted.err.find("beats the naive rasterizer at 3 px") !=
+          std::string::npos);
+    CHECK(contradicted.err.find("0.81") != std::string::npos);
+    // Facts can be compared with each other, and several conditions must all hold.
+    book.write("figures/ch07_facts.txt", "fixed 3.0\ndouble 2.5\n");
+    CHECK(book.render(title + "[fixed is slower]{.claim data=\"ch07_facts.txt\" "
+                              "check=\"fixed > double; fixed < 4\"}\n")
+              .exit_code == 0);
+    CHECK(book.render(title + "[fixed is faster]{.claim data=\"ch07_facts.txt\" "
+                              "check=\"fixed > double; fixed < double\"}\n")
+              .exit_code != 0);
+}
+
+TEST_CASE("a claim on missing data or an unknown name fails the book") {
+    FixtureBook book;
+    const auto missing = book.render(
+        title + "[a claim]{.claim data=\"ch07_gone.txt\" check=\"speed > 1\"}\n");
+    CHECK(missing.exit_code != 0);
+    CHECK(missing.err.find("ch07_gone.txt") != std::string::npos);
+    book.write("figures/ch07_facts.txt", "speed 2\n");
+    const auto unknown = book.render(
+        title + "[a claim]{.claim data=\"ch07_facts.txt\" check=\"sped > 1\"}\n");
+    CHECK(unknown.exit_code != 0);
+    CHECK(unknown.err.find("chapters/07-demo/chapter.md:5: error:") != std::string::npos);
+    CHECK(unknown.err.find("sped") != std::string::npos);
+}
+
+TEST_CASE("a fact span shows the measured value, formatted") {
+    FixtureBook book;
+    book.write("figures/ch07_facts.txt", "share 0.1834\n");
+    const auto result = book.render(
+        title + "It is []{.fact data=\"ch07_facts.txt\" name=\"share\" format=\"%.2f\"} "
+                "of it.\n");
+    REQUIRE(result.exit_code == 0);
+    CHECK(result.out.find("It is 0.18 of it.") != std::string::npos);
+    CHECK(book.render(title + "[]{.fact data=\"ch07_facts.txt\" name=\"nope\"}\n")
+              .exit_code != 0);
+}
+
+TEST_CASE("a claim can be checked against a committed Markdown table") {
+    FixtureBook book;
+    fs::create_directories(book.root / "chapters" / "07-demo");
+    book.write("chapters/07-demo/results.md", "Measured 2026-11-21.\n\n"
+                                              "| run | instructions per pixel |\n"
+                                              "|:--|--:|\n"
+                                              "| floor/exact_fixed | 139.9 |\n"
+                                              "| floor/exact_double | 124.8 |\n");
+    const std::string claim =
+        title +
+        "[exact fixed costs more work]{.claim data=\"chapters/07-demo/results.md\" "
+        "check=\"floor/exact_fixed > floor/exact_double\"}\n";
+    CHECK(book.render(claim).exit_code == 0);
+    book.write("chapters/07-demo/results.md", "| run | instructions per pixel |\n"
+                                              "|:--|--:|\n"
+                                              "| floor/exact_fixed | 119.9 |\n"
+                                              "| floor/exact_double | 124.8 |\n");
+    const auto contradicted = book.render(claim);
+    CHECK(contradicted.exit_code != 0);
+    CHECK(contradicted.err.find(
+              "chapters/07-demo/chapter.md:5: error: claim contradicted") !=
+          std::string::npos);
+    CHECK(contradicted.err.find("exact fixed costs more work") != std::string::npos);
+}
+
+TEST_CASE(
+    "a bibliography key is left for citeproc; a generated caption's reference resolves") {
+    FixtureBook book;
+    const auto cited = book.render(title + "Edge functions [@pineda1988].\n");
+    REQUIRE(cited.exit_code == 0);
+    CHECK(cited.out.find("data-cites=\"pineda1988\"") != std::string::npos);
+    book.write("figures/ch07_table.md",
+               "| a |\n|---|\n| 1 |\n\n: See @eq:first. {#tbl:t}\n");
+    const auto generated =
+        book.render(title + "$$ a = b $$ {#eq:first}\n\n"
+                            "```{.generated file=\"ch07_table.md\"}\n```\n");
+    REQUIRE(generated.exit_code == 0);
+    CHECK(generated.out.find("href=\"#eq:first\"") != std::string::npos);
+}
+
+TEST_CASE(
+    "committed tables name rows by scene and column; checks may scale and add facts") {
+    FixtureBook book;
+    book.write("chapters/07-demo/run.md", "Measured 2026-11-21 on x86_64.\n\n"
+                                          ": Scene \"floor\" (35624 pixel writes).\n\n"
+                                          "| mapper | ns/px | × affine | front |\n"
+                                          "|:--|--:|--:|:-:|\n"
+                                          "| affine fixed | 5.77 | 1.00 |  |\n"
+                                          "| exact double | 13.12 | 2.27 | yes |\n");
+    const auto render = [&](const std::string& check) {
+        return book.render(
+            title + "[a claim]{.claim data=\"chapters/07-demo/run.md\" check=\"" + check +
+            "\"} and []{.fact data=\"chapters/07-demo/run.md\" "
+            "name=\"floor/exact_double#3\" format=\"%.2f\"} times.\n");
+    };
+    const auto good = render("floor/exact_double#2 <= 2.5*floor/affine_fixed#2; "
+                             "floor/exact_double#2+floor/affine_fixed#2 > 18");
+    REQUIRE(good.exit_code == 0);
+    CHECK(good.out.find("a claim and 2.27 times.") != std::string::npos);
+    const auto bad = render("floor/exact_double#2 <= 2*floor/affine_fixed#2");
+    CHECK(bad.exit_code != 0);
+    CHECK(bad.err.find("claim contradicted by chapters/07-demo/run.md") !=
+          std::string::npos);
+}

@@ -7,6 +7,7 @@
 
 #include <doctest/doctest.h>
 
+#include <bit>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -28,6 +29,48 @@ fs::path scratch_folder(const std::string& name) {
 TEST_CASE("pixel centres sit at half-integer coordinates") {
     CHECK(pixel_centre(0, 0) == Point2{0.5, 0.5});
     CHECK(pixel_centre(7, 3) == Point2{7.5, 3.5});
+}
+
+TEST_CASE("an integer edge meets a centre exactly when dx, dy share their power of two") {
+    // Every edge between integer points of [-6, 6]^2, against every pixel centre near it,
+    // in doubled coordinates so that the centre (i + 1/2, j + 1/2) is the odd integer
+    // point (2i + 1, 2j + 1) and every test is exact.
+    const auto twos = [](int d) { return std::countr_zero(static_cast<unsigned>(d)); };
+    int edges = 0, through_centre = 0;
+    for (int x0 = -6; x0 <= 6; ++x0) {
+        for (int y0 = -6; y0 <= 6; ++y0) {
+            for (int x1 = -6; x1 <= 6; ++x1) {
+                for (int y1 = -6; y1 <= 6; ++y1) {
+                    const int dx = x1 - x0, dy = y1 - y0;
+                    if (dx == 0 && dy == 0) {
+                        continue;
+                    }
+                    bool meets = false;
+                    for (int cx = -11; cx <= 11 && !meets; cx += 2) {
+                        for (int cy = -11; cy <= 11 && !meets; cy += 2) {
+                            const int ax = cx - 2 * x0, ay = cy - 2 * y0;
+                            const int along = ax * dx + ay * dy; // in [0, 2|d|^2]
+                            meets = ax * dy - ay * dx == 0 && along >= 0 &&
+                                    along <= 2 * (dx * dx + dy * dy);
+                        }
+                    }
+                    const bool predicted = dx != 0 && dy != 0 && twos(dx) == twos(dy);
+                    CAPTURE(x0);
+                    CAPTURE(y0);
+                    CAPTURE(x1);
+                    CAPTURE(y1);
+                    REQUIRE(meets == predicted);
+                    ++edges;
+                    through_centre += meets ? 1 : 0;
+                }
+            }
+        }
+    }
+    // (0, 0)-(2, 2) passes through the centre (1/2, 1/2) of pixel (0, 0); no row or
+    // column.
+    CHECK(pixel_centre(0, 0) == Point2{0.5, 0.5});
+    CHECK(through_centre > 0);
+    CHECK(through_centre < edges);
 }
 
 TEST_CASE("the framebuffer is row-major with the origin at the top left") {

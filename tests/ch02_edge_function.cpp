@@ -174,3 +174,69 @@ TEST_CASE("the fixed-point range: exact at its edge, an error beyond it") {
     CHECK_THROWS_AS(snap_in_range({std::nan(""), 0}), Error);
     CHECK_THROWS_AS(snap_in_range({0, std::numeric_limits<double>::infinity()}), Error);
 }
+
+namespace {
+/// floor(a / b) for b > 0 in 128-bit integers.
+Int128 floor_div128(Int128 a, Int128 b) {
+    const Int128 q = a / b;
+    return (a % b != 0 && a < 0) ? q - 1 : q;
+}
+
+/// The nearest integer to 256 v, halves up, from v's exact binary value: v = M 2^e with
+/// M an integer of at most 53 bits, so 256 v + 1/2 = (2^(9+e) M + 1) / 2 is a fraction
+/// computed without rounding. Valid for |v| < 2^54 and e >= -100.
+Int128 exact_snap(double v) {
+    int e = 0;
+    const double m = std::frexp(v, &e); // v = m 2^e, 1/2 <= |m| < 1
+    const auto M = static_cast<Int128>(std::ldexp(m, 53));
+    const int shift = e - 53 + subpixel_bits; // 256 v = M 2^shift
+    if (shift >= 0) {
+        return M << shift;
+    }
+    REQUIRE(shift >= -100);
+    const Int128 denominator = Int128{1} << -shift;
+    return floor_div128(2 * M + denominator, 2 * denominator);
+}
+} // namespace
+
+TEST_CASE("snapping rounds 256 v to the nearest integer exactly, halves up") {
+    // The classic fault of floor(256 v + 0.5): just below a half, the sum rounds up to 1.
+    const double below_half = 0.49999999999999994 / 256.0;
+    CHECK(0.49999999999999994 + 0.5 == 1.0); // the sum the old formula rounded
+    CHECK(snap_to_subpixel(below_half) == 0);
+    CHECK(snap_to_subpixel(0.5 / 256.0) == 1);   // a half rounds up
+    CHECK(snap_to_subpixel(-0.5 / 256.0) == 0);  // towards +infinity
+    CHECK(snap_to_subpixel(-1.5 / 256.0) == -1); // likewise
+    // Every neighbour of every half-integer tried, against the exact fraction.
+    std::mt19937_64 rng(15);
+    std::uniform_int_distribution<std::int64_t> k(-max_fixed_coordinate,
+                                                  max_fixed_coordinate);
+    std::uniform_real_distribution<double> any(-max_fixed_coordinate_px,
+                                               max_fixed_coordinate_px);
+    int checked = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        const double half = (static_cast<double>(k(rng)) + 0.5) / 256.0;
+        for (const double v :
+             {half, std::nextafter(half, -1e300), std::nextafter(half, 1e300), any(rng),
+              std::ldexp(any(rng), -40), -below_half, below_half}) {
+            REQUIRE(static_cast<Int128>(snap_to_subpixel(v)) == exact_snap(v));
+            ++checked;
+        }
+    }
+    CHECK(checked == 140000);
+}
+
+TEST_CASE("snapping refuses NaN, infinity and values too large for int64") {
+    // Converting any of these to an integer is undefined behaviour in C++; the old
+    // snap did it, and UBSan's float-cast-overflow check stops there.
+    const double inf = std::numeric_limits<double>::infinity();
+    for (const double v : {inf, -inf, std::nan(""), 0x1p54, -0x1p54, 1e300}) {
+        CAPTURE(v);
+        CHECK_THROWS_WITH_AS(snap_to_subpixel(v), doctest::Contains("cannot be snapped"),
+                             Error);
+    }
+    // The largest accepted magnitude converts exactly.
+    const double largest = std::nextafter(0x1p54, 0.0);
+    CHECK(snap_to_subpixel(largest) == static_cast<std::int64_t>(largest * 256.0));
+    CHECK(snap_to_subpixel(-largest) == -static_cast<std::int64_t>(largest * 256.0));
+}

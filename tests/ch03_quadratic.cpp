@@ -211,3 +211,112 @@ TEST_CASE("quadratic_error_max is the largest quadratic error over the span") {
     // A span seen from its other end has the same worst error.
     CHECK(quadratic_error_max(0.2) == doctest::Approx(quadratic_error_max(5.0)));
 }
+
+TEST_CASE("u is linear along lines of constant 1/w and bends along every other line") {
+    // u/w = p(X, Y) and 1/w = q(X, Y) are affine (@eq:linear-in-screen), u = p / q. Along
+    // the line through P with direction d, the second difference of u at three equally
+    // spaced points is zero exactly when d is along a line of constant q (or u does not
+    // change along d at all). Exact rationals, random planes and directions.
+    std::mt19937 random(15);
+    std::uniform_int_distribution<int> small(-40, 40), positive(20, 60);
+    int bent = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        const Rational p0(small(random)), px(small(random), 16), py(small(random), 16);
+        const Rational q0(positive(random)), qx(small(random), 64), qy(small(random), 64);
+        const auto u_at = [&](Rational x, Rational y) {
+            return (p0 + px * x + py * y) / (q0 + qx * x + qy * y);
+        };
+        const Rational x(small(random), 8), y(small(random), 8);
+        const auto second_difference = [&](Rational dx, Rational dy) {
+            return u_at(x + 2 * dx, y + 2 * dy) - 2 * u_at(x + dx, y + dy) + u_at(x, y);
+        };
+        // q > 0 at all three points: q0 >= 20, |qx|, |qy| <= 40/64, |x|, |y| <= 5 + 2.
+        CHECK(second_difference(-qy, qx) == Rational(0)); // along constant 1/w
+        const Rational dx(small(random)), dy(small(random));
+        const bool constant_q = qx * dx + qy * dy == Rational(0);
+        const bool constant_u = (px * dx + py * dy) * (q0 + qx * x + qy * y) ==
+                                (qx * dx + qy * dy) * (p0 + px * x + py * y);
+        if (!constant_q && !constant_u) {
+            CHECK(second_difference(dx, dy) != Rational(0));
+            ++bent;
+        }
+    }
+    CHECK(bent > 1000);
+}
+
+TEST_CASE("Pursey's parabola is monotonic exactly when the depth ratio is in [1/3, 3]" *
+          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
+    // Slopes at both ends (@eq:pursey-slopes), exact, for every r = i / j with i, j in
+    // 1..24, on spans of 64 texels and 37 pixel steps.
+    const Rational du(64), n(37);
+    int monotonic = 0, not_monotonic = 0;
+    for (int i = 1; i <= 24; ++i) {
+        for (int j = 1; j <= 24; ++j) {
+            const Rational r(i, j);
+            const Quadratic<Rational> q =
+                thellier_quadratic(Rational(5), Rational(1), Rational(5) + du, r, n);
+            const Rational first = q.b, last = Rational(2) * q.a * n + q.b;
+            CHECK(first == (Rational(3) - r) / (Rational(1) + r) * du / n);
+            CHECK(last == (Rational(3) * r - Rational(1)) / (Rational(1) + r) * du / n);
+            const bool one_sign = first >= Rational(0) && last >= Rational(0);
+            CHECK(one_sign == pursey_is_monotonic(r));
+            CHECK(one_sign == (Rational(1, 3) <= r && r <= Rational(3)));
+            (one_sign ? monotonic : not_monotonic) += 1;
+        }
+    }
+    CHECK(monotonic > 0);
+    CHECK(not_monotonic > 0);
+}
+
+TEST_CASE("beyond r = 3 the parabola overshoots its ends; by 8/15 texel at r = 4" *
+          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
+    // The extreme of a t^2 + b t + u0 is at t = -b / 2a with value u0 - b^2 / 4a: compare
+    // it, exactly, with pursey_overshoot for r = i / j, on spans seen from either end.
+    for (int i = 1; i <= 30; ++i) {
+        for (int j = 1; j <= 30; ++j) {
+            const Rational r(i, j), du(64), n(63);
+            const Quadratic<Rational> q =
+                thellier_quadratic(Rational(0), Rational(1), du, r, n);
+            const Rational overshoot = pursey_overshoot(r) * du;
+            if (!pursey_is_monotonic(r)) {
+                const Rational t = -q.b / (Rational(2) * q.a);
+                CHECK(Rational(0) < t);
+                CHECK(t < n);
+                const Rational extreme = evaluate(q, t);
+                CHECK((r > Rational(1) ? -extreme : extreme - du) == overshoot);
+                CHECK(overshoot > Rational(0));
+                CHECK(overshoot < du / Rational(8)); // approaches du / 8 as r grows
+            } else {
+                CHECK(overshoot == Rational(0));
+            }
+        }
+    }
+    // The span of figure 3.3: r = 4, 64 texels over 64 pixels (63 steps): u dips to
+    // -8/15 texel at t = 63/12, where the exact u is positive.
+    const Quadratic<Rational> q = thellier_quadratic(
+        Rational(0), Rational(1), Rational(64), Rational(4), Rational(63));
+    const Rational t = -q.b / (Rational(2) * q.a);
+    CHECK(t == Rational(63, 12));
+    CHECK(evaluate(q, t) == Rational(-8, 15));
+    CHECK(exact_u(Rational(0), Rational(1), Rational(64), Rational(4), t / Rational(63)) >
+          Rational(0));
+}
+
+TEST_CASE("the depth at the screen midpoint is 2 w0 w2 / (w0 + w2), not the mean") {
+    // 1/w is linear on screen: at t = 1/2 it is the mean of 1/w0 and 1/w2, so w there is
+    // the harmonic mean. The arithmetic mean (the source's z1) is larger unless w0 = w2;
+    // the source's u1 (perspective_midpoint) is the exact u at the same point.
+    std::mt19937 random(17);
+    std::uniform_int_distribution<int> depth(1, 500), texel(-300, 300);
+    for (int trial = 0; trial < 1000; ++trial) {
+        const Rational w0(depth(random), 3), w2(depth(random), 7);
+        const Rational half(1, 2);
+        const Rational one_w = (Rational(1) - half) / w0 + half / w2; // linear on screen
+        const Rational w_mid = Rational(1) / one_w;
+        CHECK(w_mid == Rational(2) * w0 * w2 / (w0 + w2));
+        CHECK((w_mid == (w0 + w2) / Rational(2)) == (w0 == w2));
+        CHECK(w_mid <= (w0 + w2) / Rational(2));
+        const Rational u0(texel(random)), u2(texel(random));
+        CHECK(perspective_midpoint(u0, w0, u2, w2) == exact_u(u0, w0, u2, w2, half));
+    }
+}

@@ -79,6 +79,33 @@ TEST_CASE("ceil(N/D - 1/2) = floor((N + D/2 - 1)/D) for every N in +-2^20, k = 1
     }
 }
 
+TEST_CASE("for odd D both rules are floor((N + (D-1)/2)/D) for every N in +-2^16") {
+    // For odd D, N/D - 1/2 = (2N - D) / 2D with 2N - D odd: never a whole number, so no
+    // tie occurs, the two rules agree, and one integer modifier (D - 1)/2 gives both.
+    // Every odd D from 3 to 255 and every N in [-2^16, 2^16], the definitions written
+    // with floor_div and ceil_div (no shift: D is not a power of two).
+    constexpr std::int64_t limit = std::int64_t{1} << 16;
+    for (std::int64_t D = 3; D <= 255; D += 2) {
+        const std::int64_t m = (D - 1) / 2;
+        std::int64_t wrong = 0, first_wrong = 0, ties = 0;
+        for (std::int64_t N = -limit; N <= limit; ++N) {
+            const std::int64_t up = floor_div(2 * N + D, 2 * D);  // rule 1
+            const std::int64_t down = ceil_div(2 * N - D, 2 * D); // rule 2
+            const std::int64_t one_floor = floor_div(N + m, D);
+            ties += (2 * N - D) % (2 * D) == 0;
+            if (up != one_floor || down != one_floor) {
+                first_wrong = wrong == 0 ? N : first_wrong;
+                ++wrong;
+            }
+        }
+        INFO("D = " << D << ", first N that differs: " << first_wrong);
+        CHECK(ties == 0);
+        CHECK(wrong == 0);
+    }
+    // The even case needs the two modifiers: with D = 4 the tie N = 2 tells them apart.
+    CHECK(floor_div(2 + 4 / 2, 4) != floor_div(2 + 4 / 2 - 1, 4));
+}
+
 TEST_CASE("the single floor holds at the ends of the documented range" *
           doctest::description("points: 1; exercise: ch04-modifier")) {
     // |C| <= 2^61 and k <= 30: 2C + D and C + m must not overflow.

@@ -1,14 +1,17 @@
 // Chapter 7 tests: the shipped scenes render; each mesh runs only the stages it calls
 // for; `auto` stays within its budget; the derived bounds and divide counts hold.
+#include "exactpixels/scene/gouraud_error.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_pipeline.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 #include "exactpixels/texture/perspective_error.hpp"
+#include "exactpixels/texture/quadratic.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
 #include "exactpixels/texture/texture.hpp"
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <random>
@@ -284,6 +287,77 @@ TEST_CASE("auto picks the cheapest mapper whose bound is within the budget" *
     // The chord's bound over the whole span: (sqrt 40 - 1) / (sqrt 40 + 1) * 500 = 363.
     CHECK(choose_span_mapper(steep, 364.0).mapper == Mapper{MapperKind::subdivided, 200});
     CHECK(choose_span_mapper(steep, 362.0).mapper != Mapper{MapperKind::subdivided, 200});
+}
+
+TEST_CASE("auto never picks a parabola that turns back inside its span" *
+          doctest::description("points: 1; exercise: ch07-choose-mapper")) {
+    // Chapter 3's figure 3.3 span: depth ratio 4, 64 texels over 64 pixels. Its parabola
+    // is within a generous budget, but dips to -8/15 texel, outside the texels between
+    // its ends (@eq:pursey-overshoot); auto takes the next mapper instead.
+    const int count = 64;
+    const PerspectiveSpan<double> dip{
+        0.0, 0.0, 1.0, (64.0 / 4.0) / 63.0, 0.0, (1.0 / 4.0 - 1.0) / 63.0, count};
+    double lowest = 0.0;
+    map_span_quadratic(dip, [&](int, double u, double) { lowest = std::min(lowest, u); });
+    CHECK(lowest < -0.5);
+    CHECK(parabola_error_bound(dip, 0, count - 1) <= 100.0);
+    CHECK(choose_span_mapper(dip, 100.0).mapper.kind != MapperKind::quadratic);
+    // Random spans and budgets: whenever auto picks the parabola, its depth ratio is in
+    // [1/3, 3] and every value it hands out lies between its end values.
+    std::mt19937 rng(15);
+    std::uniform_real_distribution<double> depth(0.5, 50.0), tex(-300.0, 300.0),
+        budget(0.05, 50.0);
+    std::uniform_int_distribution<int> length(2, 400);
+    int parabolas = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const int n = length(rng) - 1;
+        const double w0 = depth(rng), w1 = depth(rng), u0 = tex(rng), u1 = tex(rng);
+        const PerspectiveSpan<double> s{
+            u0 / w0, 0.0, 1 / w0, (u1 / w1 - u0 / w0) / n, 0.0, (1 / w1 - 1 / w0) / n,
+            n + 1};
+        if (choose_span_mapper(s, budget(rng)).mapper.kind != MapperKind::quadratic) {
+            continue;
+        }
+        ++parabolas;
+        CHECK(pursey_is_monotonic(w1 / w0));
+        const double low = std::min(u0, u1), high = std::max(u0, u1);
+        const double slack = 1e-9 * (std::abs(u0) + std::abs(u1) + 1.0);
+        map_span_quadratic(s, [&](int, double u, double) {
+            CHECK(u >= low - slack);
+            CHECK(u <= high + slack);
+        });
+    }
+    CHECK(parabolas > 10);
+}
+
+TEST_CASE("Gouraud colours are off by the affine error under perspective, and only then" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+    // Orthographic sprites: w = 1 everywhere, screen-linear colours are exact (to the
+    // double rounding of stepping a plane, far below 1e-12).
+    CHECK(gouraud_perspective_error(shipped("sprites")).worst <= 1e-12);
+    const Scene gouraud = shipped("gouraud");
+    const auto only = [&](const std::string& name) {
+        Scene one = gouraud;
+        std::erase_if(one.meshes, [&](const SceneMesh& m) { return m.name != name; });
+        REQUIRE(one.meshes.size() == 1);
+        return gouraud_perspective_error(one);
+    };
+    // The fan lies in the plane z = 0, parallel to the screen: constant w, no error.
+    const GouraudError fan = only("fan");
+    CHECK(fan.pixels > 1000);
+    CHECK(fan.worst <= 1e-12);
+    // The tilted pair: corners at z from -0.5 to 1.5 seen from z = -5, so w from 4.5 to
+    // 6.5 (depth ratio at most 13/9), and no channel changes by more than 0.8 between
+    // corners. Chapter 3's affine bound for that span (@eq:affine-bound) caps the error,
+    // and the measured error is a sizeable part of it.
+    const GouraudError tilted = only("tilted pair");
+    const double bound = 0.8 * affine_error_bound(13.0 / 9.0);
+    MESSAGE("tilted pair: worst " << tilted.worst << ", bound " << bound);
+    CHECK(tilted.pixels > 1000);
+    CHECK(tilted.worst <= bound);
+    CHECK(tilted.worst > bound / 2);
+    // The whole scene: the figure program's table (tbl:gouraud-error) reports this.
+    CHECK(gouraud_perspective_error(gouraud).worst == tilted.worst);
 }
 
 TEST_CASE("mapper_divides counts every division chapter 3's mappers perform") {

@@ -347,6 +347,7 @@ local function figure_path(dir, src)
 end
 
 local render_blocks
+local render_inlines
 
 local function render_block(block, counters, state)
   local kind, number = number_of(block, counters)
@@ -415,7 +416,10 @@ local function render_block(block, counters, state)
       if not text then
         fail(dir, file, "generated fragment '" .. file .. "' was not made by the build")
       end
-      return render_blocks(pandoc.read(text, "markdown").blocks, counters, state)
+      -- The fragment's own references, named tests and claims (its table captions cite
+      -- equations) resolve like the chapter's: the chapter's inlines were done already.
+      local fragment = render_inlines(pandoc.read(text, "markdown"), function() return dir end)
+      return render_blocks(fragment.blocks, counters, state)
     end
     for _, class in ipairs(block.classes) do
       if allowed_code_classes[class] then return { block } end
@@ -444,6 +448,14 @@ local function render_block(block, counters, state)
 
   if block.t == "Div" or block.t == "BlockQuote" then
     block.content = render_blocks(block.content, counters, state, true)
+    -- ::: erratum: where the book corrects its source; a ruled box headed "Erratum" in
+    -- both formats (style.css for HTML, the eperratum environment of header.tex for PDF).
+    if block.t == "Div" and block.classes:includes("erratum") and not html then
+      local out = pandoc.List({ raw("latex", "\\begin{eperratum}") })
+      out:extend(block.content)
+      out:insert(raw("latex", "\\end{eperratum}"))
+      return out
+    end
     return { block }
   elseif block.t == "BulletList" or block.t == "OrderedList" then
     for i, item in ipairs(block.content) do
@@ -564,9 +576,129 @@ local function index_term(span)
   return out
 end
 
-local function render_inlines(doc, dir_of_block)
+-- Claims the build checks. A data file in the figure folder (written by a program the
+-- build runs, or copied there from a committed, dated full run) holds one fact per line,
+-- "NAME VALUE" with VALUE a number; "#" starts a comment.
+--   [text]{.claim data="FILE" check="NAME OP X; ..."}: every condition must hold, with OP
+--   one of < <= > >= == != and X a number or another NAME; the text is shown unchanged.
+--   []{.fact data="FILE" name="NAME" format="%.2f"}: the value itself, formatted.
+-- A contradicted claim, an unknown NAME or a missing FILE fails the build with
+-- "chapters/NN-slug/chapter.md:LINE: error: ..." quoting the claim.
+-- A FILE with a "/" in it is a committed file of the source tree instead (a dated full
+-- run, e.g. chapters/05-accuracy-cost/callgrind_results.md). In either kind, each row of
+-- a Markdown table is a fact, named by its first cell, whose value is its last cell.
+local fact_files = {}
+local function facts_of(dir, file, needle)
+  if fact_files[file] then return fact_files[file] end
+  local committed = file:find("/", 1, true) ~= nil
+  local text = read_file((committed and root or figures) .. "/" .. file)
+  if not text then
+    fail(dir, needle, "claim data '" .. file .. "' "
+      .. (committed and "does not exist" or "was not made by the build"))
+  end
+  local facts = {}
+  local scene
+  for _, line in ipairs(lines_of(text)) do
+    local name, value
+    scene = line:match('^: Scene "([^"]+)"') or scene
+    if line:match("^|") then
+      local cells = {}
+      for cell in line:gmatch("|([^|]*)") do cells[#cells + 1] = cell:match("^%s*(.-)%s*$") end
+      if #cells >= 3 and cells[#cells] == "" then cells[#cells] = nil end
+      -- A row under a caption ': Scene "floor" ...' is named floor/its_first_cell; each
+      -- numeric cell is also a fact NAME#k (k = 2 for the second column, and so on).
+      local row = (scene and (scene .. "/") or "") .. cells[1]:gsub("%s+", "_")
+      for k = 2, #cells do
+        local number = tonumber((cells[k]:gsub("%s*%%$", "")))
+        if number then facts[row .. "#" .. k] = number end
+      end
+      if #cells >= 2 and tonumber(cells[#cells]) then
+        name, value = row, cells[#cells]
+      end
+    elseif not committed then
+      name, value = line:gsub("#.*$", ""):match("^%s*([%w_%.%-/]+)%s+(%S+)%s*$")
+    end
+    if name then
+      facts[name] = tonumber(value)
+      if not facts[name] then
+        fail(dir, needle, "claim data '" .. file .. "': '" .. name .. "' is not a number")
+      end
+    end
+  end
+  fact_files[file] = facts
+  return facts
+end
+
+local comparisons = {
+  ["<"] = function(a, b) return a < b end, ["<="] = function(a, b) return a <= b end,
+  [">"] = function(a, b) return a > b end, [">="] = function(a, b) return a >= b end,
+  ["=="] = function(a, b) return a == b end, ["!="] = function(a, b) return a ~= b end,
+}
+
+local function claim(span, dir)
+  local text = plain(pandoc.utils.stringify(span.content))
+  local file, check = span.attributes.data, span.attributes.check
+  local needle = check or text
+  if not file or not check then
+    fail(dir, text, "a .claim span needs data=\"FILE\" and check=\"NAME OP VALUE\": '"
+      .. text .. "'")
+  end
+  local facts = facts_of(dir, file, needle)
+  local function value_of(token)
+    local number = tonumber(token)
+    if number then return number end
+    if facts[token] ~= nil then return facts[token] end
+    local factor, rest = token:match("^([%d%.]+)%*(.+)$") -- e.g. 1.5*floor/affine_fixed#2
+    if factor then return tonumber(factor) * value_of(rest) end
+    for at in token:gmatch("()%+") do -- a sum of facts, e.g. a#2+b#2
+      local left, right = token:sub(1, at - 1), token:sub(at + 1)
+      if (tonumber(left) or facts[left] ~= nil or left:find("[*+]"))
+          and (tonumber(right) or facts[right] ~= nil or right:find("[*+]")) then
+        return value_of(left) + value_of(right)
+      end
+    end
+    if facts[token] == nil then
+      fail(dir, needle, "claim '" .. text .. "' uses '" .. token .. "', which " .. file
+        .. " does not define")
+    end
+    return facts[token]
+  end
+  for condition in (check .. ";"):gmatch("([^;]*);") do
+    if condition:match("%S") then
+      local left, op, right = condition:match("^%s*(%S+)%s*([<>=!]=?)%s*(%S+)%s*$")
+      if not left or not comparisons[op] then
+        fail(dir, needle, "claim '" .. text .. "': cannot read the check '" .. condition
+          .. "'")
+      end
+      local a, b = value_of(left), value_of(right)
+      if not comparisons[op](a, b) then
+        fail(dir, needle, string.format("claim contradicted by %s: %s is false (%s = %s, "
+          .. "%s = %s): '%s'", file, condition:gsub("^%s+", ""):gsub("%s+$", ""), left,
+          tostring(a), right, tostring(b), text))
+      end
+    end
+  end
+  return span.content
+end
+
+local function fact(span, dir)
+  local file, name = span.attributes.data, span.attributes.name
+  if not file or not name then
+    fail(dir, "{.fact", "a .fact span needs data=\"FILE\" and name=\"NAME\"")
+  end
+  local value = facts_of(dir, file, name)[name]
+  if value == nil then
+    fail(dir, name, "fact '" .. name .. "' is not in " .. file)
+  end
+  return pandoc.Str(string.format(span.attributes.format or "%g", value))
+end
+
+render_inlines = function(doc, dir_of_block)
   return doc:walk({
     Cite = function(cite)
+      -- A key without a colon is a bibliography entry (book/references.bib): left for
+      -- citeproc, which runs after this filter.
+      if not cite.citations[1].id:find(":", 1, true) then return nil end
       local out = pandoc.List()
       for i, citation in ipairs(cite.citations) do
         if i > 1 then out:insert(pandoc.Str(", ")) end
@@ -577,6 +709,8 @@ local function render_inlines(doc, dir_of_block)
     Span = function(span)
       if span.classes:includes("test") then return test_reference(span, dir_of_block()) end
       if span.classes:includes("index") then return index_term(span) end
+      if span.classes:includes("claim") then return claim(span, dir_of_block()) end
+      if span.classes:includes("fact") then return fact(span, dir_of_block()) end
     end,
   })
 end

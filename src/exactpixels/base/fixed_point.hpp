@@ -6,10 +6,13 @@
 // A fixed-point coordinate X stands for the real coordinate X / 256 in pixels (origin
 // top-left, y down). Snapping rounds to the nearest 1/256 px, halves rounding up
 // (towards +infinity), so a shift of the whole input by a multiple of 1/256 px never
-// changes how it snaps. Chapter 2 derives the coordinate range for which rasterizing
-// snapped triangles is exact (@eq:edge-range): |x|, |y| <= max_fixed_coordinate (2^28
-// units = 2^20 px = 1048576 px). snap_in_range and check_fixed_range reject anything
-// outside with an Error naming the value; nothing is ever wrapped around.
+// changes how it snaps. The rounding is exact (not floor(256 v + 0.5), whose sum can
+// round up to the next integer), and a value that is not finite or too large for int64
+// is refused with an Error, never converted. Chapter 2 derives the coordinate range for
+// which rasterizing snapped triangles is exact (@eq:edge-range): |x|, |y| <=
+// max_fixed_coordinate (2^28 units = 2^20 px = 1048576 px). snap_in_range and
+// check_fixed_range reject anything outside with an Error naming the value; nothing is
+// ever wrapped around.
 #pragma once
 
 #include "exactpixels/base/error.hpp"
@@ -31,10 +34,27 @@ struct FixedPoint2 {
 };
 
 //> snap
-/// The nearest fixed-point value to v pixels (halves round up). v must be finite and
-/// within the range chapter 2 documents; callers check it first.
+/// The largest |v| in 1/256 px that snap_to_subpixel accepts: 2^62 units (2^54 px), so
+/// its result always fits in int64 and a double is never converted out of range.
+inline constexpr double max_snap_units = 0x1p62;
+
+/// The nearest fixed-point value to v pixels (halves round up), computed exactly.
+/// Throws Error naming v when v is not finite or |v| * 256 >= max_snap_units; the
+/// rasterizers' own range (snap_in_range) is much smaller.
 inline std::int64_t snap_to_subpixel(double v) {
-    return static_cast<std::int64_t>(std::floor(v * subpixel_scale + 0.5));
+    const double units = v * subpixel_scale;   // exact: a power of two, no overflow here
+    if (!(std::abs(units) < max_snap_units)) { // false for NaN and infinity too
+        throw Error(fmt::format("coordinate {} px cannot be snapped: not finite or "
+                                "beyond 2^54 px",
+                                v));
+    }
+    if (std::abs(units) >= 0x1p52) {
+        return static_cast<std::int64_t>(units); // a double this large is an integer
+    }
+    const double below = std::floor(units); // exact
+    // below + 1/2 is exact for |below| < 2^52, so this comparison is the exact test
+    // "units - below >= 1/2", which units + 0.5 rounded to double is not.
+    return static_cast<std::int64_t>(below) + (units >= below + 0.5 ? 1 : 0);
 }
 
 /// The nearest fixed-point point to p (each coordinate snapped on its own).

@@ -54,6 +54,13 @@ Piece piece(const PerspectiveSpan<double>& s, int k0, int k1) {
 
 constexpr long long divides_per_bound = 3;
 
+/// Whether Pursey's parabola over pixels k0..k1 stays between its end values: the depth
+/// ratio q(k0) / q(k1) lies in [1/3, 3] (@eq:pursey-slopes), tested without a divide.
+bool parabola_monotonic(const PerspectiveSpan<double>& s, int k0, int k1) {
+    const double q0 = s.one_w + k0 * s.done_w, q1 = s.one_w + k1 * s.done_w;
+    return q1 <= 3.0 * q0 && q0 <= 3.0 * q1;
+}
+
 } // namespace
 
 double chord_error_bound(const PerspectiveSpan<double>& s, int k0, int k1) {
@@ -91,7 +98,9 @@ AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget) {
         if (mapper_divides(subdivided, s.count) >= exact_cost) {
             break;
         }
-        if (!quadratic_tried &&
+        // A parabola that turns back inside the span samples texels beyond its ends
+        // (@eq:pursey-overshoot): never chosen.
+        if (!quadratic_tried && parabola_monotonic(s, 0, last) &&
             mapper_divides(quadratic, s.count) <= mapper_divides(subdivided, s.count)) {
             quadratic_tried = true;
             choice.divides += divides_per_bound;
@@ -108,7 +117,7 @@ AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget) {
             break;
         }
     }
-    //| (void)budget, (void)pieces_fit; // stub: always exact, always within the budget
+    //| (void)budget, (void)pieces_fit, (void)parabola_monotonic; // stub: always exact
     //< exercise ch07-choose-mapper
     return choice; // exact: nothing cheaper is within the budget
 }

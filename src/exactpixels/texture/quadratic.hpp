@@ -57,6 +57,27 @@ template <class T> Quadratic<T> thellier_quadratic(T u0, T w0, T u2, T w2, T n) 
 }
 //< thellier
 
+//> pursey-overshoot
+/// Pursey's parabola is monotonic over its span exactly when the depth ratio
+/// r = w2 / w0 lies in [1/3, 3]: its slope is (3 - r) / (1 + r) times du / n at the
+/// first pixel and (3 r - 1) / (1 + r) times du / n at the last (@eq:pursey-slopes).
+template <class T> bool pursey_is_monotonic(T r) {
+    return T(1) <= T(3) * r && r <= T(3);
+}
+
+/// How far Pursey's parabola leaves the range between its end values, as a fraction of
+/// the span's extent |u2 - u0|, for depth ratio r = w2 / w0 > 0: zero for r in [1/3, 3],
+/// (r - 3)^2 / (8 (r^2 - 1)) before u0 for r > 3, the same with 1/r past u2 for r < 1/3
+/// (@eq:pursey-overshoot).
+template <class T> T pursey_overshoot(T r) {
+    if (pursey_is_monotonic(r)) {
+        return T(0);
+    }
+    const T s = r > T(1) ? r : T(1) / r; // the far end's ratio, > 3
+    return (s - T(3)) * (s - T(3)) / (T(8) * (s * s - T(1)));
+}
+//< pursey-overshoot
+
 /// The state of forward differencing: the value at the current pixel, the first
 /// difference to the next pixel, and the (constant) second difference.
 template <class T> struct ForwardDifferences {

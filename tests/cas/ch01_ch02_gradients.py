@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""Chapters 1 and 2, re-derived with SymPy (run by CTest, label book): the split-edge
+gradient (eq. 1.3-1.6), its denominator (eq:split-denominator), the closed form
+(eq:closed-form) as the solution of the plane through three vertices, and chapter 2's
+edge sum (eq:edge-sum), barycentric interpolation (eq:edge-barycentric), edge steps
+(eq:edge-steps) and edge gradient (eq:edge-gradient). Exits non-zero on any mismatch."""
+import sys
+
+import sympy as sp
+
+x1, y1, x2, y2, x3, y3, c1, c2, c3, px, py = sp.symbols("x1 y1 x2 y2 x3 y3 c1 c2 c3 px py")
+failures = []
+
+
+def same(name, left, right):
+    if sp.simplify(left - right) != 0:
+        failures.append(f"{name}: {sp.simplify(left - right)} != 0")
+
+
+# The plane through the three vertices (eq:plane), solved directly.
+cx, cy = sp.symbols("cx cy")
+plane = sp.solve([c1 + cx * (x2 - x1) + cy * (y2 - y1) - c2,
+                  c1 + cx * (x3 - x1) + cy * (y3 - y1) - c3], [cx, cy])
+D = (x3 - x1) * (y2 - y1) - (x2 - x1) * (y3 - y1)
+same("closed form c_x", plane[cx], ((c3 - c1) * (y2 - y1) - (c2 - c1) * (y3 - y1)) / D)
+same("closed form c_y", plane[cy], ((c2 - c1) * (x3 - x1) - (c3 - c1) * (x2 - x1)) / D)
+# Split edge: point 4 on edge 1-3 at y2 (eq:split-point), then eq:split-dcdx.
+t = (y2 - y1) / (y3 - y1)
+x4, c4 = x1 + t * (x3 - x1), c1 + t * (c3 - c1)
+same("split denominator", x4 - x2, D / (y3 - y1))
+same("split c_x", (c4 - c2) / (x4 - x2), plane[cx])
+same("split c_y", (c3 - c1) / (y3 - y1) - plane[cx] * (x3 - x1) / (y3 - y1), plane[cy])
+
+# Chapter 2: vertices v0, v1, v2 = (x1, y1), (x2, y2), (x3, y3); E_i is the edge opposite
+# v_i, from v_{i+1} to v_{i+2}.
+v = [(x1, y1), (x2, y2), (x3, y3)]
+c = [c1, c2, c3]
+
+
+def edge(a, b, p):
+    return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])
+
+
+p = (px, py)
+E = [edge(v[(i + 1) % 3], v[(i + 2) % 3], p) for i in range(3)]
+area2 = edge(v[0], v[1], v[2])
+same("edge sum", sum(E), area2)
+interpolated = sum(E[i] * c[i] for i in range(3)) / area2
+same("barycentric interpolation is the plane",
+     interpolated, c1 + plane[cx] * (px - x1) + plane[cy] * (py - y1))
+for i in range(3):
+    a, b = v[(i + 1) % 3], v[(i + 2) % 3]
+    same(f"edge step x, E{i}", E[i].subs(px, px + 1) - E[i], -(b[1] - a[1]))
+    same(f"edge step y, E{i}", E[i].subs(py, py + 1) - E[i], b[0] - a[0])
+grad_x = -sum(c[i] * (v[(i + 2) % 3][1] - v[(i + 1) % 3][1]) for i in range(3)) / area2
+grad_y = sum(c[i] * (v[(i + 2) % 3][0] - v[(i + 1) % 3][0]) for i in range(3)) / area2
+same("edge gradient x", grad_x, plane[cx])
+same("edge gradient y", grad_y, plane[cy])
+# Seed 002's form (erratum): its dp/dx is the x-difference sum times -1/A^2.
+seed_dx = sum(c[i] * (v[(i + 2) % 3][0] - v[(i + 1) % 3][0]) for i in range(3)) \
+    * (-1 / area2) / area2
+if sp.simplify(seed_dx - plane[cx]) == 0:
+    failures.append("seed 002's dp/dx would be right: the erratum is wrong")
+for failure in failures:
+    print("ch01_ch02_gradients.py: " + failure)
+sys.exit(1 if failures else 0)

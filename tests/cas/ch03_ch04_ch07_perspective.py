@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""Chapters 3, 4 and 7, re-derived with SymPy (run by CTest, label book): the exact
+fraction and the affine error along a span (eq:exact-fraction, eq:affine-error), where
+it peaks and how large it is (eq:affine-worst-t, eq:affine-bound), the exact midpoint
+(eq:midpoint), Pursey's and Thellier's coefficients (eq:pursey, eq:thellier), forward
+differences (eq:forward-differences), chapter 4's numerator (eq:numerator,
+eq:numerator-constant, eq:step-difference) and chapter 7's two bounds behind
+eq:scene-quadratic-bound. Exits non-zero on any mismatch."""
+import sys
+
+import sympy as sp
+
+t, r, n, k = sp.symbols("t r n k", positive=True)
+u0, u2, w0, w2, T = sp.symbols("u0 u2 w0 w2 T")
+failures = []
+
+
+def same(name, left, right):
+    if sp.simplify(left - right) != 0:
+        failures.append(f"{name}: {sp.simplify(left - right)} != 0")
+
+
+# A span with u0 at depth w0 and u2 at w2 = r w0: u/w and 1/w linear in t.
+u_exact = ((1 - t) * u0 / w0 + t * u2 / w2) / ((1 - t) / w0 + t / w2)
+s = sp.simplify(((u_exact - u0) / (u2 - u0)).subs(w2, r * w0))
+same("exact fraction", s, t / (r - (r - 1) * t))
+e = t - t / (r - (r - 1) * t)
+same("affine error", e, (r - 1) * t * (1 - t) / (r - (r - 1) * t))
+t_star = (r - sp.sqrt(r)) / (r - 1)
+same("affine error peaks at t*", sp.diff(e, t).subs(t, t_star), 0)
+same("t* second form", t_star, sp.sqrt(r) / (sp.sqrt(r) + 1))
+same("affine bound", e.subs(t, t_star), (sp.sqrt(r) - 1) / (sp.sqrt(r) + 1))
+same("midpoint", u_exact.subs(t, sp.Rational(1, 2)), u0 + w0 * (u2 - u0) / (w0 + w2))
+# Pursey's parabola over n pixel steps, and Thellier's form of its coefficients.
+u1 = u0 + w0 * (u2 - u0) / (w0 + w2)
+a = (2 * u0 - 4 * u1 + 2 * u2) / n**2
+b = (-3 * u0 + 4 * u1 - u2) / n
+parabola = a * T**2 + b * T + u0
+for name, at, value in [("start", 0, u0), ("middle", n / 2, u1), ("end", n, u2)]:
+    same(f"parabola through the {name}", parabola.subs(T, at), value)
+delta, kk = u2 - u0, 4 * (u2 - u0) * w0 / (w0 + w2)
+same("Thellier a", a, (2 * delta - kk) / n**2)
+same("Thellier b", b, (kk - delta) / n)
+same("first difference", parabola.subs(T, T + 1) - parabola, 2 * a * T + a + b)
+same("second difference",
+     parabola.subs(T, T + 2) - 2 * parabola.subs(T, T + 1) + parabola, 2 * a)
+# Chapter 4: c = (p + t px) / (q + t qx) along a row.
+p, px, q, qx = sp.symbols("p p_x q q_x")
+cc = (p + t * px) / (q + t * qx)
+numerator = px * q - p * qx
+same("numerator", sp.diff(cc, t), numerator / (q + t * qx)**2)
+same("numerator constant",
+     sp.Matrix([[px, p + t * px], [qx, q + t * qx]]).det(), numerator)
+same("step difference", cc.subs(t, t + 1) - cc,
+     numerator / ((q + t * qx) * (q + (t + 1) * qx)))
+# Seed 004's equation 14 (erratum): with A = p, B = px, C = q, D = qx, the step is
+# (A + B)/(C + D) - A/C = (BC - AD)/(C (C + D)); subtracting A/B is not.
+A, B, C, Dd = p, px, q, qx
+same("seed 004 eq. 14, corrected", (A + B) / (C + Dd) - A / C,
+     (B * C - A * Dd) / (C * (C + Dd)))
+if sp.simplify((A + B) / (C + Dd) - A / B - (B * C - A * Dd) / (C * (C + Dd))) == 0:
+    failures.append("seed 004's A/B would be right: the erratum is wrong")
+# Chapter 7: |t (t - 1/2)(1 - t)| peaks at t = 1/2 -+ sqrt(3)/6 with sqrt(3)/36, and
+# t (1 - t) / (s - (s - 1) t) <= 1 / (4 sqrt s) for s >= 1 (AM-GM on s (1 - t) + t).
+cubic = t * (t - sp.Rational(1, 2)) * (1 - t)
+for root in sp.solve(sp.diff(cubic, t), t):
+    same("cubic peak", sp.Abs(cubic.subs(t, root)), sp.sqrt(3) / 36)
+    same("cubic peak position", sp.Abs(root - sp.Rational(1, 2)), sp.sqrt(3) / 6)
+sv = sp.symbols("s", positive=True)
+gap = (sv * (1 - t) + t) - 2 * sp.sqrt(sv * t * (1 - t))
+same("AM-GM gap is a square", gap,
+     (sp.sqrt(sv * (1 - t)) - sp.sqrt(t))**2)
+for failure in failures:
+    print("ch03_ch04_ch07_perspective.py: " + failure)
+sys.exit(1 if failures else 0)
