@@ -2,10 +2,12 @@
 //
 // Standard input: a first line "W H" (the frame's size in pixels), then one triangle per
 // line, "x0 y0 x1 y1 x2 y2" (pixels, origin top-left, y down, decimal numbers). Blank
-// lines are skipped. Standard output: H lines of W space-separated counts. Malformed
-// input: a message naming the line and the value on stderr, exit code 2.
+// lines are skipped. Output: H lines of W space-separated counts, on standard output or,
+// with -o FILE, written all or nothing to FILE. Malformed input or a failed write: a
+// message naming the line and the value (or the file) on stderr, exit code 2.
 #include "commands.hpp"
 
+#include "exactpixels/atomic_file.hpp"
 #include "exactpixels/edge_rasterizer.hpp"
 #include "exactpixels/error.hpp"
 
@@ -143,6 +145,7 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
     struct Options {
         RasterizerKind rasterizer = RasterizerKind::edge8x8;
         CoveragePrecision precision = CoveragePrecision::fixed;
+        std::string output; // the file to write (not given: standard output)
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
@@ -165,8 +168,14 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
                      "double for scanline)")
         ->transform(CLI::CheckedTransformer(precisions, CLI::ignore_case))
         ->default_str("fixed");
-    command->callback([options, &exit_code] {
+    const CLI::Option* output_option = command->add_option(
+        "-o,--output", options->output,
+        "Write the counts to this file, all or nothing (default: standard output)");
+    command->callback([options, output_option, &exit_code] {
         try {
+            if (output_option->count() > 0) {
+                check_output(options->output, "coverage"); // before reading the input
+            }
             Viewport viewport{0, 0};
             const std::vector<int> counts =
                 run_coverage(std::cin, options->rasterizer, options->precision, viewport);
@@ -183,9 +192,13 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
                 }
                 out += '\n';
             }
-            std::fwrite(out.data(), 1, out.size(), stdout);
+            if (output_option->count() > 0) {
+                write_file_atomically(options->output, "coverage", out);
+            } else {
+                write_standard_output(out);
+            }
         } catch (const Error& error) {
-            fmt::print(stderr, "exactpixels coverage: {}\n", error.what());
+            print_error("coverage", error.what());
             exit_code = exit_bad_input;
         }
     });

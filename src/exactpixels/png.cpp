@@ -7,17 +7,28 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include <string>
+
 namespace exactpixels {
 
-void write_png(const std::filesystem::path& path, const Framebuffer& frame) {
+void write_png(const std::filesystem::path& path, const Framebuffer& frame,
+               std::span<const std::filesystem::path> inputs) {
     if (frame.width() <= 0 || frame.height() <= 0) {
         throw Error(fmt::format("{}: cannot write an empty {}x{} image", path.string(),
                                 frame.width(), frame.height()));
     }
-    write_atomically(path, "PNG", [&](const std::filesystem::path& temporary) {
-        return stbi_write_png(temporary.c_str(), frame.width(), frame.height(), 4,
-                              frame.pixels().data(), frame.width() * 4) != 0;
-    });
+    check_output(path, "PNG", inputs); // before the work of encoding
+    std::string bytes;
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                                   static_cast<std::size_t>(size));
+    };
+    if (stbi_write_png_to_func(append, &bytes, frame.width(), frame.height(), 4,
+                               frame.pixels().data(), frame.width() * 4) == 0) {
+        throw Error(fmt::format("{}: cannot encode the {}x{} image as PNG", path.string(),
+                                frame.width(), frame.height()));
+    }
+    write_file_atomically(path, "PNG", bytes, inputs);
 }
 
 Framebuffer read_png(const std::filesystem::path& path) {

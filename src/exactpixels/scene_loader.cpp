@@ -646,7 +646,12 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
             const TableReader reader(
                 c, *node.as_table(), path,
                 {"kind", "size", "square", "spacing", "cell", "file"});
-            scene.textures.push_back({std::string(key.str()), read_texture(reader)});
+            SceneTexture texture{std::string(key.str()), read_texture(reader), {}};
+            const toml::node* file = node.as_table()->get("file");
+            if (file != nullptr && file->is_string()) { // read_texture has checked it
+                texture.file = c.folder / file->as_string()->get();
+            }
+            scene.textures.push_back(std::move(texture));
         }
     }
     const toml::node* meshes = top.find("mesh");
@@ -685,6 +690,16 @@ Scene load_scene(const std::filesystem::path& path) {
         throw Error(fmt::format("{}: cannot read the scene file", path.string()));
     }
     return parse_scene(text.str(), path, path.parent_path());
+}
+
+std::vector<std::filesystem::path> scene_inputs(const Scene& scene) {
+    std::vector<std::filesystem::path> files{scene.file};
+    for (const SceneTexture& texture : scene.textures) {
+        if (!texture.file.empty()) {
+            files.push_back(texture.file);
+        }
+    }
+    return files;
 }
 
 std::filesystem::path shipped_scene_folder() {

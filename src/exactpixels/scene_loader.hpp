@@ -38,6 +38,10 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
 /// it cannot be read, and as parse_scene does for bad content.
 Scene load_scene(const std::filesystem::path& path);
 
+/// The files `scene` was read from: the scene file, then each texture's PNG. An output
+/// must not be any of them (write_png's `inputs`).
+std::vector<std::filesystem::path> scene_inputs(const Scene& scene);
+
 /// The folder of the scenes that ship with chapter 7 (chapters/07-scenes/scenes in the
 /// source tree this library was built from).
 std::filesystem::path shipped_scene_folder();
