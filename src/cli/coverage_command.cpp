@@ -26,8 +26,11 @@ namespace exactpixels::cli {
 
 namespace {
 
-/// The largest frame the command draws, per side (keeps the count grid modest).
+/// The largest frame the command draws, per side, pixels.
 constexpr int max_frame_side = 16384;
+/// The most pixels of a frame (2^24, 64 MiB of counts): checked before the count grid
+/// and the output text (2 bytes or more per pixel) are allocated.
+constexpr long long max_frame_pixels = 1LL << 24;
 
 /// The whitespace-separated words of a line.
 std::vector<std::string_view> words_of(std::string_view line) {
@@ -84,6 +87,11 @@ Viewport parse_header(std::string_view text, int line) {
                             line, words[i], max_frame_side));
         }
         size[i] = static_cast<int>(value);
+    }
+    if (static_cast<long long>(size[0]) * size[1] > max_frame_pixels) {
+        throw Error(
+            fmt::format("line {}: a {}x{} frame is more than the {} pixels allowed", line,
+                        size[0], size[1], max_frame_pixels));
     }
     return {size[0], size[1]};
 }

@@ -1,6 +1,8 @@
 #include "exactpixels/scene_loader.hpp"
 
 #include "exactpixels/error.hpp"
+#include "exactpixels/input_file.hpp"
+#include "exactpixels/test_pattern.hpp"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -8,11 +10,9 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <numbers>
 #include <set>
-#include <sstream>
 
 #ifndef EXACTPIXELS_SCENES_DIR
 #define EXACTPIXELS_SCENES_DIR "chapters/07-scenes/scenes"
@@ -364,8 +364,19 @@ void read_render(const TableReader& t, RenderOptions& options) {
 }
 
 //> read-texture
-Texture read_texture(const TableReader& t) {
+Texture read_texture(const TableReader& t, long long& texture_bytes) {
     const Context& c = t.context();
+    // Counts a width x height texture against the scene's texel memory, before it exists.
+    const auto take = [&](const toml::node& where, const std::string& path,
+                          long long width, long long height) {
+        texture_bytes += width * height * 4;
+        if (texture_bytes > max_scene_texture_bytes) {
+            c.fail(where.source(), path,
+                   fmt::format("a {}x{} texture takes the scene's textures beyond the "
+                               "{} bytes allowed",
+                               width, height, max_scene_texture_bytes));
+        }
+    };
     const std::size_t kind = read_choice(c, t.require("kind"), t.child("kind"),
                                          {"checkerboard", "grid", "f", "png"});
     const auto size = [&] {
@@ -381,6 +392,7 @@ Texture read_texture(const TableReader& t) {
         const int cell =
             read_integer(c, t.require(key), t.child(key), 1, max_texture_side);
         t.finish();
+        take(t.require("size"), t.child("size"), s.x, s.y);
         if (kind == 0) {
             return checkerboard_texture(s.x, s.y, cell);
         }
@@ -396,13 +408,23 @@ Texture read_texture(const TableReader& t) {
     if (kind == 2) { // the "F"
         const int cell = read_integer(c, t.require("cell"), t.child("cell"), 1, 256);
         t.finish();
+        take(t.require("cell"), t.child("cell"), f_glyph_width * cell,
+             f_glyph_height * cell);
         return f_texture(cell);
     }
     const toml::node& file = t.require("file");
     const std::filesystem::path path = c.folder / read_string(c, file, t.child("file"));
     t.finish();
     try {
-        return load_texture(path);
+        return load_texture(path, [&](int width, int height) { // before decoding
+            if (width > max_texture_side || height > max_texture_side) {
+                c.fail(
+                    file.source(), t.child("file"),
+                    fmt::format("{}: {}x{} texels is larger than the {} allowed per side",
+                                path.string(), width, height, max_texture_side));
+            }
+            take(file, t.child("file"), width, height);
+        });
     } catch (const Error& error) { // names the path and the reason
         c.fail(file.source(), t.child("file"), error.what());
     }
@@ -637,6 +659,12 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
             scene.options);
     }
     if (const toml::table* t = section("textures")) {
+        if (t->size() > static_cast<std::size_t>(max_scene_textures)) {
+            c.fail(t->source(), "textures",
+                   fmt::format("{} textures are more than the {} allowed", t->size(),
+                               max_scene_textures));
+        }
+        long long texture_bytes = 0; // the texel memory of the textures so far
         for (auto&& [key, node] : *t) {
             const std::string path = "textures." + std::string(key.str());
             if (!node.is_table()) {
@@ -646,7 +674,8 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
             const TableReader reader(
                 c, *node.as_table(), path,
                 {"kind", "size", "square", "spacing", "cell", "file"});
-            SceneTexture texture{std::string(key.str()), read_texture(reader), {}};
+            SceneTexture texture{
+                std::string(key.str()), read_texture(reader, texture_bytes), {}};
             const toml::node* file = node.as_table()->get("file");
             if (file != nullptr && file->is_string()) { // read_texture has checked it
                 texture.file = c.folder / file->as_string()->get();
@@ -680,16 +709,9 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
 }
 
 Scene load_scene(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        throw Error(fmt::format("{}: cannot open the scene file", path.string()));
-    }
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) {
-        throw Error(fmt::format("{}: cannot read the scene file", path.string()));
-    }
-    return parse_scene(text.str(), path, path.parent_path());
+    const std::string text =
+        read_input_file(path, "scene", max_scene_file_bytes, InputKind::any);
+    return parse_scene(text, path, path.parent_path());
 }
 
 std::vector<std::filesystem::path> scene_inputs(const Scene& scene) {

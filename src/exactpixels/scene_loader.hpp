@@ -10,11 +10,13 @@
 // allowed. Rejected: TOML syntax errors, unknown keys, values of the wrong type,
 // values out of range (sizes, field of view, budget...), NaN and infinities, missing or
 // unreadable texture files, and degenerate meshes (a triangle of zero area). Texture
-// file paths are relative to the scene file's folder.
+// file paths are relative to the scene file's folder. Every limit below is checked
+// before the memory it bounds is allocated.
 #pragma once
 
 #include "exactpixels/scene.hpp"
 
+#include <cstddef>
 #include <filesystem>
 #include <string_view>
 
@@ -24,8 +26,17 @@ namespace exactpixels {
 inline constexpr int max_image_side = 8192;
 /// The largest image, pixels (2^24: 64 MiB of RGBA8).
 inline constexpr long long max_image_pixels = 1LL << 24;
-/// The largest procedural texture side, texels.
+/// The largest texture side, texels (procedural or read from a PNG file).
 inline constexpr int max_texture_side = 4096;
+/// The most textures a scene may define.
+inline constexpr int max_scene_textures = 64;
+/// The most texel memory a scene's textures may take together, bytes (RGBA8: two
+/// textures of the largest size, 128 MiB).
+inline constexpr long long max_scene_texture_bytes =
+    2LL * max_texture_side * max_texture_side * 4;
+/// The largest scene file, bytes (4 MiB). It is read in pieces, so a larger file, or
+/// an endless one such as /dev/zero, is refused after at most this much.
+inline constexpr std::size_t max_scene_file_bytes = std::size_t{4} << 20;
 /// The most triangles a scene may hold.
 inline constexpr long long max_scene_triangles = 1 << 20;
 

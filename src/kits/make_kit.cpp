@@ -695,7 +695,8 @@ void make_kit(const Options& options) {
     const bool has_example = folder && fs::exists(root / *folder / "example.cpp");
     // The Debian packages: the book's base list, plus toml++ if the library reads scenes.
     std::string packages =
-        "cmake g++ make pkg-config doctest-dev libglm-dev libstb-dev libfmt-dev libcli11-dev";
+        "cmake g++ make pkg-config doctest-dev libglm-dev libstb-dev libpng-dev libfmt-dev "
+        "libcli11-dev";
     for (const auto& [rel, text] : kit) {
         if (rel.filename() == "CMakeLists.txt" && text.find("tomlplusplus") != std::string::npos) {
             packages += " libtomlplusplus-dev";
