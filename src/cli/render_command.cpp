@@ -56,6 +56,11 @@ void add_render_command(CLI::App& app, int& exit_code) {
                 fmt::print("texel error against exact: worst {:.6f}, mean {:.6f} over {} "
                            "pixels\n",
                            e.worst, e.mean, e.pixels);
+                if (e.not_finite > 0) { // NaN or infinity: a failure, not a large error
+                    throw Error(fmt::format("--check: {} pixels have texel coordinates "
+                                            "that are not finite",
+                                            e.not_finite));
+                }
             }
             write_png(output, result.image, inputs); // all or nothing
             fmt::print("wrote {}\n", output.string());

@@ -108,15 +108,32 @@ class TableReader {
 };
 //< table-reader
 
+/// The value of a TOML number, exactly: every number of a scene is read here. An integer
+/// a double cannot hold exactly (beyond 2^53) is an Error, never a rounded value.
+double exact_number(const Context& c, const toml::node& node, const std::string& path) {
+    if (const auto* integer = node.as_integer()) {
+        const std::int64_t value = integer->get();
+        constexpr std::int64_t exact_limit = std::int64_t{1} << 53;
+        if (value > exact_limit || value < -exact_limit) {
+            c.fail(node.source(), path,
+                   fmt::format("{} is not exactly representable (integers are allowed "
+                               "from -2^53 to 2^53)",
+                               value));
+        }
+        return static_cast<double>(value);
+    }
+    if (const auto* floating = node.as_floating_point()) {
+        return floating->get();
+    }
+    c.fail(node.source(), path,
+           fmt::format("expected a number, got {}", type_name(node)));
+}
+
 //> read-number
 /// A finite number in [lo, hi] (integers are accepted where a float is asked for).
 double read_number(const Context& c, const toml::node& node, const std::string& path,
                    double lo, double hi) {
-    if (!node.is_number()) {
-        c.fail(node.source(), path,
-               fmt::format("expected a number, got {}", type_name(node)));
-    }
-    const double value = node.value<double>().value();
+    const double value = exact_number(c, node, path); // Error if not a number
     if (!std::isfinite(value)) {
         c.fail(node.source(), path, fmt::format("{} is not a finite number", value));
     }
@@ -144,7 +161,7 @@ int read_integer(const Context& c, const toml::node& node, const std::string& pa
         c.fail(node.source(), path,
                fmt::format("expected an integer, got {}", type_name(node)));
     }
-    const std::int64_t value = node.as_integer()->get();
+    const double value = exact_number(c, node, path);
     if (value < lo || value > hi) {
         c.fail(node.source(), path,
                fmt::format("{} is out of range (allowed: {} to {})", value, lo, hi));
@@ -276,7 +293,7 @@ void read_camera(const TableReader& t, SceneCamera& camera) {
             read_positive(c, *n, t.child("view_height"), 0.0, world_limit);
     }
     if (const auto* n = t.find("near")) {
-        camera.near = read_positive(c, *n, t.child("near"), 0.0, world_limit);
+        camera.near = read_number(c, *n, t.child("near"), min_camera_near, world_limit);
     }
     if (const auto* n = t.find("position")) {
         camera.position = read_point(c, *n, t.child("position"));
@@ -624,9 +641,45 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
 
 } // namespace
 
+/// Rejects a dotted key of more than max_key_parts parts anywhere in `text`, before the
+/// parser (which recurses once per part) sees it. Outside strings and comments, a dot
+/// joins two parts of one key or the two halves of a float; a run of dots is broken only
+/// by punctuation ('=', ',', brackets, braces) or a line break.
+void check_key_depth(const Context& c, std::string_view text) {
+    int line = 1, dots = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char ch = text[i];
+        if (ch == '"' || ch == '\'') { // skip a string, one line or three-quoted
+            const bool triple = text.substr(i, 3) == std::string(3, ch);
+            const std::string close = triple ? std::string(3, ch) : std::string(1, ch);
+            std::size_t j = i + close.size();
+            while (j < text.size() && text.compare(j, close.size(), close) != 0 &&
+                   (triple || text[j] != '\n')) {
+                line += text[j] == '\n';
+                j += ch == '"' && text[j] == '\\' ? 2 : 1; // an escape in a basic string
+            }
+            i = std::min(j + close.size(), text.size()) - 1;
+        } else if (ch == '#') {
+            while (i + 1 < text.size() && text[i + 1] != '\n') {
+                ++i;
+            }
+        } else if (ch == '.') {
+            if (++dots >= max_key_parts) {
+                throw Error(fmt::format("{}:{}: a dotted key has more than {} parts",
+                                        c.file, line, max_key_parts));
+            }
+        } else if (ch == '\n' || ch == '=' || ch == ',' || ch == '[' || ch == ']' ||
+                   ch == '{' || ch == '}') {
+            line += ch == '\n';
+            dots = 0;
+        }
+    }
+}
+
 Scene parse_scene(std::string_view text, const std::filesystem::path& file,
                   const std::filesystem::path& folder) {
     const Context c{file.string(), folder};
+    check_key_depth(c, text);
     toml::table root;
     try {
         root = toml::parse(text, file.string());

@@ -34,6 +34,12 @@ inline constexpr int max_scene_textures = 64;
 /// textures of the largest size, 128 MiB).
 inline constexpr long long max_scene_texture_bytes =
     2LL * max_texture_side * max_texture_side * 4;
+/// The smallest camera near plane, world units. With every vertex drawn at a depth of at
+/// least this much, 1/w stays below 10^6 and u/w below 2^40, finite even in float.
+inline constexpr double min_camera_near = 1e-6;
+/// The most parts of one dotted key ("a.b.c" has 3). The TOML parser recurses once per
+/// part, so the raw text is checked for this before it is parsed.
+inline constexpr int max_key_parts = 64;
 /// The largest scene file, bytes (4 MiB). It is read in pieces, so a larger file, or
 /// an endless one such as /dev/zero, is refused after at most this much.
 inline constexpr std::size_t max_scene_file_bytes = std::size_t{4} << 20;

@@ -72,13 +72,16 @@ std::string format_report(const RenderReport& report);
 
 /// How far one texel-coordinate map is from a reference, over the pixels both cover.
 struct TexelError {
-    double worst = 0.0;   ///< the largest of |u - u_ref| and |v - v_ref|, texels
-    double mean = 0.0;    ///< its mean over the compared pixels
-    long long pixels = 0; ///< pixels compared
+    double worst = 0.0;       ///< the largest of |u - u_ref| and |v - v_ref|, texels
+    double mean = 0.0;        ///< its mean over the compared pixels
+    long long pixels = 0;     ///< pixels compared
+    long long not_finite = 0; ///< pixels where a coordinate is NaN or infinite: a
+                              ///< failure, counted apart, never hidden in worst or mean
 };
 
-/// The texel error of `map` against `reference` (same size) at the pixels both cover.
-TexelError compare_texel_maps(const TexelMap& map, const TexelMap& reference);
+/// The texel error of `map` against `reference` (same size) at the pixels both cover;
+/// pixels where either has a NaN or infinite coordinate are counted in not_finite only.
+TexelError texel_error_against(const TexelMap& map, const TexelMap& reference);
 
 /// Renders the scene as it asks and again with the exact mapper in double precision,
 /// and measures the texel error of the first against the second.
