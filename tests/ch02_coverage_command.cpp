@@ -152,10 +152,15 @@ TEST_CASE("float coverage far from the origin is correct or rejected, never sile
     }
 }
 
-TEST_CASE("coverage refuses a frame of more than 2^24 pixels before allocating it") {
+TEST_CASE("coverage refuses a frame of more than 2^24 pixels and an endless line") {
     const auto huge = run_command(cli_path() + " coverage", "16384 16384\n");
     CHECK(huge.exit_code == 2);
     CHECK(huge.err.find("16777216 pixels") != std::string::npos);
+    // An endless line (/dev/zero has no line break) stops at max_line_bytes.
+    const auto endless = run_command("sh -c \"" + cli_path() + " coverage </dev/zero\"");
+    CHECK(endless.exit_code == 2);
+    CHECK(endless.err.find("line 1: longer than the 1024 bytes allowed") !=
+          std::string::npos);
     const auto largest = run_command(cli_path() + " coverage", "16384 1\n");
     CHECK(largest.exit_code == 0);
     CHECK(largest.out.size() == 2 * 16384);
