@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <string_view>
@@ -49,8 +50,8 @@ double parse_number(std::string_view word, int line) {
     return value;
 }
 
-/// The frame size from the header line "W H".
-Viewport parse_header(std::string_view text, int line) {
+/// The frame size from the header line "W H", at most `max_pixels` pixels.
+Viewport parse_header(std::string_view text, int line, long long max_pixels) {
     const auto words = words_of(text);
     if (words.size() != 2) {
         throw Error(
@@ -68,10 +69,11 @@ Viewport parse_header(std::string_view text, int line) {
         }
         size[i] = static_cast<int>(value);
     }
-    if (static_cast<long long>(size[0]) * size[1] > max_frame_pixels) {
+    if (static_cast<long long>(size[0]) * size[1] >
+        std::min(max_pixels, max_frame_pixels)) {
         throw Error(
             fmt::format("line {}: a {}x{} frame is more than the {} pixels allowed", line,
-                        size[0], size[1], max_frame_pixels));
+                        size[0], size[1], std::min(max_pixels, max_frame_pixels)));
     }
     return {size[0], size[1]};
 }
@@ -117,7 +119,8 @@ bool read_line(std::istream& in, std::string& text, int line) {
 } // namespace
 
 std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,
-                                CoveragePrecision precision, Viewport& viewport) {
+                                CoveragePrecision precision, Viewport& viewport,
+                                long long max_pixels) {
     std::string text;
     int line = 0;
     bool have_header = false;
@@ -128,7 +131,7 @@ std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,
             continue;
         }
         if (!have_header) {
-            viewport = parse_header(text, line);
+            viewport = parse_header(text, line, max_pixels);
             counts.assign(static_cast<std::size_t>(viewport.width) *
                               static_cast<std::size_t>(viewport.height),
                           0);

@@ -35,8 +35,11 @@ inline constexpr std::size_t max_line_bytes = 1024;
 /// Reads the whole of `in`, draws every triangle with `kind` in `precision`, sets
 /// `viewport` to the frame's size and returns the counts row by row. Throws Error
 /// ("line N: ...") on malformed input or a triangle the rasterizer refuses.
+/// `max_pixels` (at most max_frame_pixels) lowers the frame limit, as the fuzz target
+/// does to stay fast.
 std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,
-                                CoveragePrecision precision, Viewport& viewport);
+                                CoveragePrecision precision, Viewport& viewport,
+                                long long max_pixels = max_frame_pixels);
 
 /// The counts as text: one line per row, counts separated by one space.
 std::string format_counts(const std::vector<int>& counts, Viewport viewport);

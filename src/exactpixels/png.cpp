@@ -39,8 +39,13 @@ Framebuffer read_png(const std::filesystem::path& path,
                      const std::function<void(int width, int height)>& check_size) {
     const std::string bytes =
         read_input_file(path, "PNG", max_png_file_bytes, InputKind::regular_file);
+    return decode_png(bytes, path.string(), check_size);
+}
+
+Framebuffer decode_png(std::string_view bytes, const std::string& name,
+                       const std::function<void(int width, int height)>& check_size) {
     const auto fail = [&](const std::string& reason) -> void {
-        throw Error(fmt::format("{}: cannot read image ({})", path.string(), reason));
+        throw Error(fmt::format("{}: cannot read image ({})", name, reason));
     };
     constexpr std::size_t signature_bytes = 8;
     if (bytes.size() < signature_bytes ||

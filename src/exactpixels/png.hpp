@@ -24,6 +24,8 @@
 #include <filesystem>
 #include <functional>
 #include <span>
+#include <string>
+#include <string_view>
 
 namespace exactpixels {
 
@@ -39,6 +41,11 @@ void write_png(const std::filesystem::path& path, const Framebuffer& frame,
 inline constexpr std::size_t max_png_file_bytes = std::size_t{80} << 20;
 /// The most pixels read_png decodes (2^24: 64 MiB of RGBA8).
 inline constexpr long long max_png_pixels = 1LL << 24;
+
+/// Decodes the PNG `bytes` as RGBA8, as read_png does after reading the file; `name`
+/// names it in messages.
+Framebuffer decode_png(std::string_view bytes, const std::string& name,
+                       const std::function<void(int width, int height)>& check_size = {});
 
 /// Reads a PNG as RGBA8. After the header is read and before the pixels are decoded,
 /// calls `check_size(width, height)` when given, which may throw to refuse the size.

@@ -108,6 +108,7 @@ class TableReader {
 };
 //< table-reader
 
+//> read-number
 /// The value of a TOML number, exactly: every number of a scene is read here. An integer
 /// a double cannot hold exactly (beyond 2^53) is an Error, never a rounded value.
 double exact_number(const Context& c, const toml::node& node, const std::string& path) {
@@ -129,7 +130,6 @@ double exact_number(const Context& c, const toml::node& node, const std::string&
            fmt::format("expected a number, got {}", type_name(node)));
 }
 
-//> read-number
 /// A finite number in [lo, hi] (integers are accepted where a float is asked for).
 double read_number(const Context& c, const toml::node& node, const std::string& path,
                    double lo, double hi) {
