@@ -25,6 +25,9 @@
 // The kit is checked while it is made: every exercise region of chapter NN must be named by
 // a test of chapter NN with points > 0, and every exercise a test names must exist.
 // Errors name file and line and make the program exit with status 1.
+#include "exactpixels/atomic_file.hpp"
+#include "exactpixels/error.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -62,10 +65,10 @@ std::string read_text(const fs::path& path) {
 
 void write_text(const fs::path& path, const std::string& text) {
     fs::create_directories(path.parent_path());
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out) {
-        throw KitError("cannot write " + path.string());
+    try { // all or nothing, every write checked (chapter 0's atomic_file.hpp)
+        exactpixels::write_file_atomically(path, "kit", text);
+    } catch (const exactpixels::Error& error) {
+        throw KitError(error.what());
     }
 }
 
