@@ -84,8 +84,7 @@ testing::CommandResult run_limited(int blocks, const std::string& arguments,
 
 } // namespace
 
-TEST_CASE("a write that hits the file size limit keeps the old file and leaves no "
-          "temporary") {
+TEST_CASE("a failed write keeps the old file and leaves no temporary") {
     const auto folder = scratch_folder("fsize");
     const fs::path out = folder / "f.png";
     write_png(out, draw_f_pattern(1));
