@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <system_error>
 
 int main(int argc, char** argv) {
     // A file size limit (ulimit -f) must fail a write with EFBIG, which the writers
@@ -40,6 +41,9 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& error) { // a usage mistake: like any bad input
         exactpixels::cli::print_error("", std::string(error.what()) +
                                               " (see exactpixels --help)");
+        return exactpixels::cli::exit_bad_input;
+    } catch (const std::system_error& error) { // fmt::print could not write its output
+        exactpixels::cli::print_error("", error.what());
         return exactpixels::cli::exit_bad_input;
     }
     // Whatever was printed must have arrived: a full disk or a closed pipe is an error.
