@@ -3,6 +3,7 @@
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <string>
 
@@ -125,4 +126,42 @@ TEST_CASE("coverage: a frame with no triangles prints zeros") {
     const auto result = run_command(cli_path() + " coverage", "3 2\n");
     CHECK(result.exit_code == 0);
     CHECK(result.out == "0 0 0\n0 0 0\n");
+}
+
+TEST_CASE("float coverage far from the origin is correct or rejected, never silently "
+          "empty") {
+    // A triangle that covers the whole 4 x 4 frame: corners (-s, -s), (-s, 3s), (3s, -s).
+    const auto cover = [](double s, const std::string& rasterizer) {
+        return run_command(
+            cli_path() + " coverage --precision float --rasterizer " + rasterizer,
+            fmt::format("4 4\n{} {} {} {} {} {}\n", -s, -s, -s, 3 * s, 3 * s, -s));
+    };
+    const std::string full = "1 1 1 1\n1 1 1 1\n1 1 1 1\n1 1 1 1\n";
+    for (const char* rasterizer : {"edge", "edge8x8"}) {
+        CAPTURE(rasterizer);
+        CHECK(cover(1000, rasterizer).out == full);
+        CHECK(cover(349525, rasterizer).out == full); // 3s = 1048575 px: still in range
+        for (const double far : {349526.0, 1e19, 1e30}) { // 3s beyond 2^20 px
+            CAPTURE(far);
+            const auto result = cover(far, rasterizer);
+            CHECK(result.exit_code == 2);
+            CHECK(result.out.empty());
+            CHECK(result.err.find("outside the float rasterizers' range") !=
+                  std::string::npos);
+        }
+    }
+}
+
+TEST_CASE("coverage refuses a frame of more than 2^24 pixels and an endless line") {
+    const auto huge = run_command(cli_path() + " coverage", "16384 16384\n");
+    CHECK(huge.exit_code == 2);
+    CHECK(huge.err.find("16777216 pixels") != std::string::npos);
+    // An endless line (/dev/zero has no line break) stops at max_line_bytes.
+    const auto endless = run_command("sh -c \"" + cli_path() + " coverage </dev/zero\"");
+    CHECK(endless.exit_code == 2);
+    CHECK(endless.err.find("line 1: longer than the 1024 bytes allowed") !=
+          std::string::npos);
+    const auto largest = run_command(cli_path() + " coverage", "16384 1\n");
+    CHECK(largest.exit_code == 0);
+    CHECK(largest.out.size() == 2 * 16384);
 }

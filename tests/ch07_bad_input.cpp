@@ -6,10 +6,12 @@
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <vector>
 
@@ -30,6 +32,16 @@ std::string scene_with(const std::string& extra_image, const std::string& extra_
            "primitive = \"triangles\"\n"
            "positions = [[0, 0, 1], [1, 0, 1], [0, 1, 1]]\n" +
            extra_mesh;
+}
+
+/// A [textures] table of `count` textures t0, t1, ... each `{ fields }`.
+std::string many_textures(int count,
+                          const std::string& fields = "kind = \"f\", cell = 1") {
+    std::string text = "[textures]\n";
+    for (int k = 0; k < count; ++k) {
+        text += fmt::format("t{} = {{ {} }}\n", k, fields);
+    }
+    return text;
 }
 
 /// One bad scene: its text, and where and what the message must name.
@@ -86,6 +98,20 @@ std::vector<BadScene> bad_scenes() {
          scene_with("[camera]\nposition = [0, -5, 0]\ntarget = [0, 0, 0]\n", ""), "4:1",
          "camera", "up direction"},
         {"no mesh at all", "[image]\nwidth = 8\n", "1:1", "mesh", "nothing to draw"},
+        {"more textures than allowed",
+         scene_with(many_textures(max_scene_textures + 1), ""), "4:1", "textures",
+         "more than the 64 allowed"},
+        {"textures beyond the texel memory allowed",
+         scene_with(many_textures(3, "kind = \"checkerboard\", size = [4096, 4096], "
+                                     "square = 64"),
+                    ""),
+         "7:38", "textures.t2.size", "beyond the 134217728 bytes"},
+        {"a PNG texture wider than allowed",
+         scene_with("[textures.wide]\nkind = \"png\"\nfile = \"wide.png\"\n", ""), "6:8",
+         "textures.wide.file", "larger than the 4096 allowed"},
+        {"a texture file that is a FIFO",
+         scene_with("[textures.pipe]\nkind = \"png\"\nfile = \"fifo.png\"\n", ""), "6:8",
+         "textures.pipe.file", "not a regular file"},
     };
 }
 
@@ -95,6 +121,8 @@ fs::path scratch_folder(const std::string& name) {
     fs::remove_all(folder);
     fs::create_directories(folder);
     std::ofstream(folder / "corrupt.png") << "\x89PNG\r\n\x1a\nthis is not a PNG";
+    write_png(folder / "wide.png", Framebuffer(max_texture_side + 1, 1));
+    ::mkfifo((folder / "fifo.png").c_str(), 0600); // nobody writes it: must not block
     return folder;
 }
 

@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <system_error>
 
 namespace exactpixels {
@@ -150,12 +149,7 @@ std::string SvgDiagram::str() const {
 }
 
 void SvgDiagram::write(const std::filesystem::path& path) const {
-    write_atomically(path, "SVG", [&](const std::filesystem::path& temporary) {
-        std::ofstream file(temporary, std::ios::binary);
-        file << str();
-        file.close();
-        return static_cast<bool>(file);
-    });
+    write_file_atomically(path, "SVG", str());
 }
 
 } // namespace exactpixels

@@ -5,11 +5,28 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstddef>
+#include <string>
+#include <string_view>
+
 namespace exactpixels::cli {
 
 /// The exit code for malformed input (a message naming the line and value goes to
 /// stderr).
 inline constexpr int exit_bad_input = 2;
+
+/// The most characters of one word a message shows; a longer word (a 50 MB token on
+/// the command line or in the input) is cut to this many and an ellipsis.
+inline constexpr std::size_t max_word_chars = 80;
+
+/// `message` as one line: line breaks become spaces, and every word longer than
+/// max_word_chars is cut to that many characters followed by "...".
+std::string one_line(std::string_view message);
+
+/// Prints "exactpixels[ COMMAND]: MESSAGE" as one_line(message) on standard error.
+/// Never throws: when even standard error cannot be written there is nobody to tell,
+/// and the exit code still says what happened.
+void print_error(std::string_view command, std::string_view message);
 
 /// Registers `exactpixels pattern`: writes the chapter 0 "F" test pattern as a PNG.
 void add_pattern_command(CLI::App& app, int& exit_code);

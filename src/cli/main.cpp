@@ -1,11 +1,22 @@
 // build/bin/exactpixels: the book's command-line program. Chapters add subcommands.
+//
+// Exit codes: 0 success; 2 (exit_bad_input) for any bad input, usage mistake or failed
+// write, with one line on standard error naming the file, line, option or value.
 #include "commands.hpp"
 
 #include <fmt/format.h>
 
+#include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <system_error>
 
 int main(int argc, char** argv) {
+    // A file size limit (ulimit -f) must fail a write with EFBIG, which the writers
+    // report and clean up after, rather than kill the program half way through a file.
+    std::signal(SIGXFSZ, SIG_IGN);
+
     CLI::App app{"Exact Pixels: the book's rasterizers and texture mappers from the "
                  "command line"};
     app.set_version_flag("--version", fmt::format("exactpixels {}", EXACTPIXELS_VERSION));
@@ -22,9 +33,32 @@ int main(int argc, char** argv) {
     exactpixels::cli::add_render_command(app, exit_code);
 #endif
 
-    CLI11_PARSE(app, argc, argv);
-    if (app.get_subcommands().empty()) {
-        std::fputs(app.help().c_str(), stdout);
+    try {
+        app.parse(argc, argv);
+        if (app.get_subcommands().empty()) {
+            std::fputs(app.help().c_str(), stdout);
+        }
+    } catch (const CLI::CallForHelp& request) { // --help, --version: exit code 0
+        return app.exit(request);
+    } catch (const CLI::CallForAllHelp& request) {
+        return app.exit(request);
+    } catch (const CLI::CallForVersion& request) {
+        return app.exit(request);
+    } catch (const CLI::ParseError& error) { // a usage mistake: like any bad input
+        exactpixels::cli::print_error("", std::string(error.what()) +
+                                              " (see exactpixels --help)");
+        return exactpixels::cli::exit_bad_input;
+    } catch (const std::system_error& error) { // fmt::print could not write its output
+        exactpixels::cli::print_error("", error.what());
+        return exactpixels::cli::exit_bad_input;
+    }
+    // Whatever was printed must have arrived: a full disk or a closed pipe is an error.
+    // (A command that failed has said so already.)
+    if (exit_code == 0 && (std::fflush(stdout) != 0 || std::ferror(stdout) != 0)) {
+        exactpixels::cli::print_error(
+            "", fmt::format("standard output: cannot write ({})",
+                            errno != 0 ? std::strerror(errno) : "write failed"));
+        return exactpixels::cli::exit_bad_input;
     }
     return exit_code;
 }

@@ -28,7 +28,7 @@ void add_pattern_command(CLI::App& app, int& exit_code) {
         try {
             write_png(options->output, draw_f_pattern(options->cell));
         } catch (const Error& error) {
-            fmt::print(stderr, "exactpixels pattern: {}\n", error.what());
+            print_error("pattern", error.what());
             exit_code = exit_bad_input;
         }
     });

@@ -1,5 +1,6 @@
 #include "commands.hpp"
 
+#include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace exactpixels::cli {
 
@@ -17,7 +19,7 @@ namespace exactpixels::cli {
 void add_render_command(CLI::App& app, int& exit_code) {
     struct Options {
         std::string scene;  // empty: the first shipped scene
-        std::string output; // empty: the scene's name with .png
+        std::string output; // the PNG to write (not given: the scene's name with .png)
         bool report = false;
         bool check = false;
     };
@@ -27,18 +29,24 @@ void add_render_command(CLI::App& app, int& exit_code) {
                   "stages the scene calls for");
     command->add_option("scene", options->scene,
                         "Scene file (default: the first scene shipped with chapter 7)");
-    command->add_option("-o,--output", options->output,
-                        "PNG file to write (default: SCENE-NAME.png)");
+    const CLI::Option* output_option = command->add_option(
+        "-o,--output", options->output, "PNG file to write (default: SCENE-NAME.png)");
     command->add_flag("--report", options->report,
                       "Print what ran: triangles, pixels, divides and time per stage");
     command->add_flag("--check", options->check,
                       "Also render the exact reference and print the texel error");
-    command->callback([options, &exit_code] {
+    command->callback([options, output_option, &exit_code] {
         try {
             const std::filesystem::path scene_path =
                 options->scene.empty() ? shipped_scenes().front()
                                        : std::filesystem::path(options->scene);
             const Scene scene = load_scene(scene_path); // Error: file:line:column: key
+            const std::filesystem::path output =
+                output_option->count() > 0 // "-o ''" is an error, not the default
+                    ? std::filesystem::path(options->output)
+                    : std::filesystem::path(scene_path.stem().string() + ".png");
+            const std::vector<std::filesystem::path> inputs = scene_inputs(scene);
+            check_output(output, "PNG", inputs); // not a scene, texture or device
             const RenderResult result = render_scene(scene);
             if (options->report) {
                 std::fputs(format_report(result.report).c_str(), stdout);
@@ -48,15 +56,16 @@ void add_render_command(CLI::App& app, int& exit_code) {
                 fmt::print("texel error against exact: worst {:.6f}, mean {:.6f} over {} "
                            "pixels\n",
                            e.worst, e.mean, e.pixels);
+                if (e.not_finite > 0) { // NaN or infinity: a failure, not a large error
+                    throw Error(fmt::format("--check: {} pixels have texel coordinates "
+                                            "that are not finite",
+                                            e.not_finite));
+                }
             }
-            const std::filesystem::path output =
-                options->output.empty()
-                    ? std::filesystem::path(scene_path.stem().string() + ".png")
-                    : std::filesystem::path(options->output);
-            write_png(output, result.image); // all or nothing
+            write_png(output, result.image, inputs); // all or nothing
             fmt::print("wrote {}\n", output.string());
         } catch (const Error& error) {
-            fmt::print(stderr, "exactpixels render: {}\n", error.what());
+            print_error("render", error.what());
             exit_code = exit_bad_input;
         }
     });

@@ -27,6 +27,9 @@
 // The kit is checked while it is made: every exercise region of chapter NN must be named
 // by a test of chapter NN with points > 0, and every exercise a test names must exist.
 // Errors name file and line and make the program exit with status 1.
+#include "exactpixels/base/atomic_file.hpp"
+#include "exactpixels/base/error.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -64,10 +67,10 @@ std::string read_text(const fs::path& path) {
 
 void write_text(const fs::path& path, const std::string& text) {
     fs::create_directories(path.parent_path());
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out) {
-        throw KitError("cannot write " + path.string());
+    try { // all or nothing, every write checked (chapter 0's atomic_file.hpp)
+        exactpixels::write_file_atomically(path, "kit", text);
+    } catch (const exactpixels::Error& error) {
+        throw KitError(error.what());
     }
 }
 
@@ -786,7 +789,7 @@ void make_kit(const Options& options) {
     // The Debian packages: the book's base list, plus toml++ if the kit has the scene
     // layer (the only one that reads TOML).
     std::string packages = "cmake g++ make pkg-config doctest-dev libglm-dev libstb-dev "
-                           "libfmt-dev libcli11-dev";
+                           "libpng-dev libfmt-dev libcli11-dev";
     if (std::any_of(kit.begin(), kit.end(), [](const auto& file) {
             return starts_with(file.first.generic_string(), "src/exactpixels/scene/");
         })) {

@@ -1,25 +1,43 @@
-// atomic_file.hpp: writing a file all or nothing.
+// atomic_file.hpp: writing a file all or nothing, and never over something precious.
 //
 // Usage:
-//   write_atomically("out.png", "PNG", [&](const std::filesystem::path& temporary) {
-//       return write_the_bytes_to(temporary);  // true when every byte was written
-//   });
+//   write_file_atomically("out.png", "PNG", bytes, {scene_file, texture_file});
+//   check_output("out.png", "PNG", inputs);  // the same checks, before any work is done
 //
-// The content goes to "<path>.partial" beside the target, which is renamed over the
-// target only when complete. On failure the temporary file is removed, the target is
-// left as it was, and an Error names the path.
+// The bytes go to a new temporary file in the target's folder, created exclusively
+// (O_CREAT | O_EXCL | O_NOFOLLOW: it never reuses or follows anything already there)
+// under a short unique name (".ep-" and 12 hex digits, so any legal target name still
+// works). Every write is checked, the file is flushed to the disk (fsync) and closed, and
+// only then renamed over the target. On any failure the temporary file is removed, the
+// target is left as it was, and an Error names the path and the reason.
+//
+// Refused before anything is written: an empty path; a target that exists and is not a
+// regular file (a directory, a device such as /dev/null, a FIFO, a symbolic link); and a
+// target that is the same file as one of `inputs` (same device and inode, so a hard link
+// or another spelling of the same path is caught too).
 #pragma once
 
 #include <filesystem>
-#include <functional>
+#include <span>
 #include <string_view>
 
 namespace exactpixels {
 
-/// Writes `path` through `write`, which fills the temporary file it is given and returns
-/// true on success. Throws Error ("PATH: cannot write KIND file (reason)") on failure,
-/// leaving neither `path` (if it did not exist) nor the temporary file behind.
-void write_atomically(const std::filesystem::path& path, std::string_view kind,
-                      const std::function<bool(const std::filesystem::path&)>& write);
+/// Throws Error ("PATH: cannot write KIND file (reason)") when `path` may not be written:
+/// it is empty, exists and is not a regular file, or is the same file as one of
+/// `inputs` (inputs that do not exist are ignored). Writes nothing.
+void check_output(const std::filesystem::path& path, std::string_view kind,
+                  std::span<const std::filesystem::path> inputs = {});
+
+/// Writes `bytes` to `path` all or nothing, after check_output(path, kind, inputs).
+/// Throws Error ("PATH: cannot write KIND file (reason)") on any failure, leaving the
+/// target as it was and no temporary file behind.
+void write_file_atomically(const std::filesystem::path& path, std::string_view kind,
+                           std::string_view bytes,
+                           std::span<const std::filesystem::path> inputs = {});
+
+/// Writes `bytes` to standard output and flushes it. Throws Error ("standard output:
+/// reason") when any of it could not be written (a closed pipe, a full disk, /dev/full).
+void write_standard_output(std::string_view bytes);
 
 } // namespace exactpixels

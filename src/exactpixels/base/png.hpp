@@ -1,25 +1,58 @@
-// png.hpp: reading and writing frames as PNG files, through stb.
+// png.hpp: reading PNG files through libpng and writing them through stb.
 //
 // Usage:
 //   write_png("f.png", fb);             // throws Error naming the path on failure
+//   write_png("f.png", fb, {scene});    // ... also when "f.png" is the file `scene`
 //   Framebuffer image = read_png("f.png");
+//   Framebuffer small = read_png("t.png", [](int w, int h) { /* throw if too big */ });
 //
-// Writing is all or nothing: the image goes to a temporary file beside the target,
-// which is renamed over the target only when complete. On failure no file is left.
+// Writing is all or nothing (atomic_file.hpp): the image is encoded in memory, goes to a
+// new temporary file beside the target, and is renamed over the target only when every
+// byte is on the disk. On failure no file is left and the target is unchanged.
+//
+// Reading is strict: the file must be a regular file of at most max_png_file_bytes that
+// starts with the PNG signature; libpng checks every chunk's CRC and the zlib stream's
+// Adler-32 checksum, so a corrupt file is an Error, never an image with wrong pixels. The
+// size in the header is checked (against max_png_pixels, and by the caller's check)
+// before any pixel memory is allocated. Pixels come out as 8-bit RGBA, rows top to
+// bottom.
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
 
+#include <cstddef>
 #include <filesystem>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
 
 namespace exactpixels {
 
 /// Writes `frame` as an 8-bit RGBA PNG. Throws Error (naming the path) on failure, in
-/// which case neither `path` nor any temporary file is left behind.
-void write_png(const std::filesystem::path& path, const Framebuffer& frame);
+/// which case the target is left as it was and no temporary file is left behind. The
+/// target may not be one of `inputs`, nor anything but a regular file (see
+/// write_file_atomically).
+void write_png(const std::filesystem::path& path, const Framebuffer& frame,
+               std::span<const std::filesystem::path> inputs = {});
 
-/// Reads a PNG (or any image stb reads) as RGBA8. Throws Error naming the path and
-/// stb's reason when the file is missing, unreadable, corrupt or has zero size.
-Framebuffer read_png(const std::filesystem::path& path);
+/// The largest PNG file read_png reads, bytes (the largest image it decodes, stored
+/// uncompressed, fits with room to spare).
+inline constexpr std::size_t max_png_file_bytes = std::size_t{80} << 20;
+/// The most pixels read_png decodes (2^24: 64 MiB of RGBA8).
+inline constexpr long long max_png_pixels = 1LL << 24;
+
+/// Decodes the PNG `bytes` as RGBA8, as read_png does after reading the file; `name`
+/// names it in messages.
+Framebuffer decode_png(std::string_view bytes, const std::string& name,
+                       const std::function<void(int width, int height)>& check_size = {});
+
+/// Reads a PNG as RGBA8. After the header is read and before the pixels are decoded,
+/// calls `check_size(width, height)` when given, which may throw to refuse the size.
+/// Throws Error naming the path and the reason when the file is missing, not a regular
+/// file, too large, not a PNG (by its signature), corrupt (a bad CRC, a bad zlib
+/// checksum, truncated) or has more than max_png_pixels pixels.
+Framebuffer read_png(const std::filesystem::path& path,
+                     const std::function<void(int width, int height)>& check_size = {});
 
 } // namespace exactpixels

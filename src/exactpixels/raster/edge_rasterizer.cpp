@@ -26,6 +26,12 @@ void check_float_triangle(const std::array<Point2f, 3>& v) {
                 throw Error(fmt::format(
                     "vertex {}: coordinate {} px is not a finite number", i, value));
             }
+            if (!(std::abs(value) <= max_float_coordinate)) {
+                throw Error(
+                    fmt::format("vertex {}: coordinate {} px is outside the float "
+                                "rasterizers' range [-{}, {}]",
+                                i, value, max_float_coordinate, max_float_coordinate));
+            }
         }
     }
 }

@@ -89,7 +89,14 @@ inline PixelRect pixel_bounds(const std::array<Point2f, 3>& v, Viewport viewport
 /// and within +-max_fixed_coordinate (1/256 px).
 void check_fixed_triangle(const std::array<FixedPoint2, 3>& v);
 
-/// Throws Error naming the vertex and the value unless every coordinate of v is finite.
+/// The largest vertex coordinate the float rasterizers accept, px: the fixed-point range
+/// (2^20). Beyond it the vertices themselves are rounded to coarser than 1/16 px, and far
+/// enough out (about 1.8e19 px) the edge products overflow to infinity and NaN, which
+/// would silently draw nothing; such a triangle is an Error instead.
+inline constexpr float max_float_coordinate = 1048576.0f;
+
+/// Throws Error naming the vertex and the value unless every coordinate of v is finite
+/// and within +-max_float_coordinate px.
 void check_float_triangle(const std::array<Point2f, 3>& v);
 
 //> traverse-pixels

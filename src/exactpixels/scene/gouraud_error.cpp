@@ -15,7 +15,7 @@ GouraudError gouraud_perspective_error(const Scene& scene) {
         // The channel becomes u on every vertex-coloured mesh (any texture will do: only
         // the coordinates are compared); other meshes stay untextured and only hide.
         Scene probe = scene;
-        probe.textures.push_back({"gouraud probe", Texture(1, 1, {Rgba8{}})});
+        probe.textures.push_back({"gouraud probe", Texture(1, 1, {Rgba8{}}), {}});
         for (SceneMesh& mesh : probe.meshes) {
             if (!mesh.vertex_colours) {
                 mesh.texture.reset();

@@ -66,8 +66,9 @@ struct RenderOptions {
 
 /// A named texture of a scene.
 struct SceneTexture {
-    std::string name; ///< the key under [textures]
-    Texture texture;  ///< the texels
+    std::string name;           ///< the key under [textures]
+    Texture texture;            ///< the texels
+    std::filesystem::path file; ///< the PNG it was read from (empty: procedural)
 };
 
 /// A mesh: triangles and the effects they call for.

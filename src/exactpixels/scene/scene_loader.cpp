@@ -1,6 +1,8 @@
 #include "exactpixels/scene/scene_loader.hpp"
 
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/input_file.hpp"
+#include "exactpixels/base/test_pattern.hpp"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -8,11 +10,9 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <numbers>
 #include <set>
-#include <sstream>
 
 #ifndef EXACTPIXELS_SCENES_DIR
 #define EXACTPIXELS_SCENES_DIR "chapters/07-scenes/scenes"
@@ -109,14 +109,31 @@ class TableReader {
 //< table-reader
 
 //> read-number
+/// The value of a TOML number, exactly: every number of a scene is read here. An integer
+/// a double cannot hold exactly (beyond 2^53) is an Error, never a rounded value.
+double exact_number(const Context& c, const toml::node& node, const std::string& path) {
+    if (const auto* integer = node.as_integer()) {
+        const std::int64_t value = integer->get();
+        constexpr std::int64_t exact_limit = std::int64_t{1} << 53;
+        if (value > exact_limit || value < -exact_limit) {
+            c.fail(node.source(), path,
+                   fmt::format("{} is not exactly representable (integers are allowed "
+                               "from -2^53 to 2^53)",
+                               value));
+        }
+        return static_cast<double>(value);
+    }
+    if (const auto* floating = node.as_floating_point()) {
+        return floating->get();
+    }
+    c.fail(node.source(), path,
+           fmt::format("expected a number, got {}", type_name(node)));
+}
+
 /// A finite number in [lo, hi] (integers are accepted where a float is asked for).
 double read_number(const Context& c, const toml::node& node, const std::string& path,
                    double lo, double hi) {
-    if (!node.is_number()) {
-        c.fail(node.source(), path,
-               fmt::format("expected a number, got {}", type_name(node)));
-    }
-    const double value = node.value<double>().value();
+    const double value = exact_number(c, node, path); // Error if not a number
     if (!std::isfinite(value)) {
         c.fail(node.source(), path, fmt::format("{} is not a finite number", value));
     }
@@ -144,7 +161,7 @@ int read_integer(const Context& c, const toml::node& node, const std::string& pa
         c.fail(node.source(), path,
                fmt::format("expected an integer, got {}", type_name(node)));
     }
-    const std::int64_t value = node.as_integer()->get();
+    const double value = exact_number(c, node, path);
     if (value < lo || value > hi) {
         c.fail(node.source(), path,
                fmt::format("{} is out of range (allowed: {} to {})", value, lo, hi));
@@ -276,7 +293,7 @@ void read_camera(const TableReader& t, SceneCamera& camera) {
             read_positive(c, *n, t.child("view_height"), 0.0, world_limit);
     }
     if (const auto* n = t.find("near")) {
-        camera.near = read_positive(c, *n, t.child("near"), 0.0, world_limit);
+        camera.near = read_number(c, *n, t.child("near"), min_camera_near, world_limit);
     }
     if (const auto* n = t.find("position")) {
         camera.position = read_point(c, *n, t.child("position"));
@@ -342,8 +359,19 @@ void read_render(const TableReader& t, RenderOptions& options) {
 }
 
 //> read-texture
-Texture read_texture(const TableReader& t) {
+Texture read_texture(const TableReader& t, long long& texture_bytes) {
     const Context& c = t.context();
+    // Counts a width x height texture against the scene's texel memory, before it exists.
+    const auto take = [&](const toml::node& where, const std::string& path,
+                          long long width, long long height) {
+        texture_bytes += width * height * 4;
+        if (texture_bytes > max_scene_texture_bytes) {
+            c.fail(where.source(), path,
+                   fmt::format("a {}x{} texture takes the scene's textures beyond the "
+                               "{} bytes allowed",
+                               width, height, max_scene_texture_bytes));
+        }
+    };
     const std::size_t kind = read_choice(c, t.require("kind"), t.child("kind"),
                                          {"checkerboard", "grid", "f", "png"});
     const auto size = [&] {
@@ -359,6 +387,7 @@ Texture read_texture(const TableReader& t) {
         const int cell =
             read_integer(c, t.require(key), t.child(key), 1, max_texture_side);
         t.finish();
+        take(t.require("size"), t.child("size"), s.x, s.y);
         if (kind == 0) {
             return checkerboard_texture(s.x, s.y, cell);
         }
@@ -374,13 +403,23 @@ Texture read_texture(const TableReader& t) {
     if (kind == 2) { // the "F"
         const int cell = read_integer(c, t.require("cell"), t.child("cell"), 1, 256);
         t.finish();
+        take(t.require("cell"), t.child("cell"), f_glyph_width * cell,
+             f_glyph_height * cell);
         return f_texture(cell);
     }
     const toml::node& file = t.require("file");
     const std::filesystem::path path = c.folder / read_string(c, file, t.child("file"));
     t.finish();
     try {
-        return load_texture(path);
+        return load_texture(path, [&](int width, int height) { // before decoding
+            if (width > max_texture_side || height > max_texture_side) {
+                c.fail(
+                    file.source(), t.child("file"),
+                    fmt::format("{}: {}x{} texels is larger than the {} allowed per side",
+                                path.string(), width, height, max_texture_side));
+            }
+            take(file, t.child("file"), width, height);
+        });
     } catch (const Error& error) { // names the path and the reason
         c.fail(file.source(), t.child("file"), error.what());
     }
@@ -580,9 +619,45 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
 
 } // namespace
 
+/// Rejects a dotted key of more than max_key_parts parts anywhere in `text`, before the
+/// parser (which recurses once per part) sees it. Outside strings and comments, a dot
+/// joins two parts of one key or the two halves of a float; a run of dots is broken only
+/// by punctuation ('=', ',', brackets, braces) or a line break.
+void check_key_depth(const Context& c, std::string_view text) {
+    int line = 1, dots = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char ch = text[i];
+        if (ch == '"' || ch == '\'') { // skip a string, one line or three-quoted
+            const bool triple = text.substr(i, 3) == std::string(3, ch);
+            const std::string close = triple ? std::string(3, ch) : std::string(1, ch);
+            std::size_t j = i + close.size();
+            while (j < text.size() && text.compare(j, close.size(), close) != 0 &&
+                   (triple || text[j] != '\n')) {
+                line += text[j] == '\n';
+                j += ch == '"' && text[j] == '\\' ? 2 : 1; // an escape in a basic string
+            }
+            i = std::min(j + close.size(), text.size()) - 1;
+        } else if (ch == '#') {
+            while (i + 1 < text.size() && text[i + 1] != '\n') {
+                ++i;
+            }
+        } else if (ch == '.') {
+            if (++dots >= max_key_parts) {
+                throw Error(fmt::format("{}:{}: a dotted key has more than {} parts",
+                                        c.file, line, max_key_parts));
+            }
+        } else if (ch == '\n' || ch == '=' || ch == ',' || ch == '[' || ch == ']' ||
+                   ch == '{' || ch == '}') {
+            line += ch == '\n';
+            dots = 0;
+        }
+    }
+}
+
 Scene parse_scene(std::string_view text, const std::filesystem::path& file,
                   const std::filesystem::path& folder) {
     const Context c{file.string(), folder};
+    check_key_depth(c, text);
     toml::table root;
     try {
         root = toml::parse(text, file.string());
@@ -615,6 +690,12 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
             scene.options);
     }
     if (const toml::table* t = section("textures")) {
+        if (t->size() > static_cast<std::size_t>(max_scene_textures)) {
+            c.fail(t->source(), "textures",
+                   fmt::format("{} textures are more than the {} allowed", t->size(),
+                               max_scene_textures));
+        }
+        long long texture_bytes = 0; // the texel memory of the textures so far
         for (auto&& [key, node] : *t) {
             const std::string path = "textures." + std::string(key.str());
             if (!node.is_table()) {
@@ -624,7 +705,13 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
             const TableReader reader(
                 c, *node.as_table(), path,
                 {"kind", "size", "square", "spacing", "cell", "file"});
-            scene.textures.push_back({std::string(key.str()), read_texture(reader)});
+            SceneTexture texture{
+                std::string(key.str()), read_texture(reader, texture_bytes), {}};
+            const toml::node* file = node.as_table()->get("file");
+            if (file != nullptr && file->is_string()) { // read_texture has checked it
+                texture.file = c.folder / file->as_string()->get();
+            }
+            scene.textures.push_back(std::move(texture));
         }
     }
     const toml::node* meshes = top.find("mesh");
@@ -653,16 +740,19 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
 }
 
 Scene load_scene(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        throw Error(fmt::format("{}: cannot open the scene file", path.string()));
+    const std::string text =
+        read_input_file(path, "scene", max_scene_file_bytes, InputKind::any);
+    return parse_scene(text, path, path.parent_path());
+}
+
+std::vector<std::filesystem::path> scene_inputs(const Scene& scene) {
+    std::vector<std::filesystem::path> files{scene.file};
+    for (const SceneTexture& texture : scene.textures) {
+        if (!texture.file.empty()) {
+            files.push_back(texture.file);
+        }
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) {
-        throw Error(fmt::format("{}: cannot read the scene file", path.string()));
-    }
-    return parse_scene(text.str(), path, path.parent_path());
+    return files;
 }
 
 std::filesystem::path shipped_scene_folder() {

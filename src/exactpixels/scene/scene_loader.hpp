@@ -10,11 +10,13 @@
 // allowed. Rejected: TOML syntax errors, unknown keys, values of the wrong type,
 // values out of range (sizes, field of view, budget...), NaN and infinities, missing or
 // unreadable texture files, and degenerate meshes (a triangle of zero area). Texture
-// file paths are relative to the scene file's folder.
+// file paths are relative to the scene file's folder. Every limit below is checked
+// before the memory it bounds is allocated.
 #pragma once
 
 #include "exactpixels/scene/scene.hpp"
 
+#include <cstddef>
 #include <filesystem>
 #include <string_view>
 
@@ -24,8 +26,23 @@ namespace exactpixels {
 inline constexpr int max_image_side = 8192;
 /// The largest image, pixels (2^24: 64 MiB of RGBA8).
 inline constexpr long long max_image_pixels = 1LL << 24;
-/// The largest procedural texture side, texels.
+/// The largest texture side, texels (procedural or read from a PNG file).
 inline constexpr int max_texture_side = 4096;
+/// The most textures a scene may define.
+inline constexpr int max_scene_textures = 64;
+/// The most texel memory a scene's textures may take together, bytes (RGBA8: two
+/// textures of the largest size, 128 MiB).
+inline constexpr long long max_scene_texture_bytes =
+    2LL * max_texture_side * max_texture_side * 4;
+/// The smallest camera near plane, world units. With every vertex drawn at a depth of at
+/// least this much, 1/w stays below 10^6 and u/w below 2^40, finite even in float.
+inline constexpr double min_camera_near = 1e-6;
+/// The most parts of one dotted key ("a.b.c" has 3). The TOML parser recurses once per
+/// part, so the raw text is checked for this before it is parsed.
+inline constexpr int max_key_parts = 64;
+/// The largest scene file, bytes (4 MiB). It is read in pieces, so a larger file, or
+/// an endless one such as /dev/zero, is refused after at most this much.
+inline constexpr std::size_t max_scene_file_bytes = std::size_t{4} << 20;
 /// The most triangles a scene may hold.
 inline constexpr long long max_scene_triangles = 1 << 20;
 
@@ -37,6 +54,10 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
 /// Reads, parses and checks the scene file at `path`. Throws Error naming the path when
 /// it cannot be read, and as parse_scene does for bad content.
 Scene load_scene(const std::filesystem::path& path);
+
+/// The files `scene` was read from: the scene file, then each texture's PNG. An output
+/// must not be any of them (write_png's `inputs`).
+std::vector<std::filesystem::path> scene_inputs(const Scene& scene);
 
 /// The folder of the scenes that ship with chapter 7 (chapters/07-scenes/scenes in the
 /// source tree this library was built from).

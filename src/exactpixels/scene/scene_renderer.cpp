@@ -14,6 +14,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace exactpixels {
@@ -270,6 +271,26 @@ double screen_area2(const std::array<TexturedVertex, 3>& t) {
     return a.x * b.y - a.y * b.x;
 }
 
+/// Stops NaN and infinity before the first pixel: throws Error when a projected corner
+/// has a coordinate, depth, 1/w or u/w, v/w that is not finite in the precision the
+/// mappers will use (float overflows above 3.4e38, long before double does).
+void check_finite(const TexturedVertex& v, Precision precision, std::size_t triangle) {
+    const double limit = precision == Precision::float32
+                             ? double(std::numeric_limits<float>::max())
+                             : std::numeric_limits<double>::max();
+    const double inverse_w = 1.0 / v.w;
+    for (const double value : {v.position.x, v.position.y, v.w, inverse_w,
+                               v.uv.x * inverse_w, v.uv.y * inverse_w}) {
+        if (!(std::abs(value) <= limit)) { // false for NaN too
+            throw Error(fmt::format(
+                "triangle {}: a corner projects to a value that is not "
+                "finite in {} (w = {}, 1/w = {})",
+                triangle, precision == Precision::float32 ? "float" : "double", v.w,
+                inverse_w));
+        }
+    }
+}
+
 } // namespace
 
 //> render-scene
@@ -291,7 +312,8 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                       report,
                       {}};
         try {
-            for (const std::array<SceneVertex, 3>& triangle : mesh.triangles) {
+            for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
+                const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
                 const Clock::time_point t0 = Clock::now();
                 std::array<ViewVertex, 3> view{};
                 std::array<Colour, 3> colours{};
@@ -320,6 +342,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                     std::array<TexturedVertex, 3> tv{};
                     for (std::size_t k = 0; k < 3; ++k) {
                         tv[k] = project_vertex(scene, lens, piece.view[k]);
+                        check_finite(tv[k], scene.options.precision, index);
                     }
                     projected.push_back(tv);
                 }

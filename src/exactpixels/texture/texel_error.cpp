@@ -49,6 +49,11 @@ TexelError compare_texel_maps(const TexelMap& reference, const TexelMap& candida
         if (!reference.covered[k]) {
             continue;
         }
+        if (!std::isfinite(candidate.u[k]) || !std::isfinite(candidate.v[k]) ||
+            !std::isfinite(reference.u[k]) || !std::isfinite(reference.v[k])) {
+            ++e.not_finite;
+            continue;
+        }
         const double error =
             texel_error(candidate.u[k], candidate.v[k], reference.u[k], reference.v[k]);
         e.worst = std::max(e.worst, error);

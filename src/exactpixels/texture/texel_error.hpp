@@ -30,6 +30,9 @@ struct TexelError {
     double mean = 0.0;                    ///< mean texel error, texels
     double differing_share = 0.0;         ///< share of pixels whose texel differs, [0, 1]
     std::int64_t coverage_mismatches = 0; ///< pixels covered by one map only
+    /// Pixels where either map holds a NaN or infinite coordinate: a failure, counted
+    /// apart and never hidden in worst or mean (std::max would drop a NaN).
+    std::int64_t not_finite = 0;
 };
 
 /// The texel error at one pixel: max(|u - u_ref|, |v - v_ref|), texels.

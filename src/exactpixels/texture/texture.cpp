@@ -84,8 +84,9 @@ Texture f_texture(int cell) {
     return Texture(draw_f_pattern(cell));
 }
 
-Texture load_texture(const std::filesystem::path& path) {
-    const Framebuffer image = read_png(path); // throws Error naming the path
+Texture load_texture(const std::filesystem::path& path,
+                     const std::function<void(int width, int height)>& check_size) {
+    const Framebuffer image = read_png(path, check_size); // throws Error naming the path
     if (image.width() < 1 || image.height() < 1) {
         throw Error(fmt::format("{}: texture has zero size", path.string()));
     }

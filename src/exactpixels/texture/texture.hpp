@@ -19,6 +19,7 @@
 #include "exactpixels/base/types.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <vector>
 
 namespace exactpixels {
@@ -75,8 +76,10 @@ Texture checkerboard_texture(int width, int height, int square,
 /// glyph cell: (5 * cell) x (7 * cell) texels. cell must be >= 1 (Error otherwise).
 Texture f_texture(int cell);
 
-/// Reads a PNG (or any image stb reads) as a texture. Throws Error naming the path when
-/// the file is missing, unreadable, corrupt or has zero size.
-Texture load_texture(const std::filesystem::path& path);
+/// Reads a PNG file as a texture (read_png: the header's size is passed to
+/// `check_size`, which may throw, before any texel is decoded). Throws Error naming the
+/// path when the file is missing, not a regular file, not a PNG, corrupt or too large.
+Texture load_texture(const std::filesystem::path& path,
+                     const std::function<void(int width, int height)>& check_size = {});
 
 } // namespace exactpixels

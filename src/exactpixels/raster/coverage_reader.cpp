@@ -1,0 +1,174 @@
+#include "exactpixels/raster/coverage_reader.hpp"
+
+#include "exactpixels/base/error.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <string_view>
+
+namespace exactpixels {
+
+namespace {
+
+/// The whitespace-separated words of a line.
+std::vector<std::string_view> words_of(std::string_view line) {
+    std::vector<std::string_view> words;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() &&
+               (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) {
+            ++i;
+        }
+        const std::size_t start = i;
+        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') {
+            ++i;
+        }
+        if (i > start) {
+            words.push_back(line.substr(start, i - start));
+        }
+    }
+    return words;
+}
+
+/// The finite decimal number `word` on line `line`, or an Error naming both.
+double parse_number(std::string_view word, int line) {
+    const std::string_view digits = word.size() > 1 && word[0] == '+'
+                                        ? word.substr(1)
+                                        : word; // from_chars has no '+'
+    double value = 0.0;
+    const char* last = digits.data() + digits.size();
+    const auto [end, status] = std::from_chars(digits.data(), last, value);
+    if (status != std::errc() || end != last) {
+        throw Error(fmt::format("line {}: expected a number, found '{}'", line, word));
+    }
+    if (!std::isfinite(value)) {
+        throw Error(fmt::format("line {}: '{}' is not a finite number", line, word));
+    }
+    return value;
+}
+
+/// The frame size from the header line "W H", at most `max_pixels` pixels.
+Viewport parse_header(std::string_view text, int line, long long max_pixels) {
+    const auto words = words_of(text);
+    if (words.size() != 2) {
+        throw Error(
+            fmt::format("line {}: expected the frame size 'W H', found {} value(s)", line,
+                        words.size()));
+    }
+    int size[2] = {0, 0};
+    for (int i = 0; i < 2; ++i) {
+        const double value = parse_number(words[i], line);
+        if (value != std::floor(value) || value < 1 || value > max_frame_side) {
+            throw Error(
+                fmt::format("line {}: frame size '{}' is not a whole number from 1 "
+                            "to {}",
+                            line, words[i], max_frame_side));
+        }
+        size[i] = static_cast<int>(value);
+    }
+    if (static_cast<long long>(size[0]) * size[1] >
+        std::min(max_pixels, max_frame_pixels)) {
+        throw Error(
+            fmt::format("line {}: a {}x{} frame is more than the {} pixels allowed", line,
+                        size[0], size[1], std::min(max_pixels, max_frame_pixels)));
+    }
+    return {size[0], size[1]};
+}
+
+/// The triangle "x0 y0 x1 y1 x2 y2" of one line.
+std::array<Point2, 3> parse_triangle(std::string_view text, int line) {
+    const auto words = words_of(text);
+    if (words.size() != 6) {
+        throw Error(
+            fmt::format("line {}: expected 6 numbers 'x0 y0 x1 y1 x2 y2', found {}", line,
+                        words.size()));
+    }
+    std::array<Point2, 3> v;
+    for (int i = 0; i < 3; ++i) {
+        v[i] = {parse_number(words[2 * i], line), parse_number(words[2 * i + 1], line)};
+    }
+    return v;
+}
+
+/// Reads the next line of `in` (number `line`) into `text`, without its '\n'; false at
+/// the end of the input. An Error when the line is longer than max_line_bytes, so an
+/// endless line (/dev/zero) costs no more than that.
+bool read_line(std::istream& in, std::string& text, int line) {
+    text.clear();
+    std::istream::int_type c = in.get();
+    if (c == std::istream::traits_type::eof()) {
+        return false;
+    }
+    while (c != std::istream::traits_type::eof() && c != '\n') {
+        if (text.size() == max_line_bytes) {
+            throw Error(fmt::format("line {}: longer than the {} bytes allowed", line,
+                                    max_line_bytes));
+        }
+        text += static_cast<char>(c);
+        c = in.get();
+    }
+    if (in.bad()) {
+        throw Error(fmt::format("line {}: cannot read the input", line));
+    }
+    return true;
+}
+
+} // namespace
+
+std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,
+                                CoveragePrecision precision, Viewport& viewport,
+                                long long max_pixels) {
+    std::string text;
+    int line = 0;
+    bool have_header = false;
+    std::vector<int> counts;
+    while (read_line(in, text, line + 1)) {
+        ++line;
+        if (words_of(text).empty()) {
+            continue;
+        }
+        if (!have_header) {
+            viewport = parse_header(text, line, max_pixels);
+            counts.assign(static_cast<std::size_t>(viewport.width) *
+                              static_cast<std::size_t>(viewport.height),
+                          0);
+            have_header = true;
+            continue;
+        }
+        const std::array<Point2, 3> v = parse_triangle(text, line);
+        try {
+            add_coverage(counts, viewport, v, kind, precision);
+        } catch (const Error& error) {
+            throw Error(fmt::format("line {}: {}", line, error.what()));
+        }
+    }
+    if (!have_header) {
+        throw Error(
+            fmt::format("line {}: expected the frame size 'W H', found the end of "
+                        "the input",
+                        line + 1));
+    }
+    return counts;
+}
+
+std::string format_counts(const std::vector<int>& counts, Viewport viewport) {
+    std::string out;
+    for (int y = 0; y < viewport.height; ++y) {
+        for (int x = 0; x < viewport.width; ++x) {
+            const auto i =
+                static_cast<std::size_t>(y) * static_cast<std::size_t>(viewport.width) +
+                static_cast<std::size_t>(x);
+            if (x > 0) {
+                out += ' ';
+            }
+            out += std::to_string(counts[i]);
+        }
+        out += '\n';
+    }
+    return out;
+}
+
+} // namespace exactpixels

@@ -1,0 +1,47 @@
+// coverage_reader.hpp: the input of `exactpixels coverage` (chapter 2), read and drawn.
+//
+// Usage:
+//   Viewport viewport{0, 0};
+//   std::vector<int> counts = count_coverage(std::cin, RasterizerKind::edge8x8,
+//                                            CoveragePrecision::fixed, viewport);
+//   std::string text = format_counts(counts, viewport);
+//
+// The input: a first line "W H" (the frame's size in pixels, whole numbers from 1 to
+// max_frame_side, at most max_frame_pixels in all), then one triangle per line,
+// "x0 y0 x1 y1 x2 y2" (pixels, origin top-left, y down, decimal numbers). Blank lines are
+// skipped. Counts are row by row, top to bottom. Malformed input is an Error whose
+// message starts "line N:" and names the value.
+#pragma once
+
+#include "exactpixels/raster/edge_rasterizer.hpp"
+#include "exactpixels/raster/span.hpp"
+
+#include <cstddef>
+#include <istream>
+#include <string>
+#include <vector>
+
+namespace exactpixels {
+
+/// The largest frame side the coverage input may ask for, pixels.
+inline constexpr int max_frame_side = 16384;
+/// The most pixels of a coverage frame (2^24, 64 MiB of counts): checked before the
+/// count grid and the output text (2 bytes or more per pixel) are allocated.
+inline constexpr long long max_frame_pixels = 1LL << 24;
+
+/// The longest line of the coverage input, bytes (a triangle needs about a hundred).
+inline constexpr std::size_t max_line_bytes = 1024;
+
+/// Reads the whole of `in`, draws every triangle with `kind` in `precision`, sets
+/// `viewport` to the frame's size and returns the counts row by row. Throws Error
+/// ("line N: ...") on malformed input or a triangle the rasterizer refuses.
+/// `max_pixels` (at most max_frame_pixels) lowers the frame limit, as the fuzz target
+/// does to stay fast.
+std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,
+                                CoveragePrecision precision, Viewport& viewport,
+                                long long max_pixels = max_frame_pixels);
+
+/// The counts as text: one line per row, counts separated by one space.
+std::string format_counts(const std::vector<int>& counts, Viewport viewport);
+
+} // namespace exactpixels

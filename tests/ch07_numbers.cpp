@@ -1,0 +1,146 @@
+// Chapter 7 tests: numbers that get through the scene format's checks must not crash the
+// loader or poison the pixels. Every TOML number is read exactly or rejected; a deeply
+// dotted key is refused before the parser can recurse on it; NaN and infinity are stopped
+// before the first pixel in every precision, and --check counts them as failures.
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/scene/scene_loader.hpp"
+#include "exactpixels/scene/scene_renderer.hpp"
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+using namespace exactpixels;
+
+namespace {
+
+const std::string quad = "[[mesh]]\nprimitive = \"quad\"\n"
+                         "corners = [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]\n";
+
+/// A camera at the origin looking along +z with its near plane at `near`, and a textured
+/// triangle with a corner on the view axis at depth `axis_depth`.
+std::string axis_scene(double near, double axis_depth, const char* precision,
+                       const char* mapper) {
+    return fmt::format("[image]\nwidth = 64\nheight = 48\n"
+                       "[camera]\nposition = [0, 0, 0]\ntarget = [0, 0, 1]\nnear = {}\n"
+                       "[render]\nprecision = \"{}\"\nmapper = \"{}\"\n"
+                       "[textures.c]\nkind = \"checkerboard\"\nsize = [64, 64]\n"
+                       "square = 8\n"
+                       "[[mesh]]\nprimitive = \"triangles\"\ntexture = \"c\"\n"
+                       "positions = [[0, 0, {}], [-2, -1, 3], [2, -1, 3]]\n"
+                       "uv = [[0, 0], [64, 0], [0, 64]]\n",
+                       near, precision, mapper, axis_depth);
+}
+
+} // namespace
+
+TEST_CASE("an integer a double cannot hold exactly is an error naming file and line") {
+    for (const char* value :
+         {"9007199254740993", "9223372036854775807", "-9223372036854775808"}) {
+        CAPTURE(value);
+        CHECK_THROWS_WITH_AS(
+            parse_scene(fmt::format("[camera]\nnear = {}\n", value) + quad, "n.toml",
+                        "."),
+            doctest::Contains("n.toml:2:8: camera.near: "), Error);
+        CHECK_THROWS_WITH_AS(
+            parse_scene(fmt::format("[image]\nwidth = {}\n", value) + quad, "n.toml",
+                        "."),
+            doctest::Contains("not exactly representable"), Error);
+    }
+    // 2^53 itself is exact, so it is judged by its range like any other number.
+    CHECK_THROWS_WITH_AS(
+        parse_scene("[camera]\nnear = 9007199254740992\n" + quad, "n.toml", "."),
+        doctest::Contains("out of range"), Error);
+}
+
+TEST_CASE("a deeply dotted key is refused before the parser sees it") {
+    std::string deep = "a";
+    for (int k = 0; k < 100000; ++k) {
+        deep += ".a";
+    }
+    CHECK_THROWS_WITH_AS(
+        parse_scene(deep + " = 1\n", "d.toml", "."),
+        doctest::Contains("d.toml:1: a dotted key has more than 64 parts"), Error);
+    CHECK_THROWS_WITH_AS(parse_scene("[" + deep + "]\n", "d.toml", "."),
+                         doctest::Contains("more than 64 parts"), Error);
+    // 64 parts pass the check (and fail later as an unknown key); dots in strings,
+    // comments and floats on one line do not add up.
+    std::string parts64 = "a";
+    for (int k = 1; k < max_key_parts; ++k) {
+        parts64 += ".a";
+    }
+    CHECK_THROWS_WITH_AS(parse_scene(parts64 + " = 1\n" + quad, "d.toml", "."),
+                         doctest::Contains("unknown key"), Error);
+    const std::string dots(1000, '.');
+    CHECK_NOTHROW(parse_scene("# " + dots + "\n[[mesh]]\nname = \"" + dots +
+                                  "\"\nprimitive = \"quad\"\ncorners = [[0.5, 0.5, "
+                                  "1.5], [1.5, 0.5, 1.5], [1.5, 1.5, 1.5], [0.5, 1.5, "
+                                  "1.5]]\n",
+                              "d.toml", "."));
+}
+
+TEST_CASE("the smallest near plane with a corner on the view axis gives finite texels") {
+    CHECK_THROWS_WITH_AS(
+        parse_scene(axis_scene(min_camera_near / 2, 1.0, "double", "exact"), "n.toml",
+                    "."),
+        doctest::Contains("camera.near"), Error);
+    for (const char* precision : {"float", "double", "fixed"}) {
+        for (const char* mapper : {"exact", "auto", "affine"}) {
+            for (const double depth : {min_camera_near, 1e-310}) { // on the plane, behind
+                CAPTURE(precision);
+                CAPTURE(mapper);
+                CAPTURE(depth);
+                const Scene scene = parse_scene(
+                    axis_scene(min_camera_near, depth, precision, mapper), "n.toml", ".");
+                const TexelError e = check_against_exact(scene);
+                CHECK(e.not_finite == 0);
+                CHECK(std::isfinite(e.worst));
+                CHECK(std::isfinite(e.mean));
+            }
+        }
+    }
+    const TexelError on_plane = check_against_exact(parse_scene(
+        axis_scene(min_camera_near, min_camera_near, "float", "exact"), "n.toml", "."));
+    CHECK(on_plane.pixels > 0);
+}
+
+TEST_CASE("NaN and infinity are stopped before the first pixel in every precision") {
+    // Past the loader's limits (a scene built in code): a near plane and a corner so
+    // close to the eye that 1/w overflows.
+    for (const char* precision : {"float", "double", "fixed"}) {
+        CAPTURE(precision);
+        Scene scene = parse_scene(axis_scene(min_camera_near, 1.0, precision, "exact"),
+                                  "n.toml", ".");
+        scene.camera.near = 1e-320;
+        scene.meshes[0].triangles[0][0].position.z = 1e-310;
+        TexelMap map(scene.width, scene.height);
+        CHECK_THROWS_WITH_AS(render_scene(scene, &map), doctest::Contains("not finite"),
+                             Error);
+        long long covered = 0;
+        for (const bool c : map.covered) {
+            covered += c;
+        }
+        CHECK(covered == 0);
+    }
+}
+
+TEST_CASE(
+    "--check counts non-finite texel coordinates as failures, apart from the error") {
+    TexelMap map(2, 1), reference(2, 1);
+    for (TexelMap* m : {&map, &reference}) {
+        m->covered = {true, true};
+        m->u = {1.0, 2.0};
+        m->v = {1.0, 2.0};
+    }
+    map.u[0] = 1.25;
+    CHECK(compare_texel_maps(reference, map).not_finite == 0);
+    map.u[1] = std::numeric_limits<double>::quiet_NaN();
+    const TexelError e = compare_texel_maps(reference, map);
+    CHECK(e.not_finite == 1);
+    CHECK(e.worst == 0.25); // the NaN neither hides in the max nor poisons the mean
+    CHECK(e.mean == 0.25);
+    CHECK(e.pixels == 1);
+}
