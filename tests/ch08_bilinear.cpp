@@ -126,7 +126,8 @@ TEST_CASE("bilinear weights sum to one and a texel centre gives that texel" *
     }
 }
 
-TEST_CASE("between centres the sample is the exact weighted average in linear light") {
+TEST_CASE("between centres the sample is the exact weighted average in linear light" *
+          doctest::description("points: 2; exercise: ch08-bilinear")) {
     // A 2 x 2 texture; at (u, v) = (1/2 + a, 1/2 + b) the sample is
     // (1-a)(1-b) t00 + a(1-b) t10 + (1-a)b t01 + ab t11, with a, b multiples of 1/D.
     const Texture t(
@@ -152,7 +153,8 @@ TEST_CASE("between centres the sample is the exact weighted average in linear li
     }
 }
 
-TEST_CASE("at the border repeat blends the far edge and clamp repeats the edge texel") {
+TEST_CASE("at the border repeat blends the far edge and clamp repeats the edge texel" *
+          doctest::description("points: 1; exercise: ch08-bilinear")) {
     const Texture t(
         4, 1, {rgba(255, 0, 0), rgba(0, 255, 0), rgba(0, 0, 255), rgba(255, 255, 255)});
     const LinearImage img = decode_texture(t);
@@ -169,8 +171,7 @@ TEST_CASE("at the border repeat blends the far edge and clamp repeats the edge t
     CHECK(sample_bilinear(img, TexCoord{0.25 - 28.0, 0.5}, Wrap::repeat) == repeat);
 }
 
-TEST_CASE("bilinear at 1:1 reproduces the texture exactly" *
-          doctest::description("points: 2; exercise: ch08-bilinear")) {
+TEST_CASE("bilinear at 1:1 reproduces the texture exactly") {
     const Texture f = f_texture(2); // 10 x 14
     const TexelMap map = one_to_one(f.width(), f.height(), 0.0, false, false);
     for (Wrap wrap : {Wrap::repeat, Wrap::clamp}) {
@@ -189,8 +190,8 @@ TEST_CASE("bilinear at 1:1 reproduces the texture exactly" *
     }
 }
 
-TEST_CASE(
-    "a mirrored mapping draws exactly the mirrored texture, with no rounding rule") {
+TEST_CASE("a mirrored mapping draws exactly the mirrored texture, with no rounding rule" *
+          doctest::description("points: 2; exercise: ch08-bilinear")) {
     // Aligned quads sample texel centres; quads offset by half a pixel sample the ties of
     // chapter 4, where bilinear weighs both texels 1/2 and needs no rule. Either way the
     // texture drawn backwards is, pixel for pixel, the mirrored texture drawn forwards.

@@ -43,7 +43,8 @@ std::array<TexturedVertex, 3> tilted_plane(const Pinhole& eye, double distance,
 
 } // namespace
 
-TEST_CASE("the derived derivatives match finite differences of the exact mapping") {
+TEST_CASE("the derived derivatives match finite differences of the exact mapping" *
+          doctest::description("points: 2; exercise: ch08-derivatives")) {
     // Random perspective triangles, depths 1 to 20, at random points inside them. Along
     // x, u = (p + t p_x) / (q + t q_x) is a constant plus a multiple of 1 / (q + t q_x),
     // and the central difference of 1 / (q + t a) over +-h is exactly -a / (q^2 - h^2
@@ -96,7 +97,7 @@ TEST_CASE("the derived derivatives match finite differences of the exact mapping
 }
 
 TEST_CASE("on a plane at a known distance and angle the level matches its closed form" *
-          doctest::description("points: 2; exercise: ch08-level")) {
+          doctest::description("points: 2; exercise: ch08-derivatives")) {
     // At the screen centre a plane at distance d, s texels per unit, seen through focal
     // length f, maps one pixel to s d / f texels across, and s d / (f cos a) texels along
     // the tilt: lambda = log2(s d / (f cos a)).

@@ -50,7 +50,8 @@ TEST_CASE("the reference of a pixel inside one texel is that texel, exactly") {
 }
 
 TEST_CASE(
-    "on the facing wall bilinear matches the reference exactly and nearest does not") {
+    "on the facing wall bilinear matches the reference exactly and nearest does not" *
+    doctest::description("points: 1; exercise: ch08-error")) {
     // Two pixels per texel, every other pixel centre on a texel edge: the pixel straddles
     // the edge half and half, which is exactly bilinear's 1/2, 1/2 at the tie.
     const std::map<std::string, double> e = errors_on(wall_facing_scene(), true);
@@ -59,8 +60,8 @@ TEST_CASE(
     CHECK(e.at("nearest") > 0.0);
 }
 
-TEST_CASE("on the horizon the error falls from nearest to bilinear, mip, trilinear, "
-          "anisotropic") {
+TEST_CASE("on the horizon the error falls filter by filter, nearest to anisotropic" *
+          doctest::description("points: 2; exercise: ch08-error")) {
     const std::map<std::string, double> e = errors_on(horizon_floor_scene());
     CHECK(e.at("bilinear") < e.at("nearest"));
     CHECK(e.at("mip-nearest") < e.at("bilinear"));
@@ -75,7 +76,8 @@ TEST_CASE("on the horizon the error falls from nearest to bilinear, mip, triline
 }
 
 TEST_CASE(
-    "on the random field anisotropic beats trilinear, which beats bilinear and nearest") {
+    "on the random field anisotropic beats trilinear, which beats bilinear and nearest" *
+    doctest::description("points: 1; exercise: ch08-error")) {
     const std::map<std::string, double> e = errors_on(random_field_scene());
     CHECK(e.at("bilinear") < e.at("nearest"));
     CHECK(e.at("mip-nearest") < e.at("nearest"));

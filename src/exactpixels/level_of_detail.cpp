@@ -26,11 +26,7 @@ std::array<double, 2> footprint_sides(const TexelDerivatives& d) {
 double isotropic_level(const TexelDerivatives& d) {
     const auto [side_x, side_y] = footprint_sides(d);
     const double rho = std::max(side_x, side_y); // texels per pixel, the longer side
-    //> exercise ch08-level: the level is log2 of the footprint's longer side.
     return rho > 0.0 ? std::log2(rho) : -1000.0;
-    //| (void)rho;
-    //| return 0.0; // stub: always level 0
-    //< exercise ch08-level
 }
 //< isotropic-level
 
