@@ -85,6 +85,41 @@ TEST_CASE("every 8-bit code survives the round trip through linear light") {
     CHECK(linear16_to_srgb(linear_full / 2) == 188);
 }
 
+TEST_CASE("the fast encode gives the same code as the plain one, everywhere") {
+    // Every whole linear value, both neighbours (one double away) of every value where
+    // the code steps up, and a million fractional values in between.
+    for (int l = 0; l <= 65535; ++l) {
+        REQUIRE(linear16_to_srgb_fast(l) == linear16_to_srgb(l));
+    }
+    int steps = 0;
+    for (double l = 0.0; l < linear_full; l = std::nextafter(l, linear_full)) {
+        // Jump to the next step of the plain code by bisection, then look around it.
+        const int code = linear16_to_srgb(l);
+        double lo = l, hi = linear_full;
+        if (linear16_to_srgb(hi) == code) {
+            break;
+        }
+        while (std::nextafter(lo, hi) < hi) {
+            const double mid = lo + (hi - lo) / 2;
+            const double probe = mid > lo && mid < hi ? mid : std::nextafter(lo, hi);
+            (linear16_to_srgb(probe) > code ? hi : lo) = probe;
+        }
+        REQUIRE(linear16_to_srgb_fast(lo) == linear16_to_srgb(lo));
+        REQUIRE(linear16_to_srgb_fast(hi) == linear16_to_srgb(hi));
+        ++steps;
+        l = hi;
+    }
+    CHECK(steps == 255);
+    std::uint64_t state = 1;
+    for (int n = 0; n < 1000000; ++n) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        const double l = double(state >> 11) * 0x1p-53 * 66000.0 - 200.0;
+        REQUIRE(linear16_to_srgb_fast(l) == linear16_to_srgb(l));
+    }
+    const LinearTexel t{12345.5, 0.25, 65535.0, 40000.0};
+    CHECK(encode_linear_fast(t) == encode_linear(t));
+}
+
 TEST_CASE("bilinear weights sum to one and a texel centre gives that texel" *
           doctest::description("points: 2; exercise: ch08-bilinear")) {
     // Every fraction in u against a spread of fractions in v: the weights are whole

@@ -10,10 +10,11 @@
 // centre is at u = i + 1/2. The fixed-point coordinate is U = u * D with D = 2^16, as
 // chapter 3's fixed loops hold it. Bilinear sampling measures from texel centres, like
 // chapter 4's rounding: C = U - D/2, the left texel is i = floor(C / D) and the
-// fraction f = C - i D lies in [0, D). Texel i gets weight D - f, texel i + 1 weight f
-// (eq. 8.3); both directions multiply, so the four weights are integers summing to D^2.
-// At a texel centre f = 0 and the sample is that texel, exactly. Indices outside the
-// image are wrapped (repeat or clamp) as texture.hpp's nearest sampling does.
+// fraction f = C - i D lies in [0, D) (eq. 8.3). Texel i gets weight D - f, texel
+// i + 1 weight f (eq. 8.4); both directions multiply, so the four weights are integers
+// summing to D^2. At a texel centre f = 0 and the sample is that texel, exactly.
+// Indices outside the image are wrapped (repeat or clamp) as texture.hpp's nearest
+// sampling does.
 #pragma once
 
 #include "exactpixels/srgb.hpp"

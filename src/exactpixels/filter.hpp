@@ -27,7 +27,13 @@
 namespace exactpixels {
 
 /// Which filter turns (u, v) and its derivatives into a colour.
-enum class Filter { nearest, bilinear, mip_nearest, trilinear, anisotropic };
+enum class Filter {
+    nearest,     ///< the texel holding (u, v) on level 0
+    bilinear,    ///< eq. 8.4 on level 0
+    mip_nearest, ///< the nearest texel of the level nearest the level of detail
+    trilinear,   ///< bilinear on the two levels around the level of detail, blended
+    anisotropic  ///< trilinear probes along the footprint's longer side (eq. 8.8)
+};
 
 /// The filter's name as the chapter and the scene files spell it: "nearest",
 /// "bilinear", "mip-nearest", "trilinear", "anisotropic".

@@ -60,7 +60,10 @@ struct FilterScene {
 FilterScene prepare_filter_scene(const AccuracyScene& scene);
 
 /// Which derivatives a filter is given: exact per pixel, or the triangle's centroid's.
-enum class Derivatives { per_pixel, per_triangle };
+enum class Derivatives {
+    per_pixel,   ///< exact at every pixel centre (eq. 8.6)
+    per_triangle ///< exact at the triangle's centroid, used for all its pixels
+};
 
 /// One filter configuration the chapter measures.
 struct FilterConfig {

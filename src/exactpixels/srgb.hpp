@@ -36,11 +36,19 @@ double srgb_to_linear16(std::uint8_t code);
 /// clamped to [0, 65535]. linear16_to_srgb(srgb_to_linear16(c)) == c for every c.
 std::uint8_t linear16_to_srgb(double l);
 
+/// The fast variant of linear16_to_srgb, the same code for every l: a binary search in
+/// the 255 linear values where the code steps up (found once, from linear16_to_srgb
+/// itself), instead of a power function.
+std::uint8_t linear16_to_srgb_fast(double l);
+
 /// A texel decoded: colour channels through srgb_to_linear16, alpha times 257.
 LinearTexel decode_texel(Rgba8 texel);
 
 /// A linear texel encoded to 8 bits: colour by linear16_to_srgb, alpha by rounding a/257.
 Rgba8 encode_linear(const LinearTexel& texel);
+
+/// encode_linear with linear16_to_srgb_fast: the same pixel, faster.
+Rgba8 encode_linear_fast(const LinearTexel& texel);
 
 /// A width x height image in linear light, row-major, row 0 at the top (one mip level).
 struct LinearImage {
