@@ -4,6 +4,8 @@
 // Usage:
 //   taskset -c 1 build/bin/bench_ch08_filters --benchmark_out=ch08.csv
 //       --benchmark_out_format=csv                 # (one line) the full run, one core
+//   build/bin/bench_ch08_filters --list            # every run's name and pixel count
+//   build/bin/bench_ch08_filters --once=horizon/trilinear   # one pass (callgrind)
 //
 // Each benchmark "scene/filter" samples every covered pixel of the scene once per
 // iteration, given its texture coordinate and derivatives (computed beforehand, as a
@@ -12,11 +14,18 @@
 // coverage or mapping (chapter 5 timed those). Counters: pixels and ns_per_px. The
 // errors are computed by fig_ch08_table against the reference (too slow to repeat per
 // benchmark run).
+// --once filters one run's scene once inside the function ch08_filter_once, so that
+//   valgrind --tool=callgrind --toggle-collect=ch08_filter_once bench_ch08_filters
+//   --once=NAME
+// counts the instructions of exactly one pass (chapters/08-filtering/callgrind.sh),
+// after a first, uncounted pass that builds the one-time tables (the encode's steps).
 #include "exactpixels/filter_measure.hpp"
 
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <cstring>
 #include <memory>
 #include <string>
 
@@ -45,7 +54,45 @@ void filter_into(Framebuffer& frame, const FilterScene& fs, const FilterConfig& 
 
 } // namespace
 
+/// One pass of the filter over the scene: the only function callgrind collects in --once
+/// mode.
+extern "C" [[gnu::noinline]] void
+ch08_filter_once(Framebuffer* frame, const FilterScene* fs, const FilterConfig* config) {
+    filter_into(*frame, *fs, *config);
+}
+
 int main(int argc, char** argv) {
+    for (int a = 1; a < argc; ++a) {
+        const bool list = std::strcmp(argv[a], "--list") == 0;
+        const bool once = std::strncmp(argv[a], "--once=", 7) == 0;
+        if (!list && !once) {
+            continue;
+        }
+        for (const AccuracyScene& scene : filter_scenes()) {
+            for (const FilterConfig& config : filter_configs()) {
+                const std::string name = run_name(scene, config);
+                if (once && name != argv[a] + 7) {
+                    continue;
+                }
+                const FilterScene fs = prepare_filter_scene(scene);
+                if (once) {
+                    Framebuffer frame(scene.width, scene.height);
+                    filter_into(frame, fs, config); // warm up: one-time tables built here
+                    ch08_filter_once(&frame, &fs, &config);
+                }
+                std::printf("%s %zu\n", name.c_str(), fs.pixels.size());
+                if (once) {
+                    return 0;
+                }
+            }
+        }
+        if (once) {
+            std::fprintf(stderr, "bench_ch08_filters: no run named '%s' (see --list)\n",
+                         argv[a] + 7);
+            return 2;
+        }
+        return 0;
+    }
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
         return 1;
