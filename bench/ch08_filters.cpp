@@ -1,0 +1,128 @@
+// Chapter 8: what each texture filter costs per pixel, on chapter 5's scenes and the
+// horizon floor (filter_measure.hpp).
+//
+// Usage:
+//   taskset -c 1 build/bin/bench_ch08_filters --benchmark_out=ch08.csv
+//       --benchmark_out_format=csv                 # (one line) the full run, one core
+//   build/bin/bench_ch08_filters --list            # every run's name and pixel count
+//   build/bin/bench_ch08_filters --once=horizon/trilinear   # one pass (callgrind)
+//
+// Each benchmark "scene/filter" samples every covered pixel of the scene once per
+// iteration, given its texture coordinate and derivatives (computed beforehand, as a
+// mapper would hand them over), and writes the encoded colour into a frame: the filter,
+// the level of detail, the mip fetches and the sRGB encode (its fast variant), not
+// coverage or mapping (chapter 5 timed those). Counters: pixels and ns_per_px. The
+// errors are computed by fig_ch08_table against the reference (too slow to repeat per
+// benchmark run).
+// --once filters one run's scene once inside the function ch08_filter_once, so that
+//   valgrind --tool=callgrind --toggle-collect=ch08_filter_once bench_ch08_filters
+//   --once=NAME
+// counts the instructions of exactly one pass (chapters/08-filtering/callgrind.sh),
+// after a first, uncounted pass that builds the one-time tables (the encode's steps).
+#include "exactpixels/lab/filter_measure.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+
+using namespace exactpixels;
+
+namespace {
+
+/// "scene/filter" with spaces as '_'.
+std::string run_name(const AccuracyScene& scene, const FilterConfig& config) {
+    std::string name = scene.name + "/" + config.name;
+    std::replace(name.begin(), name.end(), ' ', '_');
+    return name;
+}
+
+//> bench-loop
+/// Every pixel of the scene through the configuration, into the frame.
+void filter_into(Framebuffer& frame, const FilterScene& fs, const FilterConfig& config) {
+    for (const FilterPixel& p : fs.pixels) {
+        const TexelDerivatives& d =
+            config.derivatives == Derivatives::per_pixel ? p.exact : p.triangle_wide;
+        frame.at(p.x, p.y) =
+            encode_linear_fast(sample_filtered(fs.chain, p.uv, d, config.settings));
+    }
+}
+//< bench-loop
+
+} // namespace
+
+/// One pass of the filter over the scene: the only function callgrind collects in --once
+/// mode.
+extern "C" [[gnu::noinline]] void
+ch08_filter_once(Framebuffer* frame, const FilterScene* fs, const FilterConfig* config) {
+    filter_into(*frame, *fs, *config);
+}
+
+int main(int argc, char** argv) {
+    for (int a = 1; a < argc; ++a) {
+        const bool list = std::strcmp(argv[a], "--list") == 0;
+        const bool once = std::strncmp(argv[a], "--once=", 7) == 0;
+        if (!list && !once) {
+            continue;
+        }
+        for (const AccuracyScene& scene : filter_scenes()) {
+            for (const FilterConfig& config : filter_configs()) {
+                const std::string name = run_name(scene, config);
+                if (once && name != argv[a] + 7) {
+                    continue;
+                }
+                const FilterScene fs = prepare_filter_scene(scene);
+                if (once) {
+                    Framebuffer frame(scene.width, scene.height);
+                    filter_into(frame, fs, config); // warm up: one-time tables built here
+                    ch08_filter_once(&frame, &fs, &config);
+                }
+                std::printf("%s %zu\n", name.c_str(), fs.pixels.size());
+                if (once) {
+                    return 0;
+                }
+            }
+        }
+        if (once) {
+            std::fprintf(stderr, "bench_ch08_filters: no run named '%s' (see --list)\n",
+                         argv[a] + 7);
+            return 2;
+        }
+        return 0;
+    }
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
+        return 1;
+    }
+    const std::vector<AccuracyScene> scenes = filter_scenes();
+    std::vector<std::unique_ptr<FilterScene>> prepared;
+    const std::vector<FilterConfig> configs = filter_configs();
+    for (const AccuracyScene& scene : scenes) {
+        prepared.push_back(std::make_unique<FilterScene>(prepare_filter_scene(scene)));
+        const FilterScene* fs = prepared.back().get();
+        for (const FilterConfig& config : configs) {
+            benchmark::RegisterBenchmark(
+                run_name(scene, config).c_str(),
+                [fs, &config](benchmark::State& state) {
+                    Framebuffer frame(fs->scene->width, fs->scene->height);
+                    for (auto _ : state) {
+                        filter_into(frame, *fs, config);
+                        benchmark::DoNotOptimize(frame.pixels().data());
+                        benchmark::ClobberMemory();
+                    }
+                    const double pixels = double(fs->pixels.size());
+                    using C = benchmark::Counter;
+                    state.counters["pixels"] = C(pixels);
+                    state.counters["ns_per_px"] =
+                        C(pixels * 1e-9, C::kIsIterationInvariantRate | C::kInvert);
+                })
+                ->Unit(benchmark::kMicrosecond);
+        }
+    }
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    return 0;
+}

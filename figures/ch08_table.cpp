@@ -1,0 +1,171 @@
+// Chapter 8's tables and plot data: time per pixel of every filter (from the benchmark
+// run of bench_ch08_filters) beside its error against the reference image.
+// Usage: fig_ch08_table FIGURE_DIR
+// Reads FIGURE_DIR/bench_ch08_filters.csv (the book build's quick run, or a full run)
+// and writes into FIGURE_DIR:
+//   ch08_table.md         one table per scene: time per pixel, ratio to nearest, error
+//                         on the minified pixels and on all pixels, Pareto front
+//   ch08_levels.md        per scene: minified pixels, the worst level error of the
+//                         per-triangle derivatives
+//   ch08_table_SCENE.dat  ratio, error, front flag, name (for gnuplot)
+// The reference images are computed here, once per build (filter_measure.hpp); every
+// error is deterministic, only the times move from run to run.
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/lab/filter_measure.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace exactpixels;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Row {
+    std::string filter;
+    double ns_per_px = 0, ratio = 0;
+    double error = 0;     // on the minified pixels (all pixels where none is minified)
+    double error_all = 0; // on all pixels
+    bool front = false;
+};
+
+std::vector<std::string> split(const std::string& line) {
+    std::vector<std::string> fields;
+    std::string field;
+    std::istringstream in(line);
+    while (std::getline(in, field, ',')) {
+        field.erase(std::remove(field.begin(), field.end(), '"'), field.end());
+        fields.push_back(field);
+    }
+    return fields;
+}
+
+/// run name -> ns_per_px, from Google Benchmark's CSV.
+std::map<std::string, double> read_times(const fs::path& path) {
+    std::ifstream in(path);
+    if (!in) {
+        throw Error(fmt::format("{}: cannot read the benchmark results (run the "
+                                "bench-quick target first)",
+                                path.string()));
+    }
+    std::map<std::string, double> times;
+    std::vector<std::string> header;
+    std::string line;
+    int line_number = 0;
+    while (std::getline(in, line)) {
+        ++line_number;
+        if (line.rfind("name,", 0) == 0) {
+            header = split(line);
+            continue;
+        }
+        if (header.empty()) {
+            continue;
+        }
+        const std::vector<std::string> f = split(line);
+        const auto column = std::find(header.begin(), header.end(), "ns_per_px");
+        const std::size_t k = static_cast<std::size_t>(column - header.begin());
+        if (column == header.end() || k >= f.size()) {
+            throw Error(
+                fmt::format("{}:{}: no ns_per_px column", path.string(), line_number));
+        }
+        try {
+            times[f[0]] = std::stod(f[k]);
+        } catch (const std::exception&) {
+            throw Error(fmt::format("{}:{}: ns_per_px '{}' is not a number",
+                                    path.string(), line_number, f[k]));
+        }
+    }
+    if (times.empty()) {
+        throw Error(fmt::format("{}: no benchmark rows", path.string()));
+    }
+    return times;
+}
+
+/// On the front when no other row is at least as fast and as accurate, and better in one.
+void mark_front(std::vector<Row>& rows) {
+    for (Row& a : rows) {
+        a.front = std::none_of(rows.begin(), rows.end(), [&](const Row& b) {
+            return b.ratio <= a.ratio && b.error <= a.error &&
+                   (b.ratio < a.ratio || b.error < a.error);
+        });
+    }
+}
+
+void write(const fs::path& path, const std::string& text) {
+    std::ofstream out(path);
+    out << text;
+    out.close();
+    if (!out) {
+        throw Error(fmt::format("{}: cannot write", path.string()));
+    }
+}
+
+} // namespace
+
+int main(int argc, char** argv) try {
+    const fs::path folder = argc > 1 ? argv[1] : ".";
+    const std::map<std::string, double> times =
+        read_times(folder / "bench_ch08_filters.csv");
+    std::string table, levels = "| scene | pixels | minified | worst level error, "
+                                "per-triangle derivatives |\n|:--|--:|--:|--:|\n";
+    for (const AccuracyScene& scene : filter_scenes()) {
+        const FilterScene fs = prepare_filter_scene(scene);
+        const std::vector<LinearTexel> reference = reference_image(fs);
+        const std::vector<bool> minified = minified_pixels(fs);
+        const auto n_minified = std::count(minified.begin(), minified.end(), true);
+        std::vector<Row> rows;
+        for (const FilterConfig& c : filter_configs()) {
+            std::string name = scene.name + "/" + c.name;
+            std::replace(name.begin(), name.end(), ' ', '_');
+            const auto at = times.find(name);
+            if (at == times.end()) {
+                throw Error(fmt::format("bench_ch08_filters.csv: no run named {}", name));
+            }
+            const std::vector<LinearTexel> image = filter_image(fs, c);
+            const double all = rms_code_error(image, reference);
+            rows.push_back(
+                {c.name, at->second, 0,
+                 n_minified > 0 ? rms_code_error(image, reference, minified) : all, all,
+                 false});
+        }
+        for (Row& r : rows) {
+            r.ratio = r.ns_per_px / rows.front().ns_per_px; // nearest, same run
+        }
+        mark_front(rows);
+        table +=
+            fmt::format("\n: Scene \"{}\": {} pixels, {} of them minified. Error: "
+                        "RMS difference from the reference in 8-bit sRGB codes, on "
+                        "the minified pixels{} and on all.\n\n",
+                        scene.name, fs.pixels.size(), n_minified,
+                        n_minified > 0 ? "" : " (none here: the column repeats all)");
+        table += "| filter | ns/px | × nearest | error, minified | error, all | front "
+                 "|\n|:--|--:|--:|--:|--:|:-:|\n";
+        std::string dat = "# ratio error front name\n";
+        for (const Row& r : rows) {
+            table += fmt::format("| {} | {:.1f} | {:.2f} | {:.2f} | {:.2f} | {} |\n",
+                                 r.filter, r.ns_per_px, r.ratio, r.error, r.error_all,
+                                 r.front ? "yes" : "");
+            dat += fmt::format("{:.4f} {:.4f} {} \"{}\"\n", r.ratio, r.error,
+                               int(r.front), r.filter);
+        }
+        write(folder / ("ch08_table_" + scene.name + ".dat"), dat);
+        levels += fmt::format("| {} | {} | {} | {:.2f} |\n", scene.name, fs.pixels.size(),
+                              n_minified, worst_triangle_level_error(fs));
+    }
+    write(folder / "ch08_table.md", table);
+    write(folder / "ch08_levels.md",
+          levels + "\n: Where the level comes from: levels below 0 count as 0 "
+                   "{#tbl:levels}\n");
+    return 0;
+} catch (const Error& e) {
+    std::fprintf(stderr, "fig_ch08_table: %s\n", e.what());
+    return 2;
+}

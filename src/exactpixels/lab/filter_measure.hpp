@@ -1,0 +1,102 @@
+// filter_measure.hpp: chapter 8's test bench: each filter against a reference image of
+// the texture integrated over every pixel, on chapter 5's scenes.
+//
+// Usage:
+//   const AccuracyScene scene = grazing_floor_scene();
+//   const FilterScene fs = prepare_filter_scene(scene);     // pixels, uv, derivatives
+//   const std::vector<LinearTexel> ref = reference_image(fs);  // slow, deterministic
+//   const std::vector<LinearTexel> img = filter_image(fs, {.filter = Filter::trilinear});
+//   double e = rms_code_error(img, ref);                     // in 8-bit sRGB codes
+//
+// Every pixel a triangle covers (chapter 1's coverage, the last triangle wins) is
+// sampled at its centre: uv of the exact perspective mapping there and its exact
+// derivatives (level_of_detail.hpp). The reference integrates the texture (level 0,
+// nearest texel, linear light) over the pixel's square [x, x+1) x [y, y+1) with
+// reference_samples_per_side^2 stratified samples of the same triangle's mapping (its
+// plane extended where the square reaches past an edge). Scenes wrap with repeat.
+#pragma once
+
+#include "exactpixels/lab/accuracy_scenes.hpp"
+#include "exactpixels/texture/filter.hpp"
+#include "exactpixels/texture/level_of_detail.hpp"
+#include "exactpixels/texture/mipmap.hpp"
+#include "exactpixels/texture/perspective.hpp"
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace exactpixels {
+
+/// Chapter 8's own scene, "horizon": a floor one unit below a level camera, from depth
+/// 1 to 120 and 60 units to each side, 8 texels per unit of a 64 x 64 checkerboard of
+/// 4-texel squares (repeated); near the horizon one pixel covers hundreds of texels.
+AccuracyScene horizon_floor_scene();
+
+/// The scenes chapter 8 measures: chapter 5's wall, floor and field, then the horizon.
+std::vector<AccuracyScene> filter_scenes();
+
+/// Samples per side of each pixel's reference grid (32 x 32 = 1024 per pixel).
+inline constexpr int reference_samples_per_side = 32;
+
+/// One covered pixel of a scene with what every filter needs there.
+struct FilterPixel {
+    int x = 0;                      ///< column
+    int y = 0;                      ///< row
+    int triangle = 0;               ///< index of the covering triangle in the scene
+    TexCoord uv{0.0};               ///< exact texture coordinate at the centre, texels
+    TexelDerivatives exact;         ///< exact derivatives at the centre (@eq:derivatives)
+    TexelDerivatives triangle_wide; ///< the triangle's centroid derivatives
+};
+
+/// A scene made ready for filtering: its covered pixels and its texture's mip chain.
+struct FilterScene {
+    const AccuracyScene* scene = nullptr; ///< the scene (outlives this)
+    MipChain chain;                       ///< the mip chain of scene->texture
+    std::vector<FilterPixel> pixels;      ///< row-major order
+};
+
+/// The covered pixels of the scene, their coordinates and derivatives, and the chain.
+FilterScene prepare_filter_scene(const AccuracyScene& scene);
+
+/// Which derivatives a filter is given: exact per pixel, or the triangle's centroid's.
+enum class Derivatives {
+    per_pixel,   ///< exact at every pixel centre (@eq:derivatives)
+    per_triangle ///< exact at the triangle's centroid, used for all its pixels
+};
+
+/// One filter configuration the chapter measures.
+struct FilterConfig {
+    std::string name;        ///< short, unique, no commas: "trilinear"
+    FilterSettings settings; ///< the filter, wrap, probes
+    Derivatives derivatives = Derivatives::per_pixel; ///< where the level comes from
+};
+
+/// The configurations of the chapter; the first, nearest, is the time baseline.
+std::vector<FilterConfig> filter_configs();
+
+/// Every pixel of the scene (same order as fs.pixels) through the configuration.
+std::vector<LinearTexel> filter_image(const FilterScene& fs, const FilterConfig& config);
+
+/// The reference of every pixel (same order as fs.pixels): the box over the pixel.
+std::vector<LinearTexel> reference_image(const FilterScene& fs);
+
+/// Root mean square over pixels and the r, g, b channels of the difference between the
+/// 8-bit sRGB codes of two images (same size), over the pixels k with selected[k] (all
+/// when `selected` is empty). 0 when no pixel is selected.
+double rms_code_error(const std::vector<LinearTexel>& image,
+                      const std::vector<LinearTexel>& reference,
+                      const std::vector<bool>& selected = {});
+
+/// For every pixel of fs.pixels, whether it is minified: lambda >= 0 from the exact
+/// derivatives, so that one pixel covers at least one texel along its longer side.
+std::vector<bool> minified_pixels(const FilterScene& fs);
+
+/// The largest |lambda(per triangle) - lambda(per pixel)| over the scene's pixels, both
+/// clamped at 0 (every level below 0 samples level 0).
+double worst_triangle_level_error(const FilterScene& fs);
+
+/// The image as a scene-sized frame (uncovered pixels black).
+Framebuffer to_frame(const FilterScene& fs, const std::vector<LinearTexel>& image);
+
+} // namespace exactpixels
