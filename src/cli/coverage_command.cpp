@@ -3,11 +3,14 @@
 // Standard input: a first line "W H" (the frame's size in pixels), then one triangle per
 // line, "x0 y0 x1 y1 x2 y2" (pixels, origin top-left, y down, decimal numbers). Blank
 // lines are skipped. Standard output: H lines of W space-separated counts. Malformed
-// input: a message naming the line and the value on stderr, exit code 2.
+// input: a message naming the line and the value on stderr, exit code 2. Chapter 9
+// adds the fast traversals `runs` and `masks`, exact and therefore fixed point only.
 #include "commands.hpp"
 
+#include "exactpixels/block_masks.hpp"
 #include "exactpixels/edge_rasterizer.hpp"
 #include "exactpixels/error.hpp"
+#include "exactpixels/row_runs.hpp"
 
 #include <fmt/format.h>
 
@@ -26,6 +29,42 @@ namespace {
 
 /// The largest frame the command draws, per side (keeps the count grid modest).
 constexpr int max_frame_side = 16384;
+
+/// Every rasterizer the command offers: chapters 1 and 2's, and chapter 9's two fast
+/// traversals (covered runs per row, 8 x 8 masks).
+enum class CoverageRasterizer { scanline, edge, edge8x8, runs, masks };
+
+/// Adds 1 to counts[y * width + x] for every pixel the triangle v (pixels) covers, drawn
+/// by chapter 9's runs or masks (fixed point). Throws Error naming a vertex out of range.
+void add_fast_coverage(std::vector<int>& counts, Viewport viewport,
+                       const std::array<Point2, 3>& v, CoverageRasterizer kind) {
+    std::array<FixedPoint2, 3> f;
+    for (int i = 0; i < 3; ++i) {
+        try {
+            f[i] = snap_in_range(v[i]);
+        } catch (const Error& error) {
+            throw Error(fmt::format("vertex {}: {}", i, error.what()));
+        }
+    }
+    const EdgeSetup<FixedEdge> s = setup_edges(f);
+    if (s.empty) {
+        return;
+    }
+    const auto count = [&](int x, int y) {
+        ++counts[static_cast<std::size_t>(y) * static_cast<std::size_t>(viewport.width) +
+                 static_cast<std::size_t>(x)];
+    };
+    const PixelRect r = pixel_bounds(f, viewport);
+    if (kind == CoverageRasterizer::runs) {
+        traverse_runs_fast(s, r, [&](Span run) {
+            for (int x = run.x_begin; x < run.x_end; ++x) {
+                count(x, run.y);
+            }
+        });
+    } else {
+        traverse_block_masks(s, r, [&](BlockMask m) { for_each_pixel(m, count); });
+    }
+}
 
 /// The whitespace-separated words of a line.
 std::vector<std::string_view> words_of(std::string_view line) {
@@ -102,7 +141,7 @@ std::array<Point2, 3> parse_triangle(std::string_view text, int line) {
 }
 
 /// Reads the whole of `in`, draws every triangle, returns the counts row by row.
-std::vector<int> run_coverage(std::istream& in, RasterizerKind kind,
+std::vector<int> run_coverage(std::istream& in, CoverageRasterizer kind,
                               CoveragePrecision precision, Viewport& viewport) {
     std::string text;
     int line = 0;
@@ -123,7 +162,21 @@ std::vector<int> run_coverage(std::istream& in, RasterizerKind kind,
         }
         const std::array<Point2, 3> v = parse_triangle(text, line);
         try {
-            add_coverage(counts, viewport, v, kind, precision);
+            switch (kind) {
+            case CoverageRasterizer::scanline:
+                add_coverage(counts, viewport, v, RasterizerKind::scanline, precision);
+                break;
+            case CoverageRasterizer::edge:
+                add_coverage(counts, viewport, v, RasterizerKind::edge, precision);
+                break;
+            case CoverageRasterizer::edge8x8:
+                add_coverage(counts, viewport, v, RasterizerKind::edge8x8, precision);
+                break;
+            case CoverageRasterizer::runs:
+            case CoverageRasterizer::masks:
+                add_fast_coverage(counts, viewport, v, kind);
+                break;
+            }
         } catch (const Error& error) {
             throw Error(fmt::format("line {}: {}", line, error.what()));
         }
@@ -141,22 +194,25 @@ std::vector<int> run_coverage(std::istream& in, RasterizerKind kind,
 
 void add_coverage_command(CLI::App& app, int& exit_code) {
     struct Options {
-        RasterizerKind rasterizer = RasterizerKind::edge8x8;
+        CoverageRasterizer rasterizer = CoverageRasterizer::edge8x8;
         CoveragePrecision precision = CoveragePrecision::fixed;
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "coverage", "Read 'W H' and then one triangle 'x0 y0 x1 y1 x2 y2' per line from "
                     "standard input; print how many triangles cover each pixel centre");
-    const std::map<std::string, RasterizerKind> rasterizers{
-        {"scanline", RasterizerKind::scanline},
-        {"edge", RasterizerKind::edge},
-        {"edge8x8", RasterizerKind::edge8x8}};
+    const std::map<std::string, CoverageRasterizer> rasterizers{
+        {"scanline", CoverageRasterizer::scanline},
+        {"edge", CoverageRasterizer::edge},
+        {"edge8x8", CoverageRasterizer::edge8x8},
+        {"runs", CoverageRasterizer::runs},
+        {"masks", CoverageRasterizer::masks}};
     const std::map<std::string, CoveragePrecision> precisions{
         {"fixed", CoveragePrecision::fixed}, {"float", CoveragePrecision::floating}};
     command
         ->add_option("--rasterizer", options->rasterizer,
-                     "scanline (chapter 1), edge (bounding box) or edge8x8 (8x8 blocks)")
+                     "scanline (chapter 1), edge (bounding box), edge8x8 (8x8 blocks), "
+                     "runs or masks (chapter 9: covered runs, 8x8 masks; fixed only)")
         ->transform(CLI::CheckedTransformer(rasterizers, CLI::ignore_case))
         ->default_str("edge8x8");
     command
@@ -167,6 +223,12 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
         ->default_str("fixed");
     command->callback([options, &exit_code] {
         try {
+            const bool fast = options->rasterizer == CoverageRasterizer::runs ||
+                              options->rasterizer == CoverageRasterizer::masks;
+            if (fast && options->precision != CoveragePrecision::fixed) {
+                throw Error("--rasterizer runs and masks are exact: they work in fixed "
+                            "point only (--precision fixed)");
+            }
             Viewport viewport{0, 0};
             const std::vector<int> counts =
                 run_coverage(std::cin, options->rasterizer, options->precision, viewport);
