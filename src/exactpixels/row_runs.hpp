@@ -49,18 +49,19 @@ run_of_row(const EdgeSetup<FixedEdge>& s, const std::array<std::int64_t, 3>& w, 
 //> run-of-row-fast
 /// The fast variant of run_of_row (the same run; tested): the quotient is estimated in
 /// double with a reciprocal computed once per triangle (inv[i] = 1 / |step_x|), clamped
-/// to [0, n], then corrected by exact integer tests, which move it at most a step or two.
+/// to [0, n] and truncated, then corrected by exact integer tests, which move it a step
+/// or two at most. No division and no floor or ceil (a library call without SSE4.1).
 inline std::pair<std::int64_t, std::int64_t>
 run_of_row_fast(const EdgeSetup<FixedEdge>& s, const std::array<std::int64_t, 3>& w,
                 const std::array<double, 3>& inv, int n) {
+    const double last = static_cast<double>(n);
     std::int64_t k_begin = 0, k_end = n;
     for (std::size_t i = 0; i < 3; ++i) {
         const std::int64_t step = s.edge[i].step_x();
         const auto passes = [&](std::int64_t k) { return w[i] + k * step >= 0; };
-        const double estimate = static_cast<double>(w[i]) * inv[i];
-        if (step > 0) { // the first k that passes
-            std::int64_t k = static_cast<std::int64_t>(
-                std::clamp(std::ceil(-estimate), 0.0, static_cast<double>(n)));
+        const double estimate = static_cast<double>(w[i]) * inv[i]; // w / |step|
+        if (step > 0) { // the first k that passes: about -estimate
+            auto k = static_cast<std::int64_t>(std::clamp(-estimate, 0.0, last));
             while (k > 0 && passes(k - 1)) {
                 --k;
             }
@@ -68,9 +69,8 @@ run_of_row_fast(const EdgeSetup<FixedEdge>& s, const std::array<std::int64_t, 3>
                 ++k;
             }
             k_begin = std::max(k_begin, k);
-        } else if (step < 0) { // one past the last k that passes
-            std::int64_t k = static_cast<std::int64_t>(
-                std::clamp(std::floor(estimate) + 1.0, 0.0, static_cast<double>(n)));
+        } else if (step < 0) { // one past the last k that passes: about estimate + 1
+            auto k = static_cast<std::int64_t>(std::clamp(estimate + 1.0, 0.0, last));
             while (k < n && passes(k)) {
                 ++k;
             }

@@ -56,6 +56,14 @@ struct RenderTarget {
     int height = 0;          ///< rows
 };
 
+/// Writes `colour` into count pixels from `first` on: 16 pixels (64 bytes) per copy of a
+/// prepared pattern, which the compiler turns into wide stores, then the rest one by one.
+void fill_run(Rgba8* first, int count, Rgba8 colour);
+
+/// Bounding boxes of at most this many pixels are walked pixel by pixel by the fast
+/// paths: the per-row or per-block setup would cost more than it saves.
+inline constexpr int small_box_pixels = 64;
+
 /// The side of a tile in pixels: a multiple of the 8 x 8 block.
 inline constexpr int tile_size = 64;
 /// The most threads draw_tiled accepts.
