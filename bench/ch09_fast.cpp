@@ -13,7 +13,9 @@
 //          tiled     draw_tiled: 64x64 tiles, binning, runs; THREADS threads
 //          plain     a plain fill of the same number of pixels (no coverage test)
 //          llvmpipe  OSMesa/llvmpipe, LP_NUM_THREADS rasterizer threads (default 1)
-// Counters: tri_per_s and pix_per_s, wall-clock (llvmpipe rasterizes in its own threads).
+// Counters: tri_per_s and pix_per_s per second of process CPU time (all threads, so
+// llvmpipe's rasterizer thread counts; a loaded machine does not distort it), except
+// wall/tiled/AREA/THREADS: wall-clock time with 1 and 2 threads (the scaling target).
 //
 // One iteration draws a whole set: the same 1024 triangles of one area
 // (triangle_sets.hpp, the set of chapter 2's benchmark) into a 1024 x 1024 frame, each
@@ -23,6 +25,11 @@
 // depth buffer is cleared once: after the first pass every fragment is tested and fails
 // (the buffer already holds the nearest depth), the same work on both sides.
 // If OSMesa cannot make a context, the llvmpipe runs report an error and are skipped.
+//
+// Instruction counts (chapters/09-fast-pixels/callgrind.sh): `--once=MODE/VARIANT/AREA`
+// draws the set once untimed, then once more inside ch09_draw_once, the function that
+// valgrind --tool=callgrind --toggle-collect=ch09_draw_once counts; `--list` prints the
+// names. Run it with LP_NUM_THREADS=0 so that llvmpipe rasterizes in the counted thread.
 #include "exactpixels/edge_rasterizer.hpp"
 #include "exactpixels/tiled_rasterizer.hpp"
 #include "triangle_sets.hpp"
@@ -30,9 +37,12 @@
 #include <GL/osmesa.h>
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -102,64 +112,69 @@ void report(benchmark::State& state, int area) {
 
 enum class Variant { walk, blocks, runs, masks, tiled, plain };
 
-void project(benchmark::State& state, Variant variant, bool with_depth) {
-    const int area = static_cast<int>(state.range(0));
-    const int threads = static_cast<int>(state.range(1));
+/// Draws the whole set of `area` once with `variant` (threads: for tiled only).
+void draw_set(Variant variant, bool with_depth, int area, int threads) {
     const auto& tris = triangles(area);
     const RenderTarget target = frame().target(with_depth);
     const Viewport vp{frame_side, frame_side};
     const int side = static_cast<int>(std::ceil(std::sqrt(area)));
+    switch (variant) {
+    case Variant::walk:
+        draw_reference(target, tris);
+        break;
+    case Variant::blocks:
+        for (const FlatTriangle& t : tris) {
+            const EdgeSetup<FixedEdge> s = setup_edges(t.v);
+            if (s.empty) {
+                continue;
+            }
+            auto plot = [&](int x, int y) {
+                const std::size_t i = static_cast<std::size_t>(y) * frame_side +
+                                      static_cast<std::size_t>(x);
+                if (target.depth != nullptr) {
+                    const float z = t.depth.at(x, y);
+                    if (!(z < target.depth[i])) {
+                        return;
+                    }
+                    target.depth[i] = z;
+                }
+                target.colour[i] = t.colour;
+            };
+            traverse_blocks_fast(s, pixel_bounds(t.v, vp), plot);
+        }
+        break;
+    case Variant::runs:
+        for (const FlatTriangle& t : tris) {
+            draw_runs(target, t);
+        }
+        break;
+    case Variant::masks:
+        for (const FlatTriangle& t : tris) {
+            draw_masks(target, t);
+        }
+        break;
+    case Variant::tiled:
+        draw_tiled(target, tris, threads);
+        break;
+    case Variant::plain: // `area` pixels as a near-square rectangle per triangle
+        for (const FlatTriangle& t : tris) {
+            const int x0 = static_cast<int>(t.v[0].x >> 8) % (frame_side - side);
+            const int y0 = static_cast<int>(t.v[0].y >> 8) % (frame_side - side);
+            for (int left = area, y = y0; left > 0; left -= side, ++y) {
+                Rgba8* row = target.colour + static_cast<std::size_t>(y) * frame_side;
+                fill_run(row + x0, std::min(left, side), t.colour);
+            }
+        }
+        break;
+    }
+}
+
+void project(benchmark::State& state, Variant variant, bool with_depth) {
+    const int area = static_cast<int>(state.range(0));
+    const int threads = static_cast<int>(state.range(1));
     std::fill(frame().depth.begin(), frame().depth.end(), 1.0f); // as glClear does
     for (auto _ : state) {
-        switch (variant) {
-        case Variant::walk:
-            draw_reference(target, tris);
-            break;
-        case Variant::blocks:
-            for (const FlatTriangle& t : tris) {
-                const EdgeSetup<FixedEdge> s = setup_edges(t.v);
-                if (s.empty) {
-                    continue;
-                }
-                auto plot = [&](int x, int y) {
-                    const std::size_t i = static_cast<std::size_t>(y) * frame_side +
-                                          static_cast<std::size_t>(x);
-                    if (target.depth != nullptr) {
-                        const float z = t.depth.at(x, y);
-                        if (!(z < target.depth[i])) {
-                            return;
-                        }
-                        target.depth[i] = z;
-                    }
-                    target.colour[i] = t.colour;
-                };
-                traverse_blocks_fast(s, pixel_bounds(t.v, vp), plot);
-            }
-            break;
-        case Variant::runs:
-            for (const FlatTriangle& t : tris) {
-                draw_runs(target, t);
-            }
-            break;
-        case Variant::masks:
-            for (const FlatTriangle& t : tris) {
-                draw_masks(target, t);
-            }
-            break;
-        case Variant::tiled:
-            draw_tiled(target, tris, threads);
-            break;
-        case Variant::plain: // `area` pixels as a near-square rectangle per triangle
-            for (const FlatTriangle& t : tris) {
-                const int x0 = static_cast<int>(t.v[0].x >> 8) % (frame_side - side);
-                const int y0 = static_cast<int>(t.v[0].y >> 8) % (frame_side - side);
-                for (int left = area, y = y0; left > 0; left -= side, ++y) {
-                    Rgba8* row = target.colour + static_cast<std::size_t>(y) * frame_side;
-                    fill_run(row + x0, std::min(left, side), t.colour);
-                }
-            }
-            break;
-        }
+        draw_set(variant, with_depth, area, threads);
         benchmark::ClobberMemory();
     }
     report(state, area);
@@ -232,13 +247,9 @@ const PeerArrays& peer_arrays(int area) {
     return it->second;
 }
 
-void llvmpipe(benchmark::State& state, bool with_depth) {
-    const int area = static_cast<int>(state.range(0));
-    Peer& p = peer();
-    if (p.context == nullptr) {
-        state.SkipWithError(p.problem.c_str());
-        return;
-    }
+/// Sets llvmpipe up to draw the set of `area` (depth test or not); returns the vertex
+/// count for glDrawArrays.
+GLsizei prepare_peer(int area, bool with_depth) {
     const PeerArrays& a = peer_arrays(area);
     if (with_depth) {
         glEnable(GL_DEPTH_TEST);
@@ -249,7 +260,17 @@ void llvmpipe(benchmark::State& state, bool with_depth) {
     }
     glVertexPointer(3, GL_FLOAT, 0, a.xyz.data());
     glColorPointer(4, GL_UNSIGNED_BYTE, 0, a.rgba.data());
-    const auto vertices = static_cast<GLsizei>(a.xyz.size() / 3);
+    return static_cast<GLsizei>(a.xyz.size() / 3);
+}
+
+void llvmpipe(benchmark::State& state, bool with_depth) {
+    const int area = static_cast<int>(state.range(0));
+    Peer& p = peer();
+    if (p.context == nullptr) {
+        state.SkipWithError(p.problem.c_str());
+        return;
+    }
+    const GLsizei vertices = prepare_peer(area, with_depth);
     glDrawArrays(GL_TRIANGLES, 0, vertices); // compiles llvmpipe's code for this state
     glFinish();
     for (auto _ : state) {
@@ -262,13 +283,62 @@ void llvmpipe(benchmark::State& state, bool with_depth) {
     report(state, area);
 }
 
+/// The one drawing callgrind counts (see the top of the file).
+extern "C" __attribute__((noinline)) void
+ch09_draw_once(const std::function<void()>& draw) {
+    draw();
+}
+
+/// --once=MODE/VARIANT/AREA: draws the set once, then once more inside ch09_draw_once.
+/// Returns the exit code (2 for a name it does not know).
+int draw_once(const std::string& name) {
+    const auto first = name.find('/'), second = name.rfind('/');
+    if (first == std::string::npos || second == first) {
+        std::fprintf(stderr, "bench_ch09_fast: --once=%s is not MODE/VARIANT/AREA\n",
+                     name.c_str());
+        return 2;
+    }
+    const std::string mode = name.substr(0, first);
+    const std::string variant = name.substr(first + 1, second - first - 1);
+    const int area = std::atoi(name.c_str() + second + 1);
+    const bool with_depth = mode == "depth";
+    const std::map<std::string, Variant> variants{
+        {"walk", Variant::walk},   {"blocks", Variant::blocks},
+        {"runs", Variant::runs},   {"masks", Variant::masks},
+        {"tiled", Variant::tiled}, {"plain", Variant::plain}};
+    std::function<void()> draw;
+    if (variant == "llvmpipe") {
+        if (peer().context == nullptr) {
+            std::fprintf(stderr, "bench_ch09_fast: %s\n", peer().problem.c_str());
+            return 2;
+        }
+        const GLsizei vertices = prepare_peer(area, with_depth);
+        draw = [vertices] {
+            glDrawArrays(GL_TRIANGLES, 0, vertices);
+            glFinish();
+        };
+    } else if (variants.count(variant) != 0) {
+        draw = [=, v = variants.at(variant)] { draw_set(v, with_depth, area, 1); };
+    }
+    if (!draw || (mode != "flat" && mode != "depth") ||
+        std::find(std::begin(areas), std::end(areas), area) == std::end(areas)) {
+        std::fprintf(stderr, "bench_ch09_fast: unknown run %s\n", name.c_str());
+        return 2;
+    }
+    draw(); // the first pass fills the depth buffer and compiles llvmpipe's code
+    ch09_draw_once(draw);
+    return 0;
+}
+
 void register_all() {
     const std::pair<const char*, Variant> variants[] = {
         {"walk", Variant::walk},   {"blocks", Variant::blocks},
         {"runs", Variant::runs},   {"masks", Variant::masks},
         {"tiled", Variant::tiled}, {"plain", Variant::plain}};
     const char* lp = std::getenv("LP_NUM_THREADS");
-    const std::string peer_threads = lp != nullptr ? lp : "1";
+    const int peer_threads = lp != nullptr ? std::atoi(lp) : 1;
+    // Process CPU time (every thread of the process, llvmpipe's too): one core's work,
+    // whatever else the machine runs.
     for (const bool depth : {false, true}) {
         const std::string mode = depth ? "depth/" : "flat/";
         for (const auto& [name, variant] : variants) {
@@ -276,24 +346,28 @@ void register_all() {
                 continue;
             }
             for (const int area : areas) {
-                for (const int threads : {1, 2}) {
-                    if (threads == 2 && variant != Variant::tiled) {
-                        continue;
-                    }
-                    benchmark::RegisterBenchmark((mode + name).c_str(),
-                                                 [variant, depth](benchmark::State& s) {
-                                                     project(s, variant, depth);
-                                                 })
-                        ->Args({area, threads})
-                        ->UseRealTime();
-                }
+                benchmark::RegisterBenchmark(
+                    (mode + name).c_str(),
+                    [variant, depth](benchmark::State& s) { project(s, variant, depth); })
+                    ->Args({area, 1})
+                    ->MeasureProcessCPUTime();
             }
         }
         for (const int area : areas) {
             benchmark::RegisterBenchmark(
                 (mode + "llvmpipe").c_str(),
                 [depth](benchmark::State& s) { llvmpipe(s, depth); })
-                ->Args({area, std::atoi(peer_threads.c_str())})
+                ->Args({area, peer_threads})
+                ->MeasureProcessCPUTime();
+        }
+    }
+    // Threads: wall-clock time of the tiled renderer with 1 and 2 threads.
+    for (const int area : areas) {
+        for (const int threads : {1, 2}) {
+            benchmark::RegisterBenchmark(
+                "wall/tiled",
+                [](benchmark::State& s) { project(s, Variant::tiled, false); })
+                ->Args({area, threads})
                 ->UseRealTime();
         }
     }
@@ -302,6 +376,23 @@ void register_all() {
 } // namespace
 
 int main(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--list") { // the runs --once accepts, with their triangle count
+            for (const char* mode : {"flat", "depth"}) {
+                for (const char* v :
+                     {"walk", "blocks", "runs", "masks", "tiled", "llvmpipe"}) {
+                    for (const int area : areas) {
+                        std::printf("%s/%s/%d %d\n", mode, v, area, triangle_count);
+                    }
+                }
+            }
+            return 0;
+        }
+        if (arg.rfind("--once=", 0) == 0) {
+            return draw_once(arg.substr(7));
+        }
+    }
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
         return 1;
@@ -309,7 +400,4 @@ int main(int argc, char** argv) {
     register_all();
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
-    if (peer().context != nullptr) {
-        OSMesaDestroyContext(peer().context);
-    }
 }
