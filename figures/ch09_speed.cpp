@@ -2,8 +2,9 @@
 // (chapters/09-fast-pixels/data/ch09_fast.csv, bench_ch09_fast's CSV with a '#' header
 // naming machine and date): ch09_speed_flat.dat and ch09_speed_depth.dat (millions of
 // triangles per second against area, one column per variant, for ch09_speed.gp),
-// ch09_table.md (the same numbers and the ratio to llvmpipe) and ch09_targets.md (each
-// target of the chapter, met or not, with the numbers that decide it).
+// ch09_table.md (the same numbers and the ratio to llvmpipe), ch09_targets.md (each
+// target of the chapter, met or not, with the numbers that decide it) and
+// ch09_instructions.md (instructions per triangle from data/ch09_instructions.csv).
 // Usage: fig_ch09_speed FIGURE_DIR
 #include "exactpixels/benchmark_csv.hpp"
 #include "exactpixels/error.hpp"
@@ -73,7 +74,7 @@ std::string table(const BenchmarkRuns& r) {
             }
             const auto [name, b] = best(r, mode, area);
             const double peer = rate(r, mode, "llvmpipe", area);
-            md += fmt::format(" {:.3g} | {:.1f} ({}) |\n", peer / 1e6, b / peer, name);
+            md += fmt::format(" {:.3g} | {:.2f} ({}) |\n", peer / 1e6, b / peer, name);
         }
         md += fmt::format(
             "\n: Millions of triangles per second on one core, {}, from the committed "
@@ -129,6 +130,27 @@ std::string targets(const BenchmarkRuns& r) {
     return md;
 }
 
+/// Instructions per triangle (callgrind) of walk, runs, masks and llvmpipe.
+std::string instruction_table(const BenchmarkRuns& r) {
+    std::string md = "| mode | area (px) | walk | runs | masks | llvmpipe |\n"
+                     "|---|--:|--:|--:|--:|--:|\n";
+    for (const std::string mode : {"flat", "depth"}) {
+        for (const int area : {3, 80, 1000}) {
+            md += fmt::format("| {} | {} |", mode, area);
+            for (const char* v : {"walk", "runs", "masks", "llvmpipe"}) {
+                md += fmt::format(" {:.0f} |",
+                                  r.value(fmt::format("{}/{}/{}", mode, v, area),
+                                          "instructions_per_triangle"));
+            }
+            md += '\n';
+        }
+    }
+    md += "\n: Instructions per triangle, counted by callgrind over one drawing of the "
+          "1024 triangles of each area (data/ch09_instructions.csv). "
+          "{#tbl:ch09-instructions}\n";
+    return md;
+}
+
 void write_text(const std::filesystem::path& path, const std::string& text) {
     std::ofstream out(path);
     out << text;
@@ -149,6 +171,10 @@ int main(int argc, char** argv) {
         write_dat(r, "depth", folder / "ch09_speed_depth.dat");
         write_text(folder / "ch09_table.md", table(r));
         write_text(folder / "ch09_targets.md", targets(r));
+        write_text(folder / "ch09_instructions.md",
+                   instruction_table(read_benchmark_csv(
+                       std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
+                       "chapters/09-fast-pixels/data/ch09_instructions.csv")));
     } catch (const Error& error) {
         std::fprintf(stderr, "fig_ch09_speed: %s\n", error.what());
         return 2;

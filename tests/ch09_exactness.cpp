@@ -23,8 +23,8 @@ namespace {
 /// The fast traversals of this chapter, by name.
 enum class Fast { runs, runs_fast, masks_portable, masks_sse2 };
 
-constexpr Fast all_fast[] = {Fast::runs, Fast::runs_fast, Fast::masks_portable,
-                             Fast::masks_sse2};
+// The plain traversal_runs is the exercise ch09-run-of-row: its own test below.
+constexpr Fast all_fast[] = {Fast::runs_fast, Fast::masks_portable, Fast::masks_sse2};
 
 const char* name_of(Fast f) {
     switch (f) {
@@ -152,6 +152,23 @@ TEST_CASE("runs and 8x8 masks are exact on slivers and at the fixed-point limit"
         INFO(name_of(f));
         CHECK(mismatches(hard, 640, 200, f) == 0);
     }
+}
+
+TEST_CASE("covered runs by exact division are the pixel walk's runs on every set" *
+          doctest::description("points: 3; exercise: ch09-run-of-row")) {
+    std::mt19937_64 rng(95);
+    std::uniform_real_distribution<double> wobble(-3.0, 3.0);
+    const auto jittered = [&](int, int) { return Point2{wobble(rng), wobble(rng)}; };
+    std::vector<std::array<FixedPoint2, 3>> hard;
+    const std::int64_t m = max_fixed_coordinate;
+    hard.push_back(ch02::snap3({10.25, 3.5}, {610.75, 190.25}, {610.8125, 190.25}));
+    hard.push_back({FixedPoint2{-m, -m}, FixedPoint2{m, -m + 3}, FixedPoint2{100, m}});
+    CHECK(mismatches(random_set(96), 130, 90, Fast::runs) == 0);
+    CHECK(mismatches(testing::grid_mesh({2.3, 1.7}, 8, 8.0, jittered), 72, 72,
+                     Fast::runs) == 0);
+    CHECK(mismatches(testing::sliver_fan({36.5, 36.5}, 33.0, 720), 72, 72, Fast::runs) ==
+          0);
+    CHECK(mismatches(hard, 640, 200, Fast::runs) == 0);
 }
 
 TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes") {

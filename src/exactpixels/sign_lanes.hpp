@@ -1,8 +1,9 @@
 // sign_lanes.hpp: eight 64-bit edge values side by side, the only SIMD the book uses.
 //
 // Usage:
-//   Lanes8 w = broadcast(e.at(x, y)) + ramp(e.step_x()); // w at x .. x + 7 on row y
-//   std::uint8_t inside = nonnegative_bits(w0 | w1 | w2); // bit i: pixel x + i covered
+//   Lanes8 w = Lanes8::broadcast(e.at(x, y)) + Lanes8::ramp(e.step_x()); // x .. x + 7
+//   std::uint8_t inside = (w0 | w1 | w2).nonnegative_bits(); // bit i: pixel x + i
+//   covered
 //
 // Values are the exact fixed-point edge values of chapter 2 (1/65536 px^2, int64); the
 // lanes only add and OR them, so every result is the integer the scalar loop computes.
@@ -22,6 +23,7 @@
 
 namespace exactpixels {
 
+/// The two implementations of the eight lanes (Lanes8 picks one).
 namespace lanes {
 
 /// Eight int64 values in a plain array: the portable form, and the reference.

@@ -84,8 +84,9 @@ void draw_masks(const RenderTarget& target, const FlatTriangle& triangle);
 
 /// The same pixels as draw_reference, through tiles: triangles binned into the 64 x 64
 /// tiles their bounds meet; each tile trivially rejected or accepted per triangle, else
-/// drawn in covered runs (row_runs.hpp); tiles shared among `threads` threads (1 ..
-/// max_threads). Throws Error for a bad thread count or vertex, before drawing anything.
+/// drawn in covered runs (row_runs.hpp); tiles shared among `threads` threads, from 1
+/// to max_threads. Throws Error for a bad thread count or vertex, before drawing
+/// anything.
 void draw_tiled(const RenderTarget& target, std::span<const FlatTriangle> triangles,
                 int threads);
 
