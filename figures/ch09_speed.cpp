@@ -1,7 +1,7 @@
 // Chapter 9 figures and tables from the committed, dated benchmark run
 // (chapters/09-fast-pixels/data/ch09_fast.csv, bench_ch09_fast's CSV with a '#' header
 // naming machine and date): ch09_speed_flat.dat and ch09_speed_depth.dat (millions of
-// triangles per second against area, one column per variant, for ch09_speed.gp),
+// pixels per second against area, one column per variant, for ch09_speed.gp),
 // ch09_table.md (the same numbers and the ratio to llvmpipe), ch09_targets.md (each
 // target of the chapter, met or not, with the numbers that decide it) and
 // ch09_instructions.md (instructions per triangle from data/ch09_instructions.csv).
@@ -45,17 +45,25 @@ std::pair<std::string, double> best(const BenchmarkRuns& r, const std::string& m
     return b;
 }
 
+/// Pixels per second of MODE/VARIANT/AREA (one core).
+double pixel_rate(const BenchmarkRuns& r, const std::string& mode,
+                  const std::string& variant, int area) {
+    return r.value(fmt::format("{}/{}/{}/1/process_time", mode, variant, area),
+                   "pix_per_s");
+}
+
 void write_dat(const BenchmarkRuns& r, const std::string& mode,
                const std::filesystem::path& path) {
     std::ofstream out(path);
-    out << "# area walk blocks runs masks tiled llvmpipe plain (Mtri/s, one core)\n";
+    out << "# area walk blocks runs masks tiled llvmpipe plain (Mpix/s, one core)\n";
     for (const int area : areas) {
         out << area;
         for (const char* v : project_variants) {
-            out << ' ' << rate(r, mode, v, area) / 1e6;
+            out << ' ' << pixel_rate(r, mode, v, area) / 1e6;
         }
-        out << ' ' << rate(r, mode, "llvmpipe", area) / 1e6;
-        out << ' ' << (mode == "flat" ? rate(r, mode, "plain", area) / 1e6 : 0.0) << '\n';
+        out << ' ' << pixel_rate(r, mode, "llvmpipe", area) / 1e6;
+        out << ' ' << (mode == "flat" ? pixel_rate(r, mode, "plain", area) / 1e6 : 0.0)
+            << '\n';
     }
     if (!out) {
         throw Error(fmt::format("{}: cannot be written", path.string()));

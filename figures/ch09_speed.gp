@@ -1,4 +1,4 @@
-# Chapter 9: triangles per second against triangle area, every variant and llvmpipe,
+# Chapter 9: pixels per second against triangle area, every variant and llvmpipe,
 # one core, from the committed run (data: ch09_speed_{flat,depth}.dat, written by
 # fig_ch09_speed from chapters/09-fast-pixels/data/ch09_fast.csv).
 set terminal svg size 640,420 font "sans,12" background "white"
@@ -7,8 +7,8 @@ set logscale y
 set format x "2^{%L}"
 set xrange [2:100000]
 set xlabel "triangle area (px)"
-set ylabel "Mtri/s (one core)"
-set key bottom left
+set ylabel "Mpix/s (one core)"
+set key bottom right
 set grid
 do for [mode in "flat depth"] {
     set output "ch09_speed_".mode.".svg"
