@@ -210,9 +210,10 @@ TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes
 
 TEST_CASE("the tiled renderer draws the teaching path's picture with 1 to 4 threads" *
           doctest::description("points: 2")) {
-    // 3000 overlapping triangles of all sizes, flat and depth-tested: the picture (and
-    // depth buffer) of draw_tiled equals draw_reference's, bit for bit, for every thread
-    // count, and the per-triangle fast paths (runs, masks) give it too.
+    // 3000 overlapping triangles of all sizes, then a jittered mesh, a fan of 720 slivers
+    // and the hard cases, flat and depth-tested: the picture (and depth buffer) of
+    // draw_tiled equals draw_reference's, bit for bit, for every thread count, and the
+    // per-triangle fast paths (runs, masks) give it too.
     std::mt19937_64 rng(94);
     constexpr int width = 300, height = 200;
     std::uniform_real_distribution<float> depth(0.0f, 1.0f);
@@ -224,6 +225,22 @@ TEST_CASE("the tiled renderer draws the teaching path's picture with 1 to 4 thre
         const auto c = static_cast<std::uint8_t>(n);
         tris.push_back({v, depth_plane(v, {depth(rng), depth(rng), depth(rng)}),
                         rgba(c, static_cast<std::uint8_t>(n >> 8), 255 - c)});
+    }
+    // Then chapter 2's jittered mesh and fan, and chapter 6's hard cases, on top.
+    std::uniform_real_distribution<double> wobble(-3.0, 3.0);
+    const auto jittered = [&](int, int) { return Point2{wobble(rng), wobble(rng)}; };
+    auto extra = testing::grid_mesh({20.3, 10.7}, 10, 17.0, jittered);
+    for (const auto& t : testing::sliver_fan({200.5, 100.5}, 90.0, 720)) {
+        extra.push_back(t);
+    }
+    const std::int64_t m = max_fixed_coordinate;
+    extra.push_back(ch02::snap3({10.25, 3.5}, {290.75, 190.25}, {290.8125, 190.25}));
+    extra.push_back({FixedPoint2{-m, -m}, FixedPoint2{m, -m + 3}, FixedPoint2{100, m}});
+    for (std::size_t n = 0; n < extra.size(); ++n) {
+        const auto c = static_cast<std::uint8_t>(7 * n);
+        tris.push_back({extra[n],
+                        depth_plane(extra[n], {depth(rng), depth(rng), depth(rng)}),
+                        rgba(255 - c, c, static_cast<std::uint8_t>(n >> 4))});
     }
     for (const bool with_depth : {false, true}) {
         INFO("depth test: " << with_depth);
