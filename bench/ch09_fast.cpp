@@ -30,6 +30,7 @@
 // draws the set once untimed, then once more inside ch09_draw_once, the function that
 // valgrind --tool=callgrind --toggle-collect=ch09_draw_once counts; `--list` prints the
 // names. Run it with LP_NUM_THREADS=0 so that llvmpipe rasterizes in the counted thread.
+// `--compare=AREA` checks that both sides draw the same pixels (see compare()).
 #include "exactpixels/edge_rasterizer.hpp"
 #include "exactpixels/tiled_rasterizer.hpp"
 #include "triangle_sets.hpp"
@@ -289,6 +290,35 @@ ch09_draw_once(const std::function<void()>& draw) {
     draw();
 }
 
+/// --compare=AREA: draws the flat set of AREA with the teaching path and with llvmpipe
+/// into cleared frames and prints how many pixels differ (the same work on both sides
+/// means nearly the same pixels: only centres exactly on an edge may go either way).
+int compare(int area) {
+    if (std::find(std::begin(areas), std::end(areas), area) == std::end(areas) ||
+        peer().context == nullptr) {
+        std::fprintf(stderr, "bench_ch09_fast: cannot compare area %d\n", area);
+        return 2;
+    }
+    std::fill(frame().colour.begin(), frame().colour.end(), rgba(0, 0, 0));
+    draw_reference(frame().target(false), triangles(area));
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glDrawArrays(GL_TRIANGLES, 0, prepare_peer(area, false));
+    glFinish();
+    std::int64_t differ = 0, drawn = 0;
+    const auto& gl = peer().pixels;
+    for (std::size_t i = 0; i < frame().colour.size(); ++i) {
+        const Rgba8 ours = frame().colour[i];
+        drawn += ours != rgba(0, 0, 0);
+        differ +=
+            ours.r != gl[4 * i] || ours.g != gl[4 * i + 1] || ours.b != gl[4 * i + 2];
+    }
+    std::printf(
+        "area %d: %lld pixels drawn by the teaching path, %lld differ in llvmpipe's "
+        "frame\n",
+        area, static_cast<long long>(drawn), static_cast<long long>(differ));
+    return 0;
+}
+
 /// --once=MODE/VARIANT/AREA: draws the set once, then once more inside ch09_draw_once.
 /// Returns the exit code (2 for a name it does not know).
 int draw_once(const std::string& name) {
@@ -388,6 +418,9 @@ int main(int argc, char** argv) {
                 }
             }
             return 0;
+        }
+        if (arg.rfind("--compare=", 0) == 0) {
+            return compare(std::atoi(arg.c_str() + 10));
         }
         if (arg.rfind("--once=", 0) == 0) {
             return draw_once(arg.substr(7));

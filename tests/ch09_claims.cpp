@@ -6,6 +6,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fmt/format.h>
 #include <string>
@@ -122,4 +123,17 @@ TEST_CASE(
         instructions("flat/llvmpipe/1000") / instructions("flat/runs/1000");
     CHECK(ratio > 2.5);
     CHECK(ratio < 4.0);
+}
+
+TEST_CASE(
+    "claim: llvmpipe draws every flat set with exactly the teaching path's pixels") {
+    const BenchmarkRuns r = read_benchmark_csv(data / "ch09_compare.csv");
+    for (const int area : {3, 15, 80, 1000, 65536}) {
+        const std::string name = fmt::format("flat/{}", area);
+        INFO(name);
+        // Not vacuous: most of the set's area, or half the frame, is drawn.
+        CHECK(r.value(name, "pixels_drawn") >=
+              std::min(area * 1024 * 0.9, 0.5 * 1024 * 1024));
+        CHECK(r.value(name, "pixels_differ") == 0);
+    }
 }
