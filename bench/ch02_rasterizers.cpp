@@ -14,11 +14,13 @@
 //
 // Every variant draws the same 1024 triangles per area into a 1024 x 1024 array of
 // 32-bit pixels, cycling through them: random shapes (no angle below about 25 degrees),
-// random orientation and position, scaled to the exact area before snapping. The
+// random orientation and position, scaled to the exact area before snapping
+// (triangle_sets.hpp, shared with chapter 9's benchmark). The
 // fixed-point variants get the vertices already snapped (snapping belongs to vertex
 // processing); the float and naive variants get them as float pixels.
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/naive_rasterizer.hpp"
+#include "triangle_sets.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -43,50 +45,12 @@ std::vector<std::uint32_t>& frame() {
     return pixels;
 }
 
-/// The benchmark's triangles of one area, in both forms.
-struct TriangleSet {
-    std::vector<std::array<Point2f, 3>> floats;
-    std::vector<std::array<FixedPoint2, 3>> fixed;
-};
-
-const TriangleSet& triangles(int area) {
-    static std::map<int, TriangleSet> cache;
+/// The benchmark's triangles of one area, in both forms (triangle_sets.hpp).
+const bench::TriangleSet& triangles(int area) {
+    static std::map<int, bench::TriangleSet> cache;
     auto [it, inserted] = cache.try_emplace(area);
-    if (!inserted) {
-        return it->second;
-    }
-    std::mt19937_64 rng(static_cast<std::uint64_t>(area));
-    std::uniform_real_distribution<double> unit(0.0, 1.0);
-    for (int n = 0; n < triangle_count; ++n) {
-        // Vertices near a circle, about 120 degrees apart: a well-shaped triangle.
-        const double turn = 2 * std::numbers::pi * unit(rng);
-        std::array<Point2, 3> p;
-        for (int k = 0; k < 3; ++k) {
-            const double angle =
-                turn + 2 * std::numbers::pi * (k + 0.3 * (unit(rng) - 0.5)) / 3;
-            const double radius = 0.8 + 0.4 * unit(rng);
-            p[k] = radius * Point2{std::cos(angle), std::sin(angle)};
-        }
-        const double area2 =
-            (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[1].y - p[0].y) * (p[2].x - p[0].x);
-        const double scale = std::sqrt(2.0 * area / std::abs(area2));
-        double lo = 1e9, hi = -1e9;
-        for (Point2& q : p) {
-            q *= scale;
-            lo = std::min({lo, q.x, q.y});
-            hi = std::max({hi, q.x, q.y});
-        }
-        // A random position that keeps the whole triangle in the frame.
-        const double room = frame_side - (hi - lo) - 2.0;
-        const Point2 shift{1.0 - lo + room * unit(rng), 1.0 - lo + room * unit(rng)};
-        std::array<Point2f, 3> f;
-        std::array<FixedPoint2, 3> x;
-        for (int k = 0; k < 3; ++k) {
-            f[k] = Point2f(p[k] + shift);
-            x[k] = snap_to_subpixel(p[k] + shift);
-        }
-        it->second.floats.push_back(f);
-        it->second.fixed.push_back(x);
+    if (inserted) {
+        it->second = bench::make_triangles(area, triangle_count, frame_side);
     }
     return it->second;
 }

@@ -5,6 +5,7 @@
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/naive_rasterizer.hpp"
 #include "exactpixels/raster/scanline.hpp"
+#include "support/meshes.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>
@@ -17,6 +18,8 @@
 using namespace exactpixels;
 using ch02::Grid;
 using ch02::Raster;
+using exactpixels::testing::grid_mesh;
+using exactpixels::testing::sliver_fan;
 
 namespace {
 
@@ -46,36 +49,6 @@ MeshFaults faults(const Grid& g, int x0, int y0, int x1, int y1) {
         }
     }
     return f;
-}
-
-/// A grid mesh of n x n cells of `cell` px starting at `origin`, every cell split
-/// into two triangles along a diagonal (alternating), interior vertices moved by
-/// `jitter(i, j)` (a point added in px). The mesh covers the square exactly.
-template <class Jitter>
-std::vector<std::array<FixedPoint2, 3>> grid_mesh(Point2 origin, int n, double cell,
-                                                  Jitter jitter) {
-    std::vector<std::vector<FixedPoint2>> p(n + 1, std::vector<FixedPoint2>(n + 1));
-    for (int j = 0; j <= n; ++j) {
-        for (int i = 0; i <= n; ++i) {
-            const bool border = i == 0 || j == 0 || i == n || j == n;
-            const Point2 q = origin + Point2{i * cell, j * cell} +
-                             (border ? Point2{0, 0} : jitter(i, j));
-            p[j][i] = snap_to_subpixel(q);
-        }
-    }
-    std::vector<std::array<FixedPoint2, 3>> mesh;
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            if ((i + j) % 2 == 0) {
-                mesh.push_back({p[j][i], p[j][i + 1], p[j + 1][i + 1]});
-                mesh.push_back({p[j][i], p[j + 1][i + 1], p[j + 1][i]});
-            } else {
-                mesh.push_back({p[j][i], p[j][i + 1], p[j + 1][i]});
-                mesh.push_back({p[j][i + 1], p[j + 1][i + 1], p[j + 1][i]});
-            }
-        }
-    }
-    return mesh;
 }
 
 } // namespace
@@ -147,16 +120,8 @@ TEST_CASE("meshes are watertight: every pixel exactly once" *
     cases.push_back(
         {"all vertices on pixel centres", grid_mesh({2.5, 2.5}, 11, 6.0, none)});
     // 720 slivers around the pixel centre (36.5, 36.5), out to a 33 px circle snapped.
-    std::vector<std::array<FixedPoint2, 3>> fan;
     const Point2 hub{36.5, 36.5};
-    const auto rim = [&](int k) {
-        const double angle = 2 * std::numbers::pi * k / 720;
-        return snap_to_subpixel(hub + 33.0 * Point2{std::cos(angle), std::sin(angle)});
-    };
-    for (int k = 0; k < 720; ++k) {
-        fan.push_back({snap_to_subpixel(hub), rim(k), rim(k + 1)});
-    }
-    cases.push_back({"fan of 720 slivers", fan});
+    cases.push_back({"fan of 720 slivers", sliver_fan(hub, 33.0, 720)});
     for (const Case& c : cases) {
         for (const Raster r : ch02::fixed_rasters) {
             INFO(c.name << ", " << ch02::name_of(r));

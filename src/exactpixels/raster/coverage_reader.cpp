@@ -121,6 +121,16 @@ bool read_line(std::istream& in, std::string& text, int line) {
 std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,
                                 CoveragePrecision precision, Viewport& viewport,
                                 long long max_pixels) {
+    return count_coverage(
+        in,
+        [&](std::vector<int>& counts, Viewport frame, const std::array<Point2, 3>& v) {
+            add_coverage(counts, frame, v, kind, precision);
+        },
+        viewport, max_pixels);
+}
+
+std::vector<int> count_coverage(std::istream& in, const CoverageDraw& draw,
+                                Viewport& viewport, long long max_pixels) {
     std::string text;
     int line = 0;
     bool have_header = false;
@@ -140,7 +150,7 @@ std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,
         }
         const std::array<Point2, 3> v = parse_triangle(text, line);
         try {
-            add_coverage(counts, viewport, v, kind, precision);
+            draw(counts, viewport, v);
         } catch (const Error& error) {
             throw Error(fmt::format("line {}: {}", line, error.what()));
         }

@@ -16,7 +16,9 @@
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/span.hpp"
 
+#include <array>
 #include <cstddef>
+#include <functional>
 #include <istream>
 #include <string>
 #include <vector>
@@ -39,6 +41,16 @@ inline constexpr std::size_t max_line_bytes = 1024;
 /// does to stay fast.
 std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,
                                 CoveragePrecision precision, Viewport& viewport,
+                                long long max_pixels = max_frame_pixels);
+
+/// Adds 1 to counts[y * width + x] for every pixel the triangle (pixels) covers.
+using CoverageDraw = std::function<void(std::vector<int>& counts, Viewport viewport,
+                                        const std::array<Point2, 3>& triangle)>;
+
+/// The same with any rasterizer: `draw` adds one triangle's coverage (chapter 9's fast
+/// traversals use this).
+std::vector<int> count_coverage(std::istream& in, const CoverageDraw& draw,
+                                Viewport& viewport,
                                 long long max_pixels = max_frame_pixels);
 
 /// The counts as text: one line per row, counts separated by one space.

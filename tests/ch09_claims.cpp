@@ -1,0 +1,139 @@
+// Chapter 9 tests: every comparison the chapter's text states about speed, checked
+// against the committed, dated run (chapters/09-fast-pixels/data/ch09_fast.csv) and the
+// committed instruction counts (data/ch09_instructions.csv). A new run that changes a
+// comparison makes the matching test fail, and the sentence must change with it.
+#include "exactpixels/lab/benchmark_csv.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fmt/format.h>
+#include <string>
+
+using namespace exactpixels;
+
+namespace {
+
+const std::filesystem::path data =
+    std::filesystem::path(EXACTPIXELS_SOURCE_DIR) / "chapters/09-fast-pixels/data";
+
+const BenchmarkRuns& timed() {
+    static const BenchmarkRuns r = read_benchmark_csv(data / "ch09_fast.csv");
+    return r;
+}
+
+/// Triangles per second of MODE/VARIANT/AREA in the committed run (one core).
+double rate(const std::string& mode, const std::string& variant, int area) {
+    return timed().value(fmt::format("{}/{}/{}/1/process_time", mode, variant, area),
+                         "tri_per_s");
+}
+
+/// The fastest of the project's variants at `area`.
+double best(const std::string& mode, int area) {
+    double b = 0;
+    for (const char* v : {"walk", "blocks", "runs", "masks", "tiled"}) {
+        b = std::max(b, rate(mode, v, area));
+    }
+    return b;
+}
+
+/// Instructions per triangle of MODE/VARIANT/AREA (callgrind).
+double instructions(const std::string& name) {
+    static const BenchmarkRuns r = read_benchmark_csv(data / "ch09_instructions.csv");
+    return r.value(name, "instructions_per_triangle");
+}
+
+} // namespace
+
+TEST_CASE("claim: on 3 and 15 px the pixel walk and 8x8 blocks beat llvmpipe 5x") {
+    for (const std::string mode : {"flat", "depth"}) {
+        for (const char* v : {"walk", "blocks"}) {
+            for (const int area : {3, 15}) {
+                INFO(mode << " " << v << " " << area << " px");
+                CHECK(rate(mode, v, area) >= 5.0 * rate(mode, "llvmpipe", area));
+            }
+        }
+    }
+}
+
+TEST_CASE("claim: at 80 and 1000 px no variant leads llvmpipe by 2x; flat, one leads") {
+    for (const std::string mode : {"flat", "depth"}) {
+        for (const int area : {80, 1000}) {
+            INFO(mode << " " << area << " px");
+            CHECK(best(mode, area) < 2.0 * rate(mode, "llvmpipe", area));
+            if (mode == "flat") {
+                CHECK(best(mode, area) > rate(mode, "llvmpipe", area));
+            }
+        }
+    }
+}
+
+TEST_CASE("claim: with a depth test at 1000 px llvmpipe is ahead of every variant") {
+    CHECK(rate("depth", "llvmpipe", 1000) > best("depth", 1000));
+}
+
+TEST_CASE("claim: at 65536 px flat, runs are fastest, over 3x llvmpipe and 6x the walk") {
+    CHECK(rate("flat", "runs", 65536) == best("flat", 65536));
+    CHECK(rate("flat", "runs", 65536) > 3.0 * rate("flat", "llvmpipe", 65536));
+    CHECK(rate("flat", "runs", 65536) > 6.0 * rate("flat", "walk", 65536));
+}
+
+TEST_CASE("claim: runs reach between 30 and 40 % of a plain fill at 65536 px") {
+    const double share = rate("flat", "runs", 65536) / rate("flat", "plain", 65536);
+    CHECK(share > 0.30);
+    CHECK(share < 0.40);
+}
+
+TEST_CASE("claim: with a depth test llvmpipe comes within 1.3x at 1000 and 65536 px") {
+    for (const int area : {1000, 65536}) {
+        INFO(area << " px");
+        CHECK(best("depth", area) < 1.3 * rate("depth", "llvmpipe", area));
+    }
+}
+
+TEST_CASE("claim: flat 8x8 masks lose to the walk at 15 and 80 px, win from 1000 up") {
+    for (const int area : {15, 80}) {
+        CHECK(rate("flat", "masks", area) < rate("flat", "walk", area));
+    }
+    for (const int area : {1000, 65536}) {
+        CHECK(rate("flat", "masks", area) > rate("flat", "walk", area));
+    }
+}
+
+TEST_CASE(
+    "claim: two threads were not faster than one at 1000 px on the loaded machine") {
+    const double one = timed().value("wall/tiled/1000/1/real_time", "tri_per_s");
+    const double two = timed().value("wall/tiled/1000/2/real_time", "tri_per_s");
+    CHECK(two < 1.8 * one);
+}
+
+TEST_CASE("claim: a 3 px triangle costs the pixel walk 400 to 500 instructions") {
+    CHECK(instructions("flat/walk/3") > 400);
+    CHECK(instructions("flat/walk/3") < 500);
+}
+
+TEST_CASE("claim: at 1000 px runs take under a third of the walk's instructions") {
+    CHECK(instructions("flat/runs/1000") < instructions("flat/walk/1000") / 3.0);
+}
+
+TEST_CASE(
+    "claim: at 1000 px flat llvmpipe executes about three times runs' instructions") {
+    const double ratio =
+        instructions("flat/llvmpipe/1000") / instructions("flat/runs/1000");
+    CHECK(ratio > 2.5);
+    CHECK(ratio < 4.0);
+}
+
+TEST_CASE(
+    "claim: llvmpipe draws every flat set with exactly the teaching path's pixels") {
+    const BenchmarkRuns r = read_benchmark_csv(data / "ch09_compare.csv");
+    for (const int area : {3, 15, 80, 1000, 65536}) {
+        const std::string name = fmt::format("flat/{}", area);
+        INFO(name);
+        // Not vacuous: most of the set's area, or half the frame, is drawn.
+        CHECK(r.value(name, "pixels_drawn") >=
+              std::min(area * 1024 * 0.9, 0.5 * 1024 * 1024));
+        CHECK(r.value(name, "pixels_differ") == 0);
+    }
+}

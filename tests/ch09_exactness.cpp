@@ -1,0 +1,300 @@
+// Chapter 9 tests: every fast variant draws exactly the pixels of chapter 2's pixel walk
+// (traverse_pixels), on the random, tie, mesh and fan sets of chapter 2 and the hard
+// cases of chapter 6 (slivers, the fixed-point limit); the SIMD lanes agree with the
+// portable ones; the tiled renderer's picture does not depend on the thread count.
+#include "ch02_grid.hpp"
+#include "exactpixels/raster/block_masks.hpp"
+#include "exactpixels/raster/row_runs.hpp"
+#include "exactpixels/raster/sign_lanes.hpp"
+#include "exactpixels/raster/tiled_rasterizer.hpp"
+#include "support/meshes.hpp"
+
+#include <doctest/doctest.h>
+
+#include <limits>
+#include <random>
+#include <string>
+
+using namespace exactpixels;
+using ch02::Grid;
+
+namespace {
+
+/// The fast traversals of this chapter, by name.
+enum class Fast { runs, runs_fast, masks_portable, masks_sse2 };
+
+// The plain traversal_runs is the exercise ch09-run-of-row: its own test below.
+constexpr Fast all_fast[] = {Fast::runs_fast, Fast::masks_portable, Fast::masks_sse2};
+
+const char* name_of(Fast f) {
+    switch (f) {
+    case Fast::runs:
+        return "runs";
+    case Fast::runs_fast:
+        return "runs (fast)";
+    case Fast::masks_portable:
+        return "8x8 masks (portable lanes)";
+    case Fast::masks_sse2:
+        return "8x8 masks (SSE2 lanes)";
+    }
+    return "?";
+}
+
+/// Counts every pixel fast traversal f hands out for the snapped triangle v into g.
+void draw_fast(Grid& g, const std::array<FixedPoint2, 3>& v, Fast f) {
+    check_fixed_triangle(v);
+    const EdgeSetup<FixedEdge> s = setup_edges(v);
+    if (s.empty) {
+        return;
+    }
+    const PixelRect r = pixel_bounds(v, g.viewport());
+    const auto run = [&](Span sp) {
+        CHECK(sp.x_begin < sp.x_end); // no empty run is handed out
+        for (int x = sp.x_begin; x < sp.x_end; ++x) {
+            g.hit(x, sp.y);
+        }
+    };
+    const auto mask = [&](BlockMask m) {
+        CHECK(m.bits != 0); // no empty block is handed out
+        for_each_pixel(m, [&](int x, int y) { g.hit(x, y); });
+    };
+    switch (f) {
+    case Fast::runs:
+        traverse_runs(s, r, run);
+        break;
+    case Fast::runs_fast:
+        traverse_runs_fast(s, r, run);
+        break;
+    case Fast::masks_portable:
+        traverse_block_masks<lanes::Portable>(s, r, mask);
+        break;
+    case Fast::masks_sse2:
+#if defined(__SSE2__)
+        traverse_block_masks<lanes::Sse2>(s, r, mask);
+#else
+        traverse_block_masks<lanes::Portable>(s, r, mask);
+#endif
+        break;
+    }
+}
+
+/// Pixels where fast traversal f and the pixel walk differ, over a set of triangles
+/// each drawn alone into a width x height frame.
+int mismatches(const std::vector<std::array<FixedPoint2, 3>>& set, int width, int height,
+               Fast f) {
+    int wrong = 0;
+    for (const auto& v : set) {
+        Grid walk{width, height}, fast{width, height};
+        ch02::draw(walk, v, ch02::Raster::pixels_fixed);
+        draw_fast(fast, v, f);
+        for (std::size_t k = 0; k < walk.count.size(); ++k) {
+            wrong += walk.count[k] != fast.count[k];
+        }
+        wrong += fast.outside;
+    }
+    return wrong;
+}
+
+std::vector<std::array<FixedPoint2, 3>> random_set(std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::vector<std::array<FixedPoint2, 3>> set;
+    for (int trial = 0; trial < ch02::trials; ++trial) {
+        // Slivers to triangles larger than the frame; every fourth on the half-pixel
+        // grid, where only the fill rule decides.
+        const double spread = trial % 3 == 0 ? 8.0 : trial % 3 == 1 ? 40.0 : 300.0;
+        set.push_back(trial % 4 == 3 ? ch02::random_tie_triangle(rng, -10, 140)
+                                     : ch02::random_triangle(rng, -spread / 4, spread));
+    }
+    return set;
+}
+
+} // namespace
+
+TEST_CASE("runs and 8x8 masks draw the pixel walk's pixels on random triangles" *
+          doctest::description("points: 2")) {
+    const auto set = random_set(91);
+    for (const Fast f : all_fast) {
+        INFO(name_of(f));
+        CHECK(mismatches(set, 130, 90, f) == 0);
+    }
+}
+
+TEST_CASE("runs and 8x8 masks draw the pixel walk's pixels on meshes and the fan") {
+    std::mt19937_64 rng(92);
+    std::uniform_real_distribution<double> wobble(-3.0, 3.0);
+    const auto jittered = [&](int, int) { return Point2{wobble(rng), wobble(rng)}; };
+    const auto none = [](int, int) { return Point2{0, 0}; };
+    const auto mesh = testing::grid_mesh({2.3, 1.7}, 8, 8.0, jittered);
+    const auto centred = testing::grid_mesh({2.5, 2.5}, 11, 6.0, none);
+    const auto fan = testing::sliver_fan({36.5, 36.5}, 33.0, 720);
+    for (const Fast f : all_fast) {
+        INFO(name_of(f));
+        CHECK(mismatches(mesh, 72, 72, f) == 0);
+        CHECK(mismatches(centred, 72, 72, f) == 0);
+        CHECK(mismatches(fan, 72, 72, f) == 0);
+    }
+}
+
+TEST_CASE("runs and 8x8 masks are exact on slivers and at the fixed-point limit") {
+    // Chapter 6's wedges, 1/16 to 1/2 px wide over 600 px, and triangles whose far
+    // vertices sit at +-max_fixed_coordinate, where edge values need all 64 bits.
+    std::vector<std::array<FixedPoint2, 3>> hard;
+    for (const double width : {1.0 / 16, 1.0 / 4, 1.0 / 2}) {
+        hard.push_back(
+            ch02::snap3({10.25, 3.5}, {610.75, 190.25}, {610.75 + width, 190.25}));
+    }
+    const std::int64_t m = max_fixed_coordinate;
+    hard.push_back({FixedPoint2{-m, -m}, FixedPoint2{m, -m + 3}, FixedPoint2{100, m}});
+    hard.push_back({FixedPoint2{m, m}, FixedPoint2{-m, 7000}, FixedPoint2{9000, -m}});
+    hard.push_back({FixedPoint2{-m, 5 * 256 + 128}, FixedPoint2{m, 5 * 256 + 128},
+                    FixedPoint2{m, 6 * 256}}); // a top edge through a row of centres
+    for (const Fast f : all_fast) {
+        INFO(name_of(f));
+        CHECK(mismatches(hard, 640, 200, f) == 0);
+    }
+}
+
+TEST_CASE("covered runs by exact division are the pixel walk's runs on every set" *
+          doctest::description("points: 3; exercise: ch09-run-of-row")) {
+    std::mt19937_64 rng(95);
+    std::uniform_real_distribution<double> wobble(-3.0, 3.0);
+    const auto jittered = [&](int, int) { return Point2{wobble(rng), wobble(rng)}; };
+    std::vector<std::array<FixedPoint2, 3>> hard;
+    const std::int64_t m = max_fixed_coordinate;
+    hard.push_back(ch02::snap3({10.25, 3.5}, {610.75, 190.25}, {610.8125, 190.25}));
+    hard.push_back({FixedPoint2{-m, -m}, FixedPoint2{m, -m + 3}, FixedPoint2{100, m}});
+    CHECK(mismatches(random_set(96), 130, 90, Fast::runs) == 0);
+    CHECK(mismatches(testing::grid_mesh({2.3, 1.7}, 8, 8.0, jittered), 72, 72,
+                     Fast::runs) == 0);
+    CHECK(mismatches(testing::sliver_fan({36.5, 36.5}, 33.0, 720), 72, 72, Fast::runs) ==
+          0);
+    CHECK(mismatches(hard, 640, 200, Fast::runs) == 0);
+}
+
+TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes") {
+    std::mt19937_64 rng(93);
+    const std::int64_t big = std::numeric_limits<std::int64_t>::max() / 16;
+    std::uniform_int_distribution<std::int64_t> value(-big, big);
+    std::uniform_int_distribution<std::int64_t> step(-(std::int64_t{1} << 40),
+                                                     std::int64_t{1} << 40);
+    int all_mixed = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        // Values near zero half the time, so that masks come out mixed.
+        const std::int64_t w[3] = {trial % 2 ? value(rng) : value(rng) >> 40,
+                                   trial % 2 ? value(rng) : value(rng) >> 40,
+                                   trial % 2 ? value(rng) : value(rng) >> 40};
+        const std::int64_t s[3] = {step(rng) >> (trial % 40), step(rng) >> (trial % 40),
+                                   step(rng) >> (trial % 40)};
+        const auto bits = [&](auto lanes_type) {
+            using L = decltype(lanes_type);
+            return ((L::broadcast(w[0]) + L::ramp(s[0])) |
+                    (L::broadcast(w[1]) + L::ramp(s[1])) |
+                    (L::broadcast(w[2]) + L::ramp(s[2])))
+                .nonnegative_bits();
+        };
+        const std::uint8_t portable = bits(lanes::Portable{});
+        unsigned scalar = 0; // the definition, one lane at a time
+        for (int i = 0; i < 8; ++i) {
+            scalar |= unsigned{w[0] + i * s[0] >= 0 && w[1] + i * s[1] >= 0 &&
+                               w[2] + i * s[2] >= 0}
+                      << i;
+        }
+        REQUIRE(portable == scalar);
+#if defined(__SSE2__)
+        REQUIRE(bits(lanes::Sse2{}) == portable);
+#endif
+        all_mixed += portable != 0 && portable != 0xff;
+    }
+    CHECK(all_mixed > 1000); // the test saw many partly covered rows
+}
+
+TEST_CASE("the tiled renderer draws the teaching path's picture with 1 to 4 threads" *
+          doctest::description("points: 2")) {
+    // 3000 overlapping triangles of all sizes, then a jittered mesh, a fan of 720 slivers
+    // and the hard cases, flat and depth-tested: the picture (and depth buffer) of
+    // draw_tiled equals draw_reference's, bit for bit, for every thread count, and the
+    // per-triangle fast paths (runs, masks) give it too.
+    std::mt19937_64 rng(94);
+    constexpr int width = 300, height = 200;
+    std::uniform_real_distribution<float> depth(0.0f, 1.0f);
+    std::vector<FlatTriangle> tris;
+    for (int n = 0; n < 3000; ++n) {
+        const double spread = n % 3 == 0 ? 10.0 : n % 3 == 1 ? 60.0 : 400.0;
+        const auto v = n % 5 == 4 ? ch02::random_tie_triangle(rng, -10, 310)
+                                  : ch02::random_triangle(rng, -spread / 4, spread);
+        const auto c = static_cast<std::uint8_t>(n);
+        tris.push_back({v, depth_plane(v, {depth(rng), depth(rng), depth(rng)}),
+                        rgba(c, static_cast<std::uint8_t>(n >> 8), 255 - c)});
+    }
+    // Then chapter 2's jittered mesh and fan, and chapter 6's hard cases, on top.
+    std::uniform_real_distribution<double> wobble(-3.0, 3.0);
+    const auto jittered = [&](int, int) { return Point2{wobble(rng), wobble(rng)}; };
+    auto extra = testing::grid_mesh({20.3, 10.7}, 10, 17.0, jittered);
+    for (const auto& t : testing::sliver_fan({200.5, 100.5}, 90.0, 720)) {
+        extra.push_back(t);
+    }
+    const std::int64_t m = max_fixed_coordinate;
+    extra.push_back(ch02::snap3({10.25, 3.5}, {290.75, 190.25}, {290.8125, 190.25}));
+    extra.push_back({FixedPoint2{-m, -m}, FixedPoint2{m, -m + 3}, FixedPoint2{100, m}});
+    for (std::size_t n = 0; n < extra.size(); ++n) {
+        const auto c = static_cast<std::uint8_t>(7 * n);
+        tris.push_back({extra[n],
+                        depth_plane(extra[n], {depth(rng), depth(rng), depth(rng)}),
+                        rgba(255 - c, c, static_cast<std::uint8_t>(n >> 4))});
+    }
+    for (const bool with_depth : {false, true}) {
+        INFO("depth test: " << with_depth);
+        const auto draw = [&](auto&& how) {
+            std::vector<Rgba8> colour(width * height, rgba(0, 0, 0));
+            std::vector<float> z(width * height, 1.0f);
+            how(RenderTarget{colour.data(), with_depth ? z.data() : nullptr, width,
+                             height});
+            return std::pair{colour, z};
+        };
+        const auto reference =
+            draw([&](const RenderTarget& t) { draw_reference(t, tris); });
+        int drawn = 0;
+        for (const Rgba8 p : reference.first) {
+            drawn += p != rgba(0, 0, 0);
+        }
+        CHECK(drawn > width * height / 2); // the picture is not empty
+        for (int threads = 1; threads <= 4; ++threads) {
+            INFO(threads << " threads");
+            CHECK(draw([&](const RenderTarget& t) { draw_tiled(t, tris, threads); }) ==
+                  reference);
+        }
+        CHECK(draw([&](const RenderTarget& t) {
+                  for (const auto& tri : tris) {
+                      draw_runs(t, tri);
+                  }
+              }) == reference);
+        CHECK(draw([&](const RenderTarget& t) {
+                  for (const auto& tri : tris) {
+                      draw_masks(t, tri);
+                  }
+              }) == reference);
+    }
+}
+
+TEST_CASE("bad thread counts and vertices are rejected before any pixel is drawn") {
+    std::vector<Rgba8> colour(64 * 64, rgba(1, 2, 3));
+    const RenderTarget t{colour.data(), nullptr, 64, 64};
+    const std::array<FixedPoint2, 3> ok = ch02::snap3({1, 1}, {60, 2}, {30, 50});
+    std::vector<FlatTriangle> tris{{ok, {}, rgba(255, 0, 0)}};
+    CHECK_THROWS_WITH_AS(draw_tiled(t, tris, 0), "thread count 0 is outside 1 .. 64",
+                         Error);
+    CHECK_THROWS_AS(draw_tiled(t, tris, max_threads + 1), Error);
+    const std::int64_t past = max_fixed_coordinate + 1;
+    tris.push_back(
+        {{FixedPoint2{0, 0}, FixedPoint2{past, 0}, FixedPoint2{0, 256}}, {}, {}});
+    for (int threads : {1, 3}) {
+        try {
+            draw_tiled(t, tris, threads);
+            FAIL("no Error");
+        } catch (const Error& e) {
+            CHECK(std::string(e.what()).find("triangle 1: vertex 1") == 0);
+        }
+    }
+    CHECK_THROWS_AS(draw_reference(t, tris), Error);
+    CHECK(colour == std::vector<Rgba8>(64 * 64, rgba(1, 2, 3))); // nothing drawn
+}
