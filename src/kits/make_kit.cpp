@@ -15,8 +15,9 @@
 //     ...stub...
 //     // END EXERCISE ch02-edge-bias
 // while every other chapter keeps its solution; every marker line (`//>`, `//<`, `//|`) is
-// removed. The template folder supplies the kit's CMakeLists.txt, README.md and grade.cmake
-// (with @CHAPTER@-style placeholders). DIR is deleted first if it holds an earlier kit.
+// removed. The template folder supplies the kit's CMakeLists.txt, README.md, its grader
+// (grade_runner.cpp) and Gradescope's two scripts, setup.sh and run_autograder (NAME.in
+// with @CHAPTER@-style placeholders, or NAME copied as it is). DIR is deleted first if it holds an earlier kit.
 //
 // `restore` puts the solution of every exercise back between those comments in a kit
 // (the teacher's copy; the kit tests use it to prove the stubs are the only difference).
@@ -537,6 +538,23 @@ std::string chapter_title(const fs::path& chapter_md) {
     return "chapter";
 }
 
+/// The kit's template files (NAME.in or NAME in the template folder).
+const char* const template_files[] = {"CMakeLists.txt", "README.md", "grade_runner.cpp",
+                                      "run_autograder", "setup.sh"};
+
+/// The per-test time limit the grade runner states as a named constant, for the README.
+std::string time_limit(const fs::path& template_dir) {
+    const std::string name = "constexpr int test_time_limit_seconds = ";
+    const std::string text = read_text(template_dir / "grade_runner.cpp");
+    const auto at = text.find(name);
+    const auto end = at == std::string::npos ? at : text.find(';', at);
+    if (end == std::string::npos) {
+        throw KitError((template_dir / "grade_runner.cpp").string() + ": no '" + name +
+                       "N;'");
+    }
+    return text.substr(at + name.size(), end - at - name.size());
+}
+
 struct Options {
     std::string command;
     fs::path source, template_dir, out, kit;
@@ -703,6 +721,7 @@ void make_kit(const Options& options) {
         }
     }
     const std::map<std::string, std::string> values = {
+        {"@TIME_LIMIT@", time_limit(options.template_dir)},
         {"@PACKAGES@", packages},
         {"@CHAPTER@", number},
         {"@TITLE@", chapter_title(chapter_md)},
@@ -714,8 +733,14 @@ void make_kit(const Options& options) {
                                              "-example out  # the example's figures"
                                        : "# (this chapter has no example program)"},
     };
-    for (const char* name : {"CMakeLists.txt", "README.md", "grade.cmake"}) {
-        std::string text = read_text(options.template_dir / (std::string(name) + ".in"));
+    // NAME.in gets its placeholders filled; a template file without ".in" is copied.
+    for (const std::string name : template_files) {
+        const fs::path plain = options.template_dir / name;
+        if (fs::exists(plain)) {
+            kit[name] = read_text(plain);
+            continue;
+        }
+        std::string text = read_text(options.template_dir / (name + ".in"));
         for (const auto& [key, value] : values) {
             text = replace_all(text, key, value);
         }
@@ -723,6 +748,11 @@ void make_kit(const Options& options) {
     }
     const fs::path out = fs::absolute(options.out);
     sync_folder(out, kit);
+    for (const char* script : {"run_autograder", "setup.sh"}) {
+        fs::permissions(out / script,
+                        fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
+                        fs::perm_options::add);
+    }
 
     std::cout << "make-kit: wrote " << out.string() << " (chapter " << number << ", "
               << stubbed.size() << " exercise" << (stubbed.size() == 1 ? "" : "s") << ", "
