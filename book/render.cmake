@@ -1,5 +1,7 @@
 # render.cmake: renders the HTML book and the PDF book (run by the `book` target).
-# Inputs (-D): ROOT, BOOK_DIR, FIGURE_DIR, PANDOC, PDFLATEX, MAKEINDEX, RSVG_CONVERT, PAPER.
+# Inputs (-D): ROOT, BOOK_DIR, FIGURE_DIR, PANDOC, PDFLATEX, MAKEINDEX, RSVG_CONVERT, PAPER,
+# and TEACHER (ON for the teacher's edition, run by `book-teacher`: the worked solutions
+# of the exercises are kept; the student book drops them).
 cmake_minimum_required(VERSION 3.25)
 
 function(run_or_fail what)
@@ -32,6 +34,9 @@ file(COPY_FILE ${ROOT}/book/style.css ${BOOK_DIR}/style.css)
 
 set(filter_env EP_ROOT=${ROOT} EP_FIGURES=${FIGURE_DIR} EP_ALL_CHAPTERS=${all_dirs}
     EP_OUT=${BOOK_DIR} EP_LATEX_FIGURES=${BOOK_DIR}/latex/figures)
+if(TEACHER)
+  list(APPEND filter_env EP_TEACHER=1)
+endif()
 set(html_options --from=markdown --to=html5 --standalone --mathml
     --template=${ROOT}/book/template.html --lua-filter=${ROOT}/book/filters/exactpixels.lua
     --highlight-style=pygments --metadata-file=${ROOT}/book/metadata.yaml)
@@ -59,7 +64,7 @@ endforeach()
 
 # Pages that are not chapters (book/NAME.md): HTML pages of their own, and appendices of
 # the PDF in this order.
-set(pages build-and-run glossary)
+set(pages build-and-run teaching glossary)
 
 # The contents page: every chapter with its numbered sections (the filter reads them from
 # the chapters), then the appendix pages.

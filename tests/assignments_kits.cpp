@@ -477,13 +477,26 @@ TEST_CASE(
     // them, the chapter's own exercise section and the commands.
     const std::string readme = read_file(kit / "README.md");
     CHECK(readme.find("chapter 07: A fake chapter\n") != std::string::npos);
-    CHECK(readme.find("| `ch07-answer` | `src/exactpixels/answer.hpp:10` | 3 | six times "
-                      "seven. |") != std::string::npos);
     CHECK(
-        readme.find("| `ch07-triangle` | `src/exactpixels/answer.cpp:7` | 2 | add 1, 2, "
-                    "..., n. |") != std::string::npos);
+        readme.find("| `ch07-answer` | `src/exactpixels/answer.hpp:10` | 3 | [implement, "
+                    "2 marks] | six times seven. |") != std::string::npos);
+    CHECK(
+        readme.find("| `ch07-triangle` | `src/exactpixels/answer.cpp:7` | 2 | - | add 1, "
+                    "2, ..., n. |") != std::string::npos);
     CHECK(readme.find("- `ch07-triangle`: \"triangle numbers\"") != std::string::npos);
-    CHECK(readme.find("1. Implement `answer` (\"the answer is 42\").\n2. Derive") !=
+    CHECK(readme.find("1. **[implement, 2 marks]** Implement `answer` (\"the answer is "
+                      "42\").\n") != std::string::npos);
+    CHECK(readme.find("2. **[derive, 3 marks]** Derive") != std::string::npos);
+    CHECK(readme.find("3. **[measure, 1 mark]** Measure") != std::string::npos);
+    // No worked solution reaches a kit: not in the README, not in the chapter's text.
+    for (const auto& rel : files_under(kit)) {
+        INFO("kit file " << rel.string());
+        const std::string text = read_file(kit / rel);
+        CHECK(text.find("ANSWER-SOLUTION") == std::string::npos);
+        CHECK(text.find("TRIANGLE-SOLUTION") == std::string::npos);
+        CHECK(text.find("nested div inside a solution") == std::string::npos);
+    }
+    CHECK(read_file(kit / "chapters/07-fake/chapter.md").find("3. []{.exercise") !=
           std::string::npos);
     CHECK(readme.find("Not part of the README") == std::string::npos);
     CHECK(readme.find("worth 6 points") != std::string::npos);

@@ -17,7 +17,8 @@
 // while every other chapter keeps its solution; every marker line (`//>`, `//<`, `//|`) is
 // removed. The template folder supplies the kit's CMakeLists.txt, README.md, its grader
 // (grade_runner.cpp) and Gradescope's two scripts, setup.sh and run_autograder (NAME.in
-// with @CHAPTER@-style placeholders, or NAME copied as it is). DIR is deleted first if it holds an earlier kit.
+// with @CHAPTER@-style placeholders, or NAME copied as it is). DIR is deleted first if it
+// holds an earlier kit.
 //
 // `restore` puts the solution of every exercise back between those comments in a kit
 // (the teacher's copy; the kit tests use it to prove the stubs are the only difference).
@@ -487,21 +488,107 @@ std::vector<fs::path> kit_files(const fs::path& root, const std::string& number)
     return files;
 }
 
-/// The text of `chapter.md` between `## Exercises` and the next `## ` heading, with the
-/// book-only span attributes reduced to plain text.
+/// Chapter text without its worked solutions: every `::: solution` fenced div, with
+/// whatever it nests, is dropped, so that no kit carries the teacher's edition.
+std::string without_solutions(const std::string& text) {
+    std::vector<std::string> kept;
+    int depth = 0; // fenced divs open inside a solution, the solution's own included
+    for (const auto& line : split_lines(text)) {
+        const std::string_view t = trim(line);
+        const bool fence = starts_with(t, ":::");
+        const auto colons = t.find_first_not_of(':');
+        const std::string_view rest = colons == std::string_view::npos
+                                          ? std::string_view{}
+                                          : trim(t.substr(colons));
+        if (depth > 0) {
+            if (fence) {
+                depth += rest.empty() ? -1 : 1;
+            }
+            continue;
+        }
+        if (fence && (starts_with(rest, "solution") || starts_with(rest, "{.solution"))) {
+            depth = 1;
+            continue;
+        }
+        kept.push_back(line);
+    }
+    return join_lines(kept);
+}
+
+/// The attributes of a `[]{.exercise kind=K marks=N region=R}` tag that starts at `at`.
+std::map<std::string, std::string> tag_attributes(const std::string& text, std::size_t at,
+                                                  std::size_t* end) {
+    std::map<std::string, std::string> attributes;
+    const auto close = text.find('}', at);
+    *end = close == std::string::npos ? text.size() : close + 1;
+    std::istringstream words(text.substr(at, *end - at - 1));
+    for (std::string word; words >> word;) {
+        const auto equals = word.find('=');
+        if (equals != std::string::npos) {
+            std::string value = word.substr(equals + 1);
+            value.erase(std::remove(value.begin(), value.end(), '"'), value.end());
+            attributes[word.substr(0, equals)] = value;
+        }
+    }
+    return attributes;
+}
+
+/// "[implement, 2 marks]" for a tag's attributes.
+std::string tag_text(const std::map<std::string, std::string>& attributes) {
+    const auto kind = attributes.find("kind");
+    const auto marks = attributes.find("marks");
+    if (kind == attributes.end() || marks == attributes.end()) {
+        return "";
+    }
+    return "[" + kind->second + ", " + marks->second +
+           (marks->second == "1" ? " mark]" : " marks]");
+}
+
+const std::string exercise_tag = "[]{.exercise";
+
+/// The kind and difficulty of each exercise region the chapter's exercise tags name.
+std::map<std::string, std::string> region_tags(const fs::path& chapter_md) {
+    std::map<std::string, std::string> tags;
+    if (!fs::exists(chapter_md)) {
+        return tags;
+    }
+    const std::string text = read_text(chapter_md);
+    for (auto at = text.find(exercise_tag); at != std::string::npos;
+         at = text.find(exercise_tag, at + 1)) {
+        std::size_t end = 0;
+        const auto attributes = tag_attributes(text, at + exercise_tag.size(), &end);
+        const auto region = attributes.find("region");
+        if (region != attributes.end()) {
+            tags[region->second] = tag_text(attributes);
+        }
+    }
+    return tags;
+}
+
+/// The text of `chapter.md` between `## Exercises` and the next `## ` heading, without
+/// solutions, with the book-only span attributes reduced to plain text and each
+/// exercise's tag to "**[kind, N marks]**".
 std::string book_exercises(const fs::path& chapter_md) {
     if (!fs::exists(chapter_md)) {
         return "";
     }
     std::vector<std::string> kept;
     bool inside = false;
-    for (const auto& line : split_lines(read_text(chapter_md))) {
+    for (const auto& line : split_lines(without_solutions(read_text(chapter_md)))) {
         if (starts_with(line, "## ")) {
             inside = starts_with(line, "## Exercises");
             continue;
         }
         if (inside) {
             std::string text = line;
+            const auto tag = text.find(exercise_tag);
+            if (tag != std::string::npos) {
+                std::size_t end = 0;
+                const auto attributes =
+                    tag_attributes(text, tag + exercise_tag.size(), &end);
+                text = text.substr(0, tag) + "**" + tag_text(attributes) + "**" +
+                       text.substr(end);
+            }
             // [name]{.test file="..."} -> "name"
             for (auto at = text.find("]{.test"); at != std::string::npos;
                  at = text.find("]{.test")) {
@@ -659,7 +746,8 @@ void make_kit(const Options& options) {
             continue;
         }
         if (!is_code_file(rel)) {
-            kit[rel] = read_text(root / rel);
+            const std::string text = read_text(root / rel);
+            kit[rel] = rel.filename() == "chapter.md" ? without_solutions(text) : text;
             continue;
         }
         auto processed = process_file(rel, read_text(root / rel), chapter);
@@ -688,10 +776,14 @@ void make_kit(const Options& options) {
         table = "This chapter has no implementation exercises yet: the kit builds the "
                 "chapter's code, example and tests as they are in the book.\n";
     } else {
-        table = "| exercise | where | points | hint |\n|---|---|---|---|\n";
+        const auto tags = region_tags(chapter_md);
+        table = "| exercise | where | points | kind, difficulty | hint |\n"
+                "|---|---|---|---|---|\n";
         for (const auto& region : stubbed) {
+            const auto tag = tags.find(region.id);
             table += "| `" + region.id + "` | `" + where(region.file, region.kit_line) +
                      "` | " + std::to_string(points_for[region.id]) + " | " +
+                     (tag == tags.end() ? std::string("-") : tag->second) + " | " +
                      replace_all(region.hint, "|", "\\|") + " |\n";
         }
         table += "\nThe tests that check them (each passes only when the exercise is "
