@@ -158,6 +158,7 @@ struct GradeLine {
 /// spaces first) a reason below a FAIL line, the last is "TOTAL E/D points; P/N test
 /// cases passed" and agrees with the lines above it.
 struct Grade {
+    std::vector<std::string> exercises; ///< "ID [KIND, N marks]: E/D points" lines
     std::vector<GradeLine> cases;
     bool well_formed = false;
     int earned = 0, declared = 0, passed = 0, counted = 0;
@@ -171,6 +172,14 @@ Grade parse_grade(const std::string& text) {
     }
     int earned = 0, declared = 0, passed = 0, counted = 0;
     for (std::size_t i = 0; i + 1 < lines.size(); ++i) {
+        if (starts_with(lines[i], "# ")) {
+            // An exercise's summary line, before every test case line.
+            if (!grade.cases.empty()) {
+                return grade;
+            }
+            grade.exercises.push_back(lines[i].substr(2));
+            continue;
+        }
         if (starts_with(lines[i], "  ")) {
             // A reason below a FAIL line.
             if (grade.cases.empty() || grade.cases.back().status != "FAIL") {
@@ -426,6 +435,7 @@ TEST_CASE(
                                                "README.md",
                                                "chapters/07-fake/chapter.md",
                                                "chapters/07-fake/example.cpp",
+                                               "exercises.txt",
                                                "grade_runner.cpp",
                                                "run_autograder",
                                                "setup.sh",
@@ -559,6 +569,7 @@ TEST_CASE("the fixture kit builds on its own; fresh it fails its exercises, rest
     // Fresh: exactly these lines, and the same lines again on a second run.
     const std::string fresh = run_grade(build_dir);
     CHECK(fresh ==
+          "# ch07-answer [implement, 2 marks]: 0/3 points\n"
           "FAIL 0/3 ch07-answer the answer is 42\n"
           "  ch07_fake.cpp:10: CHECK( fake::answer() == 42 ) is false; values: "
           "0 == 42\n"
@@ -574,7 +585,7 @@ TEST_CASE("the fixture kit builds on its own; fresh it fails its exercises, rest
     // One process per test case (the runner) and one for all (the reporter alone) agree.
     const auto in_one = run_command(quoted(build_dir / "bin/test_ch07") +
                                     " --reporters=grade --no-exitcode");
-    CHECK(in_one.out == fresh);
+    CHECK("# ch07-answer [implement, 2 marks]: 0/3 points\n" + in_one.out == fresh);
     // The test program itself fails while exercises are open; the example runs.
     CHECK(run_command(quoted(build_dir / "bin/test_ch07")).exit_code != 0);
     CHECK(run_command(quoted(build_dir / "bin/ch07-example")).out == "0 0\n");
@@ -591,7 +602,8 @@ TEST_CASE("the fixture kit builds on its own; fresh it fails its exercises, rest
     }
     REQUIRE(build(build_dir).exit_code == 0);
     const std::string full = run_grade(build_dir);
-    CHECK(full == "PASS 3/3 ch07-answer the answer is 42\n"
+    CHECK(full == "# ch07-answer [implement, 2 marks]: 3/3 points\n"
+                  "PASS 3/3 ch07-answer the answer is 42\n"
                   "PASS 2/2 ch07-triangle triangle numbers\n"
                   "PASS 1/1 - twice is kept from chapter 08\n"
                   "PASS 0/0 - the fixture data travels with the kit\n"
@@ -916,7 +928,9 @@ TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, 
                "doctest::description(\"points: 100\")) {}\n");
     const auto [fresh, fresh_json] = autograde(root);
     CHECK(fresh == "score 1 of 6, 4 tests");
-    CHECK(fresh_json.find("\"tags\": [\"ch07-answer\"]") != std::string::npos);
+    CHECK(
+        fresh_json.find("\"tags\": [\"ch07-answer\", \"implement\", \"difficulty 2\"]") !=
+        std::string::npos);
     CHECK(fresh_json.find("CHECK( fake::answer() == 42 ) is false") != std::string::npos);
 
     // Solved, submitted as the kit's folder (the solution restored by make-kit).

@@ -771,12 +771,24 @@ void make_kit(const Options& options) {
     // Template files.
     const auto folder = chapter_folder(root, number);
     const fs::path chapter_md = folder ? root / *folder / "chapter.md" : fs::path{};
+    // exercises.txt, "ID KIND MARKS" per tagged exercise, for the grade's summary lines.
+    const auto tags = region_tags(chapter_md);
+    std::string exercise_list;
+    for (const auto& region : stubbed) {
+        const auto tag = tags.find(region.id);
+        if (tag != tags.end()) {
+            // "[implement, 2 marks]" -> "implement 2"
+            const auto comma = tag->second.find(", ");
+            exercise_list += region.id + " " + tag->second.substr(1, comma - 1) + " " +
+                             tag->second.substr(comma + 2, 1) + "\n";
+        }
+    }
+    kit["exercises.txt"] = exercise_list;
     std::string table;
     if (stubbed.empty()) {
         table = "This chapter has no implementation exercises yet: the kit builds the "
                 "chapter's code, example and tests as they are in the book.\n";
     } else {
-        const auto tags = region_tags(chapter_md);
         table = "| exercise | where | points | kind, difficulty | hint |\n"
                 "|---|---|---|---|---|\n";
         for (const auto& region : stubbed) {

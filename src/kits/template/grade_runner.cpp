@@ -4,7 +4,7 @@
 //
 //   grade-runner --tests PROGRAM --grade-file FILE [--results-json FILE]
 //                [--time-limit SECONDS] [--build-dir DIR --target NAME]
-//                [--total-points N] [--source-dir DIR]
+//                [--total-points N] [--source-dir DIR] [--exercises FILE]
 //
 // With --build-dir, it first builds NAME there (`cmake --build DIR --target NAME`); if
 // that fails, the grade says so, with the compiler's first error (paths shown relative to
@@ -20,8 +20,13 @@
 // --results-json writes the same grade in Gradescope's results.json format
 // (https://gradescope-autograders.readthedocs.io/en/latest/specs/): the total "score",
 // an "output" summary, and per test case "name", "score", "max_score", "status" (passed
-// or failed), "output" (the reasons) and "tags" (the exercise). Skipped test cases are
-// left out of both totals, as in the grade reporter.
+// or failed), "output" (the reasons) and "tags" (the exercise, see --exercises). Skipped
+// test cases are left out of both totals, as in the grade reporter.
+//
+// --exercises names the kit's exercises.txt (lines "ID KIND MARKS", written by make-kit
+// from the chapter's exercise tags): the grade then opens with one line per exercise,
+// "# ID [KIND, N marks]: EARNED/DECLARED points", before the test case lines, and the
+// JSON tags of its tests add the kind and "difficulty N".
 //
 // Exit status: 0 when the grade was written (whatever it says), 2 when it could not be
 // (bad options, a file that cannot be written, a test program that cannot list its
@@ -340,9 +345,45 @@ struct Report {
     std::string lines, json;
 };
 
-Report report(const std::vector<Case>& cases, const std::string& summary_note) {
+/// An exercise of the kit: its kind and difficulty from the chapter's tag.
+struct Exercise {
+    std::string id, kind;
+    int marks = 0;
+};
+
+/// The lines of exercises.txt, "ID KIND MARKS".
+std::vector<Exercise> read_exercises(const fs::path& file) {
+    if (!fs::exists(file)) {
+        throw GradeError("cannot read " + file.string());
+    }
+    std::vector<Exercise> exercises;
+    for (const auto& line : lines_of(read_text(file))) {
+        std::istringstream in(line);
+        Exercise exercise;
+        if (in >> exercise.id >> exercise.kind >> exercise.marks) {
+            exercises.push_back(exercise);
+        }
+    }
+    return exercises;
+}
+
+Report report(const std::vector<Case>& cases, const std::string& summary_note,
+              const std::vector<Exercise>& exercises = {}) {
     int earned = 0, declared = 0, passed = 0, counted = 0;
     std::string lines, tests;
+    for (const auto& exercise : exercises) {
+        int got = 0, of = 0;
+        for (const auto& test : cases) {
+            if (test.exercise == exercise.id && !test.skip) {
+                got += test.passed ? test.points : 0;
+                of += test.points;
+            }
+        }
+        lines += "# " + exercise.id + " [" + exercise.kind + ", " +
+                 std::to_string(exercise.marks) +
+                 (exercise.marks == 1 ? " mark" : " marks") +
+                 "]: " + std::to_string(got) + "/" + std::to_string(of) + " points\n";
+    }
     for (const auto& test : cases) {
         const int score = test.passed ? test.points : 0;
         if (test.skip) {
@@ -360,13 +401,20 @@ Report report(const std::vector<Case>& cases, const std::string& summary_note) {
         for (const auto& reason : test.reasons) {
             lines += "  " + reason + "\n";
         }
+        std::string tags = test.exercise == "-" ? "" : json_string(test.exercise);
+        for (const auto& exercise : exercises) {
+            if (exercise.id == test.exercise) {
+                tags += ", " + json_string(exercise.kind) + ", " +
+                        json_string("difficulty " + std::to_string(exercise.marks));
+            }
+        }
         tests += std::string(tests.empty() ? "" : ",\n") +
                  "    {\"name\": " + json_string(test.name) +
                  ", \"score\": " + std::to_string(score) +
                  ", \"max_score\": " + std::to_string(test.points) + ", \"status\": \"" +
                  (test.passed ? "passed" : "failed") +
                  "\", \"output\": " + json_string(join(test.reasons)) + ", \"tags\": [" +
-                 (test.exercise == "-" ? "" : json_string(test.exercise)) + "]}";
+                 tags + "]}";
     }
     const std::string total =
         "TOTAL " + std::to_string(earned) + "/" + std::to_string(declared) + " points; " +
@@ -386,6 +434,7 @@ struct Options {
     std::string target;
     int time_limit = test_time_limit_seconds;
     int total_points = 0;
+    fs::path exercises;
 };
 
 int to_int(const std::string& flag, const std::string& value) {
@@ -424,6 +473,8 @@ Options parse(int argc, char** argv) {
             options.target = value;
         } else if (flag == "--time-limit") {
             options.time_limit = to_int(flag, value);
+        } else if (flag == "--exercises") {
+            options.exercises = value;
         } else if (flag == "--total-points") {
             options.total_points = to_int(flag, value);
         } else {
@@ -525,7 +576,9 @@ int grade(const Options& options) {
             run_case(options.tests, i + 1, cases[i], scratch, options.time_limit);
         }
     }
-    write_report(options, report(cases, ""));
+    const auto exercises = options.exercises.empty() ? std::vector<Exercise>{}
+                                                     : read_exercises(options.exercises);
+    write_report(options, report(cases, "", exercises));
     return 0;
 }
 
