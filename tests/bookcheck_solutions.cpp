@@ -12,6 +12,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -30,17 +31,46 @@ std::string read_text(const fs::path& path) {
     return text.str();
 }
 
-/// Tags removed, entities of the quote marks undone, white space collapsed.
-std::string plain_text(std::string text) {
-    text = std::regex_replace(text, std::regex("<[^>]*>"), " ");
-    text = std::regex_replace(text, std::regex("\\\\[a-zA-Z]+\\{?|[{}]"), " ");
+/// Tags and LaTeX commands removed, the entities of quote marks undone, white space
+/// collapsed. (A loop, not std::regex: libstdc++'s regex recurses per character and
+/// overflows the stack on pages this long.)
+std::string plain_text(const std::string& raw) {
+    std::string text = raw;
     for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
              {"\u2019", "'"}, {"\u2018", "'"}, {"&#39;", "'"}, {"&quot;", "\""}}) {
-        for (auto at = text.find(from); at != std::string::npos; at = text.find(from)) {
+        for (auto at = text.find(from); at != std::string::npos;
+             at = text.find(from, at)) {
             text.replace(at, from.size(), to);
         }
     }
-    return std::regex_replace(text, std::regex("\\s+"), " ");
+    std::string out;
+    bool space = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (c == '<') { // an HTML tag
+            const auto close = text.find('>', i);
+            i = close == std::string::npos ? text.size() : close;
+            c = ' ';
+        } else if (c == '\\') { // a LaTeX command name
+            while (i + 1 < text.size() &&
+                   std::isalpha(static_cast<unsigned char>(text[i + 1]))) {
+                ++i;
+            }
+            c = ' ';
+        } else if (c == '{' || c == '}' || c == '\n' || c == '\t' || c == '\r') {
+            c = ' ';
+        }
+        if (c == ' ') {
+            if (!space) {
+                out += ' ';
+            }
+            space = true;
+        } else {
+            out += c;
+            space = false;
+        }
+    }
+    return out;
 }
 
 /// One solution block: where it is and the plain phrases it contains.

@@ -854,7 +854,8 @@ void make_kit(const Options& options) {
     sync_folder(out, kit);
     for (const char* script : {"run_autograder", "setup.sh"}) {
         fs::permissions(out / script,
-                        fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec,
+                        fs::perms::owner_exec | fs::perms::group_exec |
+                            fs::perms::others_exec,
                         fs::perm_options::add);
     }
 
