@@ -1,5 +1,7 @@
 # render.cmake: renders the HTML book and the PDF book (run by the `book` target).
-# Inputs (-D): ROOT, BOOK_DIR, FIGURE_DIR, PANDOC, PDFLATEX, MAKEINDEX, RSVG_CONVERT, PAPER.
+# Inputs (-D): ROOT, BOOK_DIR, FIGURE_DIR, PANDOC, PDFLATEX, MAKEINDEX, RSVG_CONVERT, PAPER,
+# and TEACHER (ON for the teacher's edition, run by `book-teacher`: the worked solutions
+# of the exercises are kept; the student book drops them).
 cmake_minimum_required(VERSION 3.25)
 
 function(run_or_fail what)
@@ -36,6 +38,9 @@ set(filter_env EP_ROOT=${ROOT} EP_FIGURES=${FIGURE_DIR} EP_ALL_CHAPTERS=${all_di
 # (no network); each chapter page and the PDF end with the works they cite.
 set(citation_options --citeproc --bibliography=${ROOT}/book/references.bib
     --csl=${ROOT}/book/exact-pixels.csl -M reference-section-title=References)
+if(TEACHER)
+  list(APPEND filter_env EP_TEACHER=1)
+endif()
 set(html_options --from=markdown --to=html5 --standalone --mathml
     --template=${ROOT}/book/template.html --lua-filter=${ROOT}/book/filters/exactpixels.lua
     ${citation_options}
@@ -64,7 +69,7 @@ endforeach()
 
 # Pages that are not chapters (book/NAME.md): HTML pages of their own, and appendices of
 # the PDF in this order.
-set(pages build-and-run glossary)
+set(pages build-and-run teaching glossary)
 
 # The contents page: every chapter with its numbered sections (the filter reads them from
 # the chapters), then the appendix pages.

@@ -151,11 +151,14 @@ CommandResult build(const fs::path& build_dir) {
 struct GradeLine {
     std::string status, exercise, name;
     int earned = -1, declared = -1;
+    std::vector<std::string> reasons; ///< the indented lines below a FAIL line
 };
 
-/// The grade file, parsed strictly: every line but the last is a test case line, the last
-/// is "TOTAL E/D points; P/N test cases passed" and agrees with the lines above it.
+/// The grade file, parsed strictly: every line but the last is a test case line or (two
+/// spaces first) a reason below a FAIL line, the last is "TOTAL E/D points; P/N test
+/// cases passed" and agrees with the lines above it.
 struct Grade {
+    std::vector<std::string> exercises; ///< "ID [KIND, N marks]: E/D points" lines
     std::vector<GradeLine> cases;
     bool well_formed = false;
     int earned = 0, declared = 0, passed = 0, counted = 0;
@@ -169,6 +172,22 @@ Grade parse_grade(const std::string& text) {
     }
     int earned = 0, declared = 0, passed = 0, counted = 0;
     for (std::size_t i = 0; i + 1 < lines.size(); ++i) {
+        if (starts_with(lines[i], "# ")) {
+            // An exercise's summary line, before every test case line.
+            if (!grade.cases.empty()) {
+                return grade;
+            }
+            grade.exercises.push_back(lines[i].substr(2));
+            continue;
+        }
+        if (starts_with(lines[i], "  ")) {
+            // A reason below a FAIL line.
+            if (grade.cases.empty() || grade.cases.back().status != "FAIL") {
+                return grade;
+            }
+            grade.cases.back().reasons.push_back(lines[i].substr(2));
+            continue;
+        }
         std::istringstream in(lines[i]);
         GradeLine line;
         char slash = 0;
@@ -416,7 +435,10 @@ TEST_CASE(
                                                "README.md",
                                                "chapters/07-fake/chapter.md",
                                                "chapters/07-fake/example.cpp",
-                                               "grade.cmake",
+                                               "exercises.txt",
+                                               "grade_runner.cpp",
+                                               "run_autograder",
+                                               "setup.sh",
                                                "src/CMakeLists.txt",
                                                "src/exactpixels/answer.cpp",
                                                "src/exactpixels/answer.hpp",
@@ -465,13 +487,26 @@ TEST_CASE(
     // them, the chapter's own exercise section and the commands.
     const std::string readme = read_file(kit / "README.md");
     CHECK(readme.find("chapter 07: A fake chapter\n") != std::string::npos);
-    CHECK(readme.find("| `ch07-answer` | `src/exactpixels/answer.hpp:10` | 3 | six times "
-                      "seven. |") != std::string::npos);
     CHECK(
-        readme.find("| `ch07-triangle` | `src/exactpixels/answer.cpp:7` | 2 | add 1, 2, "
-                    "..., n. |") != std::string::npos);
+        readme.find("| `ch07-answer` | `src/exactpixels/answer.hpp:10` | 3 | [implement, "
+                    "2 marks] | six times seven. |") != std::string::npos);
+    CHECK(
+        readme.find("| `ch07-triangle` | `src/exactpixels/answer.cpp:7` | 2 | - | add 1, "
+                    "2, ..., n. |") != std::string::npos);
     CHECK(readme.find("- `ch07-triangle`: \"triangle numbers\"") != std::string::npos);
-    CHECK(readme.find("1. Implement `answer` (\"the answer is 42\").\n2. Derive") !=
+    CHECK(readme.find("1. **[implement, 2 marks]** Implement `answer` (\"the answer is "
+                      "42\").\n") != std::string::npos);
+    CHECK(readme.find("2. **[derive, 3 marks]** Derive") != std::string::npos);
+    CHECK(readme.find("3. **[measure, 1 mark]** Measure") != std::string::npos);
+    // No worked solution reaches a kit: not in the README, not in the chapter's text.
+    for (const auto& rel : files_under(kit)) {
+        INFO("kit file " << rel.string());
+        const std::string text = read_file(kit / rel);
+        CHECK(text.find("ANSWER-SOLUTION") == std::string::npos);
+        CHECK(text.find("TRIANGLE-SOLUTION") == std::string::npos);
+        CHECK(text.find("nested div inside a solution") == std::string::npos);
+    }
+    CHECK(read_file(kit / "chapters/07-fake/chapter.md").find("3. []{.exercise") !=
           std::string::npos);
     CHECK(readme.find("Not part of the README") == std::string::npos);
     CHECK(readme.find("worth 6 points") != std::string::npos);
@@ -533,14 +568,24 @@ TEST_CASE("the fixture kit builds on its own; fresh it fails its exercises, rest
 
     // Fresh: exactly these lines, and the same lines again on a second run.
     const std::string fresh = run_grade(build_dir);
-    CHECK(fresh == "FAIL 0/3 ch07-answer the answer is 42\n"
-                   "FAIL 0/2 ch07-triangle triangle numbers\n"
-                   "PASS 1/1 - twice is kept from chapter 08\n"
-                   "PASS 0/0 - the fixture data travels with the kit\n"
-                   "SKIP 0/5 - a skipped test\n"
-                   "TOTAL 1/6 points; 2/4 test cases passed\n");
+    CHECK(fresh ==
+          "# ch07-answer [implement, 2 marks]: 0/3 points\n"
+          "FAIL 0/3 ch07-answer the answer is 42\n"
+          "  ch07_fake.cpp:10: CHECK( fake::answer() == 42 ) is false; values: "
+          "0 == 42\n"
+          "FAIL 0/2 ch07-triangle triangle numbers\n"
+          "  ch07_fake.cpp:14: CHECK( fake::triangle_number(4) == 10 ) is false; "
+          "values: 0 == 10\n"
+          "PASS 1/1 - twice is kept from chapter 08\n"
+          "PASS 0/0 - the fixture data travels with the kit\n"
+          "SKIP 0/5 - a skipped test\n"
+          "TOTAL 1/6 points; 2/4 test cases passed\n");
     CHECK(parse_grade(fresh).well_formed);
     CHECK(run_grade(build_dir) == fresh);
+    // One process per test case (the runner) and one for all (the reporter alone) agree.
+    const auto in_one = run_command(quoted(build_dir / "bin/test_ch07") +
+                                    " --reporters=grade --no-exitcode");
+    CHECK("# ch07-answer [implement, 2 marks]: 0/3 points\n" + in_one.out == fresh);
     // The test program itself fails while exercises are open; the example runs.
     CHECK(run_command(quoted(build_dir / "bin/test_ch07")).exit_code != 0);
     CHECK(run_command(quoted(build_dir / "bin/ch07-example")).out == "0 0\n");
@@ -557,7 +602,8 @@ TEST_CASE("the fixture kit builds on its own; fresh it fails its exercises, rest
     }
     REQUIRE(build(build_dir).exit_code == 0);
     const std::string full = run_grade(build_dir);
-    CHECK(full == "PASS 3/3 ch07-answer the answer is 42\n"
+    CHECK(full == "# ch07-answer [implement, 2 marks]: 3/3 points\n"
+                  "PASS 3/3 ch07-answer the answer is 42\n"
                   "PASS 2/2 ch07-triangle triangle numbers\n"
                   "PASS 1/1 - twice is kept from chapter 08\n"
                   "PASS 0/0 - the fixture data travels with the kit\n"
@@ -631,7 +677,10 @@ TEST_CASE("every chapter's kit builds on its own; fresh it fails exactly its exe
         INFO(restored.out << restored.err);
         REQUIRE(restored.exit_code == 0);
         for (const auto& rel : files_under(kit)) {
-            if (is_code(rel) && !starts_with(rel.generic_string(), "tests/support/")) {
+            // The kit's own files at its root (the grader, from src/kits/template) are
+            // not book code.
+            if (is_code(rel) && rel.has_parent_path() &&
+                !starts_with(rel.generic_string(), "tests/support/")) {
                 INFO("restored file " << rel.string());
                 CHECK(without_kit_comments(read_file(kit / rel)) ==
                       without_markers(read_file(source_root / rel)));
@@ -652,4 +701,258 @@ TEST_CASE("every chapter's kit builds on its own; fresh it fails exactly its exe
             CHECK(full.cases[i].declared == fresh.cases[i].declared);
         }
     }
+}
+
+namespace {
+
+/// The fixture kit, made and built once (fresh) for the grader tests below.
+struct BuiltFixtureKit {
+    fs::path kit, build;
+};
+
+const BuiltFixtureKit& built_fixture_kit() {
+    static const BuiltFixtureKit built = [] {
+        BuiltFixtureKit made{scratch("grader-kit") / "ch07", scratch("grader-build")};
+        REQUIRE(make_kit(fixture_tree(), "07", made.kit).exit_code == 0);
+        REQUIRE(configure(made.kit, made.build).exit_code == 0);
+        return made;
+    }();
+    return built;
+}
+
+/// Replaces the kit's library with `header` and `source`, builds, and runs the grade
+/// runner with a time limit of `seconds`; returns the parsed grade.
+Grade grade_broken(const std::string& header, const std::string& source, int seconds) {
+    const auto& fixture = built_fixture_kit();
+    write_file(fixture.kit / "src/exactpixels/answer.hpp", header);
+    write_file(fixture.kit / "src/exactpixels/answer.cpp", source);
+    const auto built = build(fixture.build);
+    INFO(built.out << built.err);
+    REQUIRE(built.exit_code == 0);
+    const fs::path grade_file = fixture.build / "broken-grade.txt";
+    const auto ran =
+        run_command(quoted(fixture.build / "bin/grade-runner") + " --tests " +
+                    quoted(fixture.build / "bin/test_ch07") + " --grade-file " +
+                    quoted(grade_file) + " --time-limit " + std::to_string(seconds));
+    INFO(ran.out << ran.err);
+    CHECK(ran.exit_code == 0);
+    const std::string text = read_file(grade_file);
+    CHECK(ran.out == text);
+    return parse_grade(text);
+}
+
+/// The first reason line of `line` that contains `needle`, or "".
+std::string reason_with(const GradeLine& line, const std::string& needle) {
+    for (const auto& reason : line.reasons) {
+        if (reason.find(needle) != std::string::npos) {
+            return reason;
+        }
+    }
+    return "";
+}
+
+const char* const broken_header_start = "#pragma once\n#include <stdexcept>\n"
+                                        "namespace fake {\n";
+const char* const broken_header_end = "int triangle_number(int n);\n"
+                                      "inline int twice(int x) { return x + x; }\n"
+                                      "} // namespace fake\n";
+
+} // namespace
+
+TEST_CASE(
+    "a test case that crashes, hangs, aborts or throws scores 0 and says why; every "
+    "other test case still runs and scores") {
+    // A time limit of 2 s instead of the kit's, so the hang costs 2 s here.
+    {
+        INFO(
+            "round 1: answer() reads through a null pointer, triangle_number never ends");
+        const Grade grade = grade_broken(
+            std::string(broken_header_start) +
+                "inline int answer() {\n"
+                "    volatile int* volatile nowhere = nullptr;\n"
+                "    return *nowhere;\n}\n" +
+                broken_header_end,
+            "#include \"exactpixels/answer.hpp\"\nnamespace fake {\n"
+            "int triangle_number(int n) {\n    volatile int spin = 0;\n"
+            "    while (spin == 0) {\n    }\n    return n;\n}\n} // namespace fake\n",
+            2);
+        REQUIRE(grade.well_formed);
+        REQUIRE(grade.cases.size() == 5);
+        CHECK(grade.cases[0].status == "FAIL");
+        CHECK(reason_with(grade.cases[0], "crashed: the test program died of SIGSEGV") !=
+              "");
+        CHECK(grade.cases[1].status == "FAIL");
+        CHECK(reason_with(grade.cases[1], "timed out: still running after 2 s") != "");
+        CHECK(grade.cases[2].status == "PASS"); // twice: still runs, still scores
+        CHECK(grade.cases[2].earned == 1);
+        CHECK(grade.cases[3].status == "PASS");
+        CHECK(grade.cases[4].status == "SKIP");
+        CHECK(grade.earned == 1);
+        CHECK(grade.declared == 6);
+    }
+    {
+        INFO("round 2: answer() throws, triangle_number aborts");
+        const Grade grade = grade_broken(
+            std::string(broken_header_start) +
+                "inline int answer() { throw std::runtime_error(\"no answer yet\"); }\n" +
+                broken_header_end,
+            "#include \"exactpixels/answer.hpp\"\n#include <cstdlib>\nnamespace fake {\n"
+            "int triangle_number(int) { std::abort(); }\n} // namespace fake\n",
+            2);
+        REQUIRE(grade.well_formed);
+        REQUIRE(grade.cases.size() == 5);
+        CHECK(grade.cases[0].status == "FAIL");
+        CHECK(reason_with(grade.cases[0], "threw: \"no answer yet\"") != "");
+        CHECK(grade.cases[1].status == "FAIL");
+        CHECK(reason_with(grade.cases[1], "crashed: the test program died of SIGABRT") !=
+              "");
+        CHECK(grade.cases[2].status == "PASS");
+        CHECK(grade.cases[3].status == "PASS");
+        CHECK(grade.earned == 1);
+    }
+    {
+        INFO("round 3: triangle_number calls exit(3) in the middle of a test");
+        const Grade grade = grade_broken(
+            std::string(broken_header_start) + "inline int answer() { return 42; }\n" +
+                broken_header_end,
+            "#include \"exactpixels/answer.hpp\"\n#include <cstdlib>\nnamespace fake {\n"
+            "int triangle_number(int) { std::exit(3); }\n} // namespace fake\n",
+            2);
+        REQUIRE(grade.well_formed);
+        REQUIRE(grade.cases.size() == 5);
+        CHECK(grade.cases[0].status == "PASS");
+        CHECK(grade.cases[1].status == "FAIL");
+        CHECK(reason_with(grade.cases[1], "stopped early with exit status 3") != "");
+        CHECK(grade.earned == 4);
+    }
+    // The kit states its limit: the runner's named constant, in the README.
+    const auto& fixture = built_fixture_kit();
+    const std::string runner = read_file(fixture.kit / "grade_runner.cpp");
+    const std::smatch limit = [&] {
+        std::smatch match;
+        std::regex_search(
+            runner, match,
+            std::regex("constexpr int test_time_limit_seconds = ([0-9]+);"));
+        return match;
+    }();
+    REQUIRE(limit.size() == 2);
+    CHECK(read_file(fixture.kit / "README.md")
+              .find("longer than **" + limit[1].str() + " seconds**") !=
+          std::string::npos);
+}
+
+namespace {
+
+/// Checks results.json against the fields of Gradescope's specification
+/// (gradescope-autograders.readthedocs.io, "Autograder Specifications"): only documented
+/// keys, the required ones present with the right types, the total the sum of the tests.
+/// Prints "score S of M, N tests".
+const char* const results_check = R"(
+import json, sys
+r = json.load(open(sys.argv[1]))
+top = {"score", "execution_time", "output", "output_format", "test_output_format",
+       "test_name_format", "visibility", "stdout_visibility", "extra_data", "tests",
+       "leaderboard"}
+per_test = {"score", "max_score", "status", "name", "name_format", "number", "output",
+            "output_format", "tags", "visibility", "extra_data"}
+assert set(r) <= top, set(r) - top
+assert isinstance(r["score"], (int, float)) and isinstance(r["output"], str)
+assert isinstance(r["tests"], list)
+for t in r["tests"]:
+    assert set(t) <= per_test, set(t) - per_test
+    for key, kind in (("name", str), ("score", (int, float)), ("max_score", (int, float)),
+                      ("status", str), ("output", str)):
+        assert isinstance(t[key], kind), (key, t)
+    assert t["status"] in ("passed", "failed"), t
+    assert 0 <= t["score"] <= t["max_score"], t
+    assert (t["status"] == "passed") == (t["score"] == t["max_score"] and t["max_score"] > 0
+                                         or t["status"] == "passed"), t
+    assert all(isinstance(tag, str) for tag in t.get("tags", [])), t
+assert r["score"] == sum(t["score"] for t in r["tests"])
+print("score %g of %g, %d tests" % (r["score"], sum(t["max_score"] for t in r["tests"]),
+                                      len(r["tests"])))
+)";
+
+/// Runs ROOT/source/run_autograder ROOT on the files `submission` puts in
+/// ROOT/submission; returns the check's summary line and the JSON text.
+std::pair<std::string, std::string> autograde(const fs::path& root) {
+    fs::remove_all(root / "results");
+    const auto ran =
+        run_command(std::string("AUTOGRADER_CMAKE_ARGS=-DCMAKE_CXX_COMPILER=") +
+                    EXACTPIXELS_CXX_COMPILER + " " +
+                    quoted(root / "source/run_autograder") + " " + quoted(root));
+    INFO(ran.out << ran.err);
+    CHECK(ran.exit_code == 0);
+    const fs::path json = root / "results/results.json";
+    REQUIRE(fs::exists(json));
+    write_file(root / "check.py", results_check);
+    const auto checked =
+        run_command("python3 " + quoted(root / "check.py") + " " + quoted(json));
+    INFO(checked.err << read_file(json));
+    CHECK(checked.exit_code == 0);
+    std::string summary = checked.out;
+    while (!summary.empty() && summary.back() == '\n') {
+        summary.pop_back();
+    }
+    return {summary, read_file(json)};
+}
+
+} // namespace
+
+TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, solved "
+          "full marks, not compiling 0 with the first error; results.json as specified") {
+    const fs::path out = scratch("gradescope-assignments");
+    const auto made = run_command(cmake() + " -DMAKE_KIT='" + EXACTPIXELS_MAKE_KIT +
+                                  "' -DSOURCE=" + quoted(fixture_tree()) +
+                                  " -DCHAPTER=07 -DOUTPUT=" + quoted(out) + " -P '" +
+                                  EXACTPIXELS_KIT_SCRIPT + "'");
+    INFO(made.out << made.err);
+    REQUIRE(made.exit_code == 0);
+    const fs::path root = scratch("gradescope-root");
+    REQUIRE(run_command("mkdir -p " + quoted(root / "source") + " && cd " +
+                        quoted(root / "source") + " && " + cmake() + " -E tar xf " +
+                        quoted(out / "ch07-gradescope.zip"))
+                .exit_code == 0);
+    // Gradescope's layout: setup.sh and an executable run_autograder at the zip's root.
+    for (const char* script : {"setup.sh", "run_autograder"}) {
+        CAPTURE(script);
+        REQUIRE(fs::exists(root / "source" / script));
+        CHECK((fs::status(root / "source" / script).permissions() &
+               fs::perms::owner_exec) != fs::perms::none);
+    }
+    CHECK(read_file(root / "source/setup.sh").find("apt-get install") !=
+          std::string::npos);
+
+    // Fresh: the kit's own src/, plus a tampered test file that the grader must ignore.
+    fs::create_directories(root / "submission");
+    fs::copy(out / "ch07/src", root / "submission/src", fs::copy_options::recursive);
+    write_file(root / "submission/tests/ch07_fake.cpp",
+               "#include <doctest/doctest.h>\nTEST_CASE(\"free points\" * "
+               "doctest::description(\"points: 100\")) {}\n");
+    const auto [fresh, fresh_json] = autograde(root);
+    CHECK(fresh == "score 1 of 6, 4 tests");
+    CHECK(
+        fresh_json.find("\"tags\": [\"ch07-answer\", \"implement\", \"difficulty 2\"]") !=
+        std::string::npos);
+    CHECK(fresh_json.find("CHECK( fake::answer() == 42 ) is false") != std::string::npos);
+
+    // Solved, submitted as the kit's folder (the solution restored by make-kit).
+    REQUIRE(restore_kit(fixture_tree(), out / "ch07").exit_code == 0);
+    fs::remove_all(root / "submission");
+    fs::create_directories(root / "submission/ch07");
+    fs::copy(out / "ch07/src", root / "submission/ch07/src", fs::copy_options::recursive);
+    const auto [solved, solved_json] = autograde(root);
+    CHECK(solved == "score 6 of 6, 4 tests");
+
+    // Not compiling: one failed entry worth every point, with the compiler's first error.
+    write_file(root / "submission/ch07/src/exactpixels/answer.cpp",
+               "#include \"exactpixels/answer.hpp\"\nnamespace fake {\n"
+               "int triangle_number(int n) { return n +; }\n} // namespace fake\n");
+    const auto [broken, broken_json] = autograde(root);
+    CHECK(broken == "score 0 of 6, 1 tests");
+    CHECK(broken_json.find("does not compile") != std::string::npos);
+    CHECK(broken_json.find("| src/exactpixels/answer.cpp:3:") != std::string::npos);
+    CHECK(broken_json.find("error:") != std::string::npos);
+    CHECK(read_file(root / "results/grade.txt")
+              .find("FAIL 0/6 - the submission compiles") == 0);
 }

@@ -73,7 +73,9 @@ struct FixtureBook {
     }
 };
 
-const std::string title = "# Demo\n\nSome text.\n\n";
+// Every chapter opens with what the reader will be able to do (checked by the filter).
+const std::string title =
+    "# Demo\n\n::: objectives\n- read the demo\n:::\n\nSome text.\n\n";
 
 // The text of an HTML fragment with every tag removed (highlighting splits code into
 // spans).
@@ -115,7 +117,7 @@ TEST_CASE("a missing snippet region fails naming the chapter file, line and regi
     const auto result = book.render(
         title + "```{.snippet file=\"src/demo.hpp\" name=\"no-such-region\"}\n```\n");
     CHECK(result.exit_code != 0);
-    CHECK(result.err.find("chapters/07-demo/chapter.md:5: error:") != std::string::npos);
+    CHECK(result.err.find("chapters/07-demo/chapter.md:9: error:") != std::string::npos);
     CHECK(result.err.find("no-such-region") != std::string::npos);
 }
 
@@ -124,7 +126,7 @@ TEST_CASE("a missing snippet file fails naming the file") {
     const auto result =
         book.render(title + "```{.snippet file=\"src/gone.hpp\" name=\"answer\"}\n```\n");
     CHECK(result.exit_code != 0);
-    CHECK(result.err.find("chapters/07-demo/chapter.md:5: error:") != std::string::npos);
+    CHECK(result.err.find("chapters/07-demo/chapter.md:9: error:") != std::string::npos);
     CHECK(result.err.find("src/gone.hpp") != std::string::npos);
 }
 
@@ -152,7 +154,7 @@ TEST_CASE("an unknown reference fails naming the line") {
     FixtureBook book;
     const auto result = book.render(title + "See @eq:nowhere.\n");
     CHECK(result.exit_code != 0);
-    CHECK(result.err.find("chapters/07-demo/chapter.md:5: error:") != std::string::npos);
+    CHECK(result.err.find("chapters/07-demo/chapter.md:9: error:") != std::string::npos);
     CHECK(result.err.find("eq:nowhere") != std::string::npos);
 }
 
@@ -280,7 +282,7 @@ TEST_CASE("a claim the data contradicts fails naming the chapter line and the cl
     const auto contradicted = book.render(claim);
     CHECK(contradicted.exit_code != 0);
     CHECK(contradicted.err.find(
-              "chapters/07-demo/chapter.md:7: error: claim contradicted") !=
+              "chapters/07-demo/chapter.md:11: error: claim contradicted") !=
           std::string::npos);
     CHECK(contradicted.err.find("beats the naive rasterizer at 3 px") !=
           std::string::npos);
@@ -305,7 +307,7 @@ TEST_CASE("a claim on missing data or an unknown name fails the book") {
     const auto unknown = book.render(
         title + "[a claim]{.claim data=\"ch07_facts.txt\" check=\"sped > 1\"}\n");
     CHECK(unknown.exit_code != 0);
-    CHECK(unknown.err.find("chapters/07-demo/chapter.md:5: error:") != std::string::npos);
+    CHECK(unknown.err.find("chapters/07-demo/chapter.md:9: error:") != std::string::npos);
     CHECK(unknown.err.find("sped") != std::string::npos);
 }
 
@@ -341,7 +343,7 @@ TEST_CASE("a claim can be checked against a committed Markdown table") {
     const auto contradicted = book.render(claim);
     CHECK(contradicted.exit_code != 0);
     CHECK(contradicted.err.find(
-              "chapters/07-demo/chapter.md:5: error: claim contradicted") !=
+              "chapters/07-demo/chapter.md:9: error: claim contradicted") !=
           std::string::npos);
     CHECK(contradicted.err.find("exact fixed costs more work") != std::string::npos);
 }

@@ -14,11 +14,20 @@
 --   EP_ALL_CHAPTERS  every chapter folder of the book, in order (for cross references)
 --   EP_OUT           the HTML output folder (source pages of named tests go below it)
 --   EP_LATEX_FIGURES the folder where SVG figures were converted to PDF (LaTeX only)
+--   EP_TEACHER       "1" for the teacher's edition: `::: solution` blocks are kept (the
+--                    student book drops them)
 --   EP_PAGE          set for a page that is not a chapter (the contents page, the
 --                    glossary, "Build and run"): the path of its Markdown file, for error
 --                    messages. Its headings are not numbered, its references and named
 --                    tests resolve as in a chapter, and a `::: contents` block in it is
 --                    filled with every chapter's numbered headings (the table of contents).
+--
+-- Teaching structure (book/AUTHORING.md, "Objectives, exercises and solutions"): every
+-- chapter has one `::: objectives` block (a list of what the reader will be able to do)
+-- before its first section; every item of the list under "## Exercises" begins with
+-- []{.exercise kind=derive|implement|measure marks=1|2|3}, rendered "[kind, N marks]";
+-- a `::: solution` block inside an exercise is its worked solution, dropped from the
+-- student book and kept, headed "Solution.", in the teacher's edition.
 --
 -- In every document, [term]{.index} marks a term for the PDF's index (\index{term}; HTML
 -- shows the text only); [text]{.index term="edge function!top-left bias"} files the text
@@ -757,9 +766,97 @@ local function render_page(doc)
   return fixed_delimiters(doc)
 end
 
+local teacher = os.getenv("EP_TEACHER") == "1"
+local exercise_kinds = { derive = true, implement = true, measure = true }
+
+-- []{.exercise kind=K marks=N} -> "[K, N marks]", after checking both.
+local function exercise_tag(span, dir, number)
+  local kind, marks = span.attributes.kind, tonumber(span.attributes.marks or "")
+  if not exercise_kinds[kind or ""] then
+    fail(dir, "{.exercise", string.format("exercise %d: kind must be derive, implement or "
+      .. "measure, not '%s'", number, tostring(kind)))
+  end
+  if not marks or marks < 1 or marks > 3 or marks ~= math.floor(marks) then
+    fail(dir, "{.exercise", string.format("exercise %d: marks (its difficulty) must be 1, 2 "
+      .. "or 3, not '%s'", number, tostring(span.attributes.marks)))
+  end
+  local text = string.format("[%s, %d mark%s]", kind, marks, marks == 1 and "" or "s")
+  return pandoc.Span({ pandoc.Strong({ pandoc.Str(text) }) }, { class = "exercise-tag" })
+end
+
+-- A solution: dropped (student book) or headed "Solution." (teacher's edition).
+local function solution_blocks(div)
+  if not teacher then return {} end
+  local content = pandoc.List({ pandoc.Para({ pandoc.Strong({ pandoc.Str("Solution.") }) }) })
+  content:extend(div.content)
+  return { pandoc.Div(content, { class = "solution" }) }
+end
+
+-- Checks and renders the objectives, the exercises' tags and the solutions of every
+-- chapter in `blocks` (top level, level-1 headings start chapters).
+local function teaching(blocks, dirs)
+  local out, h1, dir = pandoc.List(), 0, nil
+  local objectives, in_sections, in_exercises = 0, false, false
+  local function finish()
+    if dir and objectives ~= 1 then
+      fail(dir, "# ", string.format("the chapter needs exactly one `::: objectives` block "
+        .. "(what the reader will be able to do) before its first section, found %d",
+        objectives))
+    end
+  end
+  for _, block in ipairs(blocks) do
+    local keep = { block }
+    if block.t == "Header" and block.level == 1 then
+      finish()
+      h1 = h1 + 1
+      dir, objectives, in_sections, in_exercises = dirs[h1], 0, false, false
+    elseif block.t == "Header" and block.level == 2 then
+      in_sections = true
+      in_exercises = pandoc.utils.stringify(block.content) == "Exercises"
+    elseif block.t == "Div" and block.classes:includes("objectives") then
+      if in_sections then
+        fail(dir, "::: objectives", "the objectives block must come before the first section")
+      end
+      objectives = objectives + 1
+      local content = pandoc.List({ pandoc.Para({ pandoc.Strong({
+        pandoc.Str("After this chapter you will be able to:") }) }) })
+      content:extend(block.content)
+      keep = { pandoc.Div(content, { class = "objectives" }) }
+    elseif block.t == "Div" and block.classes:includes("solution") then
+      if not in_exercises then
+        fail(dir, "::: solution", "a solution block outside the Exercises section")
+      end
+      keep = solution_blocks(block)
+    elseif in_exercises and block.t == "OrderedList" then
+      for number, item in ipairs(block.content) do
+        local first = item[1]
+        local span = first and (first.t == "Para" or first.t == "Plain") and first.content[1]
+        if not (span and span.t == "Span" and span.classes:includes("exercise")) then
+          fail(dir, "## Exercises", string.format("exercise %d does not begin with "
+            .. "[]{.exercise kind=derive|implement|measure marks=1|2|3}", number))
+        end
+        first.content[1] = exercise_tag(span, dir, number)
+        local kept = pandoc.List()
+        for _, b in ipairs(item) do
+          if b.t == "Div" and b.classes:includes("solution") then
+            kept:extend(solution_blocks(b))
+          else
+            kept:insert(b)
+          end
+        end
+        block.content[number] = kept
+      end
+    end
+    out:extend(keep)
+  end
+  finish()
+  return out
+end
+
 function Pandoc(doc)
   collect_labels()
   if page_file then return render_page(doc) end
+  doc.blocks = teaching(doc.blocks, chapters_here)
   -- Inline references need the chapter each block belongs to: resolve them block by
   -- block, top level, tracking level-1 headings.
   local h1, blocks = 0, pandoc.List()

@@ -2,7 +2,9 @@
 # assignment-chNN (see CMakeLists.txt here) and by the kit tests:
 #   cmake -DMAKE_KIT=... -DSOURCE=... -DCHAPTER=NN -DOUTPUT=.../assignments
 #         [-DVERSION=...] -P assignment.cmake
-# writes OUTPUT/chNN/ (the kit, made by make-kit) and OUTPUT/chNN.zip.
+# writes OUTPUT/chNN/ (the kit, made by make-kit), OUTPUT/chNN.zip (the kit in a folder
+# chNN, for students) and OUTPUT/chNN-gradescope.zip (the kit's files at the root of the
+# zip, where Gradescope wants setup.sh and run_autograder).
 foreach(required MAKE_KIT SOURCE CHAPTER OUTPUT)
   if(NOT DEFINED ${required})
     message(FATAL_ERROR "assignment.cmake: -D${required}=... is required")
@@ -28,4 +30,15 @@ execute_process(
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "assignment-${kit}: zipping ${kit} failed")
 endif()
+file(REMOVE ${OUTPUT}/${kit}-gradescope.zip)
+file(GLOB entries RELATIVE ${OUTPUT}/${kit} ${OUTPUT}/${kit}/*)
+list(REMOVE_ITEM entries .exactpixels-kit)
+execute_process(
+  COMMAND ${CMAKE_COMMAND} -E tar cf ../${kit}-gradescope.zip --format=zip ${entries}
+  WORKING_DIRECTORY ${OUTPUT}/${kit}
+  RESULT_VARIABLE status)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "assignment-${kit}: zipping the Gradescope autograder failed")
+endif()
+message(STATUS "assignment-${kit}: ${OUTPUT}/${kit}-gradescope.zip (Gradescope)")
 message(STATUS "assignment-${kit}: ${OUTPUT}/${kit}/ and ${OUTPUT}/${kit}.zip")

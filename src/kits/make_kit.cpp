@@ -16,9 +16,10 @@
 //     ...stub...
 //     // END EXERCISE ch02-edge-bias
 // while every other chapter keeps its solution; every marker line (`//>`, `//<`, `//|`)
-// is removed. The template folder supplies the kit's CMakeLists.txt, README.md and
-// grade.cmake (with @CHAPTER@-style placeholders). DIR is deleted first if it holds an
-// earlier kit.
+// is removed. The template folder supplies the kit's CMakeLists.txt, README.md, its
+// grader (grade_runner.cpp) and Gradescope's two scripts, setup.sh and run_autograder
+// (NAME.in with @CHAPTER@-style placeholders, or NAME copied as it is). DIR is deleted
+// first if it holds an earlier kit.
 //
 // `restore` puts the solution of every exercise back between those comments in a kit
 // (the teacher's copy; the kit tests use it to prove the stubs are the only difference).
@@ -576,21 +577,107 @@ std::vector<fs::path> kit_files(const fs::path& root, const std::string& number)
     return files;
 }
 
-/// The text of `chapter.md` between `## Exercises` and the next `## ` heading, with the
-/// book-only span attributes reduced to plain text.
+/// Chapter text without its worked solutions: every `::: solution` fenced div, with
+/// whatever it nests, is dropped, so that no kit carries the teacher's edition.
+std::string without_solutions(const std::string& text) {
+    std::vector<std::string> kept;
+    int depth = 0; // fenced divs open inside a solution, the solution's own included
+    for (const auto& line : split_lines(text)) {
+        const std::string_view t = trim(line);
+        const bool fence = starts_with(t, ":::");
+        const auto colons = t.find_first_not_of(':');
+        const std::string_view rest = colons == std::string_view::npos
+                                          ? std::string_view{}
+                                          : trim(t.substr(colons));
+        if (depth > 0) {
+            if (fence) {
+                depth += rest.empty() ? -1 : 1;
+            }
+            continue;
+        }
+        if (fence && (starts_with(rest, "solution") || starts_with(rest, "{.solution"))) {
+            depth = 1;
+            continue;
+        }
+        kept.push_back(line);
+    }
+    return join_lines(kept);
+}
+
+/// The attributes of a `[]{.exercise kind=K marks=N region=R}` tag that starts at `at`.
+std::map<std::string, std::string> tag_attributes(const std::string& text, std::size_t at,
+                                                  std::size_t* end) {
+    std::map<std::string, std::string> attributes;
+    const auto close = text.find('}', at);
+    *end = close == std::string::npos ? text.size() : close + 1;
+    std::istringstream words(text.substr(at, *end - at - 1));
+    for (std::string word; words >> word;) {
+        const auto equals = word.find('=');
+        if (equals != std::string::npos) {
+            std::string value = word.substr(equals + 1);
+            value.erase(std::remove(value.begin(), value.end(), '"'), value.end());
+            attributes[word.substr(0, equals)] = value;
+        }
+    }
+    return attributes;
+}
+
+/// "[implement, 2 marks]" for a tag's attributes.
+std::string tag_text(const std::map<std::string, std::string>& attributes) {
+    const auto kind = attributes.find("kind");
+    const auto marks = attributes.find("marks");
+    if (kind == attributes.end() || marks == attributes.end()) {
+        return "";
+    }
+    return "[" + kind->second + ", " + marks->second +
+           (marks->second == "1" ? " mark]" : " marks]");
+}
+
+const std::string exercise_tag = "[]{.exercise";
+
+/// The kind and difficulty of each exercise region the chapter's exercise tags name.
+std::map<std::string, std::string> region_tags(const fs::path& chapter_md) {
+    std::map<std::string, std::string> tags;
+    if (!fs::exists(chapter_md)) {
+        return tags;
+    }
+    const std::string text = read_text(chapter_md);
+    for (auto at = text.find(exercise_tag); at != std::string::npos;
+         at = text.find(exercise_tag, at + 1)) {
+        std::size_t end = 0;
+        const auto attributes = tag_attributes(text, at + exercise_tag.size(), &end);
+        const auto region = attributes.find("region");
+        if (region != attributes.end()) {
+            tags[region->second] = tag_text(attributes);
+        }
+    }
+    return tags;
+}
+
+/// The text of `chapter.md` between `## Exercises` and the next `## ` heading, without
+/// solutions, with the book-only span attributes reduced to plain text and each
+/// exercise's tag to "**[kind, N marks]**".
 std::string book_exercises(const fs::path& chapter_md) {
     if (!fs::exists(chapter_md)) {
         return "";
     }
     std::vector<std::string> kept;
     bool inside = false;
-    for (const auto& line : split_lines(read_text(chapter_md))) {
+    for (const auto& line : split_lines(without_solutions(read_text(chapter_md)))) {
         if (starts_with(line, "## ")) {
             inside = starts_with(line, "## Exercises");
             continue;
         }
         if (inside) {
             std::string text = line;
+            const auto tag = text.find(exercise_tag);
+            if (tag != std::string::npos) {
+                std::size_t end = 0;
+                const auto attributes =
+                    tag_attributes(text, tag + exercise_tag.size(), &end);
+                text = text.substr(0, tag) + "**" + tag_text(attributes) + "**" +
+                       text.substr(end);
+            }
             // [name]{.test file="..."} -> "name"
             for (auto at = text.find("]{.test"); at != std::string::npos;
                  at = text.find("]{.test")) {
@@ -627,6 +714,23 @@ std::string chapter_title(const fs::path& chapter_md) {
         }
     }
     return "chapter";
+}
+
+/// The kit's template files (NAME.in or NAME in the template folder).
+const char* const template_files[] = {"CMakeLists.txt", "README.md", "grade_runner.cpp",
+                                      "run_autograder", "setup.sh"};
+
+/// The per-test time limit the grade runner states as a named constant, for the README.
+std::string time_limit(const fs::path& template_dir) {
+    const std::string name = "constexpr int test_time_limit_seconds = ";
+    const std::string text = read_text(template_dir / "grade_runner.cpp");
+    const auto at = text.find(name);
+    const auto end = at == std::string::npos ? at : text.find(';', at);
+    if (end == std::string::npos) {
+        throw KitError((template_dir / "grade_runner.cpp").string() + ": no '" + name +
+                       "N;'");
+    }
+    return text.substr(at + name.size(), end - at - name.size());
 }
 
 struct Options {
@@ -734,7 +838,8 @@ void make_kit(const Options& options) {
             continue;
         }
         if (!is_code_file(rel)) {
-            kit[rel] = read_text(root / rel);
+            const std::string text = read_text(root / rel);
+            kit[rel] = rel.filename() == "chapter.md" ? without_solutions(text) : text;
             continue;
         }
         auto processed = process_file(rel, read_text(root / rel), chapter);
@@ -758,15 +863,31 @@ void make_kit(const Options& options) {
     // Template files.
     const auto folder = chapter_folder(root, number);
     const fs::path chapter_md = folder ? root / *folder / "chapter.md" : fs::path{};
+    // exercises.txt, "ID KIND MARKS" per tagged exercise, for the grade's summary lines.
+    const auto tags = region_tags(chapter_md);
+    std::string exercise_list;
+    for (const auto& region : stubbed) {
+        const auto tag = tags.find(region.id);
+        if (tag != tags.end()) {
+            // "[implement, 2 marks]" -> "implement 2"
+            const auto comma = tag->second.find(", ");
+            exercise_list += region.id + " " + tag->second.substr(1, comma - 1) + " " +
+                             tag->second.substr(comma + 2, 1) + "\n";
+        }
+    }
+    kit["exercises.txt"] = exercise_list;
     std::string table;
     if (stubbed.empty()) {
         table = "This chapter has no implementation exercises yet: the kit builds the "
                 "chapter's code, example and tests as they are in the book.\n";
     } else {
-        table = "| exercise | where | points | hint |\n|---|---|---|---|\n";
+        table = "| exercise | where | points | kind, difficulty | hint |\n"
+                "|---|---|---|---|---|\n";
         for (const auto& region : stubbed) {
+            const auto tag = tags.find(region.id);
             table += "| `" + region.id + "` | `" + where(region.file, region.kit_line) +
                      "` | " + std::to_string(points_for[region.id]) + " | " +
+                     (tag == tags.end() ? std::string("-") : tag->second) + " | " +
                      replace_all(region.hint, "|", "\\|") + " |\n";
         }
         table += "\nThe tests that check them (each passes only when the exercise is "
@@ -796,6 +917,7 @@ void make_kit(const Options& options) {
         packages += " libtomlplusplus-dev";
     }
     const std::map<std::string, std::string> values = {
+        {"@TIME_LIMIT@", time_limit(options.template_dir)},
         {"@PACKAGES@", packages},
         {"@CHAPTER@", number},
         {"@TITLE@", chapter_title(chapter_md)},
@@ -807,8 +929,14 @@ void make_kit(const Options& options) {
                                              "-example out  # the example's figures"
                                        : "# (this chapter has no example program)"},
     };
-    for (const char* name : {"CMakeLists.txt", "README.md", "grade.cmake"}) {
-        std::string text = read_text(options.template_dir / (std::string(name) + ".in"));
+    // NAME.in gets its placeholders filled; a template file without ".in" is copied.
+    for (const std::string name : template_files) {
+        const fs::path plain = options.template_dir / name;
+        if (fs::exists(plain)) {
+            kit[name] = read_text(plain);
+            continue;
+        }
+        std::string text = read_text(options.template_dir / (name + ".in"));
         for (const auto& [key, value] : values) {
             text = replace_all(text, key, value);
         }
@@ -816,6 +944,12 @@ void make_kit(const Options& options) {
     }
     const fs::path out = fs::absolute(options.out);
     sync_folder(out, kit);
+    for (const char* script : {"run_autograder", "setup.sh"}) {
+        fs::permissions(out / script,
+                        fs::perms::owner_exec | fs::perms::group_exec |
+                            fs::perms::others_exec,
+                        fs::perm_options::add);
+    }
 
     std::cout << "make-kit: wrote " << out.string() << " (chapter " << number << ", "
               << stubbed.size() << " exercise" << (stubbed.size() == 1 ? "" : "s") << ", "

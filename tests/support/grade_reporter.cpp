@@ -23,12 +23,21 @@
 // EXERCISE is "-" for a test that checks no exercise and NAME runs to the end of the
 // line. A test case earns all of its points when it passes (every subcase included) and
 // none otherwise. A skipped test case counts in neither number of the TOTAL line.
+//
+// Below a FAIL line come the reasons, each on a line of its own that starts with two
+// spaces: the first failed checks (file name, line, expression and values), an exception
+// the test case threw, a crash doctest caught. `--list-test-cases --reporters=grade`
+// prints "TEST RUN|SKIP POINTS EXERCISE NAME" per test case (SKIP: marked doctest::skip),
+// in the order of a run; the kits' grade runner (src/kits/template/grade_runner.cpp)
+// reads it to run every test case in a process of its own.
 #include <doctest/doctest.h>
 
 #include <cstdlib>
 #include <ostream>
+#include <sstream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace exactpixels::testing {
 
@@ -86,8 +95,8 @@ class GradeReporter : public doctest::IReporter {
         // With --list-test-cases: every test case with its declared points.
         for (unsigned i = 0; i < query.num_data; ++i) {
             const Declared d = parse_description(query.data[i]->m_description);
-            out_ << "TEST " << d.points << ' ' << d.exercise << ' '
-                 << query.data[i]->m_name << '\n';
+            out_ << "TEST " << (query.data[i]->m_skip ? "SKIP " : "RUN ") << d.points
+                 << ' ' << d.exercise << ' ' << query.data[i]->m_name << '\n';
         }
     }
 
@@ -98,17 +107,43 @@ class GradeReporter : public doctest::IReporter {
              << cases_ << " test cases passed" << std::endl;
     }
 
-    void test_case_start(const doctest::TestCaseData& test) override { current_ = &test; }
+    void test_case_start(const doctest::TestCaseData& test) override {
+        current_ = &test;
+        reasons_.clear();
+        failed_checks_ = 0;
+    }
     void test_case_reenter(const doctest::TestCaseData&) override {}
 
     void test_case_end(const doctest::CurrentTestCaseStats& stats) override {
         line(stats.testCaseSuccess ? "PASS" : "FAIL", *current_, stats.testCaseSuccess);
     }
 
-    void test_case_exception(const doctest::TestCaseException&) override {}
+    void test_case_exception(const doctest::TestCaseException& exception) override {
+        reasons_.push_back(std::string(exception.is_crash ? "crashed: " : "threw: ") +
+                           one_line(exception.error_string.c_str()));
+    }
+
     void subcase_start(const doctest::SubcaseSignature&) override {}
     void subcase_end() override {}
-    void log_assert(const doctest::AssertData&) override {}
+
+    void log_assert(const doctest::AssertData& data) override {
+        if (!data.m_failed) {
+            return;
+        }
+        if (++failed_checks_ > max_reasons) {
+            return;
+        }
+        std::ostringstream reason;
+        reason << base_name(data.m_file) << ':' << data.m_line << ": "
+               << doctest::assertString(data.m_at) << "( " << data.m_expr << " )";
+        if (data.m_threw) {
+            reason << " threw: " << data.m_exception.c_str();
+        } else if (data.m_decomp.size() > 0) {
+            reason << " is false; values: " << data.m_decomp.c_str();
+        }
+        reasons_.push_back(one_line(reason.str()));
+    }
+
     void log_message(const doctest::MessageData&) override {}
 
     void test_case_skipped(const doctest::TestCaseData& test) override {
@@ -127,11 +162,49 @@ class GradeReporter : public doctest::IReporter {
         }
         // Flushed per line, so that a crash later in the run keeps the lines before it.
         out_ << status << ' ' << earned << '/' << d.points << ' ' << d.exercise << ' '
-             << test.m_name << std::endl;
+             << test.m_name << '\n';
+        if (!passed && status[0] != 'S') {
+            for (const auto& reason : reasons_) {
+                out_ << "  " << reason << '\n';
+            }
+            if (failed_checks_ > max_reasons) {
+                out_ << "  ... and " << failed_checks_ - max_reasons
+                     << " more failed checks\n";
+            }
+        }
+        out_.flush();
     }
+
+    /// "/any/where/tests/ch02_x.cpp" -> "ch02_x.cpp": no machine's paths in a grade.
+    static std::string base_name(const char* file) {
+        const std::string_view path = file == nullptr ? "" : file;
+        const auto slash = path.find_last_of("/\\");
+        return std::string(slash == std::string_view::npos ? path
+                                                           : path.substr(slash + 1));
+    }
+
+    /// Line breaks and tabs become spaces and long text is cut, so a reason stays a line.
+    static std::string one_line(std::string text) {
+        for (char& c : text) {
+            if (c == '\n' || c == '\r' || c == '\t') {
+                c = ' ';
+            }
+        }
+        if (text.size() > max_reason_chars) {
+            text = text.substr(0, max_reason_chars) + "...";
+        }
+        return text;
+    }
+
+    /// At most this many failed checks are listed per test case.
+    static constexpr int max_reasons = 5;
+    /// A reason line is cut after this many characters.
+    static constexpr std::size_t max_reason_chars = 300;
 
     std::ostream& out_;
     const doctest::TestCaseData* current_ = nullptr;
+    std::vector<std::string> reasons_; // why the current test case fails
+    int failed_checks_ = 0;
     int earned_ = 0, declared_ = 0, passed_ = 0, cases_ = 0;
 };
 

@@ -1,0 +1,166 @@
+// The teacher's edition and the student book: every exercise's worked solution (a
+// `::: solution` block in a chapter's source, see book/AUTHORING.md) appears in the
+// teacher's edition (build/book-teacher/) and nowhere in the student book (build/book/:
+// its HTML pages and the LaTeX source of its PDF). The kits are checked by the kit tests
+// (tests/assignments_kits.cpp), which prove no solution text reaches a kit.
+//
+// A solution is recognised by phrases of its plain text: runs of at least six words with
+// no mathematics, code or markup, compared with the outputs' text after tags and extra
+// white space are removed.
+//
+// Label `bookcheck`: runs in the `book` workflow after both books are built.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+/// Tags and LaTeX commands removed, the entities of quote marks undone, white space
+/// collapsed. (A loop, not std::regex: libstdc++'s regex recurses per character and
+/// overflows the stack on pages this long.)
+std::string plain_text(const std::string& raw) {
+    std::string text = raw;
+    for (const auto& [from, to] : std::vector<std::pair<std::string, std::string>>{
+             {"\u2019", "'"}, {"\u2018", "'"}, {"&#39;", "'"}, {"&quot;", "\""}}) {
+        for (auto at = text.find(from); at != std::string::npos;
+             at = text.find(from, at)) {
+            text.replace(at, from.size(), to);
+        }
+    }
+    std::string out;
+    bool space = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        char c = text[i];
+        if (c == '<') { // an HTML tag
+            const auto close = text.find('>', i);
+            i = close == std::string::npos ? text.size() : close;
+            c = ' ';
+        } else if (c == '\\') { // a LaTeX command name
+            while (i + 1 < text.size() &&
+                   std::isalpha(static_cast<unsigned char>(text[i + 1]))) {
+                ++i;
+            }
+            c = ' ';
+        } else if (c == '{' || c == '}' || c == '\n' || c == '\t' || c == '\r') {
+            c = ' ';
+        }
+        if (c == ' ') {
+            if (!space) {
+                out += ' ';
+            }
+            space = true;
+        } else {
+            out += c;
+            space = false;
+        }
+    }
+    return out;
+}
+
+/// One solution block: where it is and the plain phrases it contains.
+struct Solution {
+    std::string where;
+    std::vector<std::string> phrases;
+};
+
+/// Every `::: solution` block of every chapter, with its phrases of six or more plain
+/// words (letters, digits, commas, apostrophes between words).
+std::vector<Solution> solutions() {
+    std::vector<Solution> found;
+    const fs::path chapters = fs::path(EXACTPIXELS_SOURCE_DIR) / "chapters";
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(chapters)) {
+        if (fs::exists(entry.path() / "chapter.md")) {
+            files.push_back(entry.path() / "chapter.md");
+        }
+    }
+    std::sort(files.begin(), files.end());
+    const std::regex phrase("([A-Za-z]+[,']? ){5,}[A-Za-z]+");
+    for (const auto& file : files) {
+        std::istringstream in(read_text(file));
+        std::string line, body;
+        int line_number = 0, start = 0;
+        bool inside = false;
+        while (std::getline(in, line)) {
+            ++line_number;
+            const auto first = line.find_first_not_of(' ');
+            const std::string t = first == std::string::npos ? "" : line.substr(first);
+            if (!inside && (t == "::: solution" || t == "::: {.solution}")) {
+                inside = true;
+                start = line_number;
+                body.clear();
+            } else if (inside && t == ":::") {
+                inside = false;
+                // Mathematics and code are not compared: the outputs render them.
+                body = std::regex_replace(
+                    body, std::regex("\\$[^$]*\\$|`[^`]*`|@[a-z:-]+"), " | ");
+                Solution solution{file.parent_path().filename().string() +
+                                      "/chapter.md:" + std::to_string(start),
+                                  {}};
+                for (std::sregex_iterator it(body.begin(), body.end(), phrase), end;
+                     it != end; ++it) {
+                    solution.phrases.push_back(it->str());
+                }
+                found.push_back(solution);
+            } else if (inside) {
+                body += t + " ";
+            }
+        }
+    }
+    return found;
+}
+
+/// The plain text of every HTML page of `book` and of its LaTeX source.
+std::string book_text(const fs::path& book) {
+    std::string text;
+    for (const auto& entry : fs::directory_iterator(book)) {
+        if (entry.path().extension() == ".html") {
+            text += plain_text(read_text(entry.path())) + "\n";
+        }
+    }
+    text += plain_text(read_text(book / "latex/exact-pixels.tex"));
+    return text;
+}
+
+} // namespace
+
+TEST_CASE("the teacher's edition holds every worked solution, the student book none") {
+    const fs::path student = fs::path(EXACTPIXELS_BINARY_DIR) / "book";
+    const fs::path teacher = fs::path(EXACTPIXELS_BINARY_DIR) / "book-teacher";
+    REQUIRE(fs::exists(student / "latex/exact-pixels.tex"));
+    REQUIRE(fs::exists(teacher / "latex/exact-pixels.tex"));
+    const auto all = solutions();
+    REQUIRE(!all.empty());
+    const std::string student_text = book_text(student);
+    const std::string teacher_text = book_text(teacher);
+    int phrases = 0;
+    for (const auto& solution : all) {
+        CAPTURE(solution.where);
+        CHECK(!solution.phrases.empty()); // every solution can be recognised
+        for (const auto& phrase : solution.phrases) {
+            CAPTURE(phrase);
+            CHECK(teacher_text.find(phrase) != std::string::npos);
+            CHECK(student_text.find(phrase) == std::string::npos);
+            ++phrases;
+        }
+    }
+    MESSAGE(all.size() << " solutions, " << phrases << " phrases checked");
+    // The markers themselves: the student book has no solution block at all.
+    CHECK(student_text.find("Solution.") == std::string::npos);
+}
