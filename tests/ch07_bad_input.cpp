@@ -86,6 +86,10 @@ std::vector<BadScene> bad_scenes() {
          scene_with("[camera]\nposition = [0, -5, 0]\ntarget = [0, 0, 0]\n", ""), "4:1",
          "camera", "up direction"},
         {"no mesh at all", "[image]\nwidth = 8\n", "1:1", "mesh", "nothing to draw"},
+        {"a depth mode that is not one", scene_with("[render]\ndepth = \"maybe\"\n", ""),
+         "5:9", "render.depth", "not one of: auto"},
+        {"a number for the depth mode", scene_with("[render]\ndepth = 1\n", ""), "5:9",
+         "render.depth", "expected true, false or \"auto\""},
     };
 }
 

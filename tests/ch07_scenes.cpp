@@ -1,5 +1,6 @@
 // Chapter 7 tests: the shipped scenes render; each mesh runs only the stages it calls
 // for; `auto` stays within its budget; the derived bounds and divide counts hold.
+#include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_pipeline.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
@@ -8,6 +9,7 @@
 #include "exactpixels/texture/texture.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <fstream>
@@ -358,4 +360,203 @@ TEST_CASE("the chapter's TOML listings are scenes the loader accepts") {
         }
     }
     CHECK(blocks >= 1);
+}
+
+// ---- The depth stage (@sec:scene-depth) ----
+
+namespace {
+
+/// A camera-facing or tilted quad as a TOML mesh: corners, flat colour.
+std::string quad_mesh(const std::string& name, const std::string& corners,
+                      const std::string& colour) {
+    return "[[mesh]]\nname = \"" + name +
+           "\"\nprimitive = \"quad\"\ncorners = " + corners + "\ncolour = " + colour +
+           "\n";
+}
+
+const std::string depth_header = R"(
+[image]
+width = 96
+height = 72
+[camera]
+position = [0.0, 0.0, -4.0]
+target = [0.0, 0.0, 0.0]
+)";
+
+// Two tilted quads that overlap on screen without crossing in space: "near" is nearer
+// than "far" everywhere they overlap.
+const std::string near_quad = quad_mesh(
+    "near", "[[-1.4, -1.0, -0.5], [0.6, -1.0, 0.3], [0.6, 1.0, 0.3], [-1.4, 1.0, -0.5]]",
+    "[1.0, 0.2, 0.2]");
+const std::string far_quad = quad_mesh(
+    "far", "[[-0.6, -1.2, 1.5], [1.5, -1.2, 0.9], [1.5, 0.8, 0.9], [-0.6, 0.8, 1.5]]",
+    "[0.2, 0.3, 1.0]");
+
+Scene depth_scene(const std::string& render, const std::string& meshes) {
+    return parse_scene(depth_header + render + meshes, "depth.toml", ".");
+}
+
+} // namespace
+
+TEST_CASE("two overlapping quads give the same image in either file order") {
+    const RenderResult near_first = render_scene(depth_scene("", near_quad + far_quad));
+    const RenderResult far_first = render_scene(depth_scene("", far_quad + near_quad));
+    CHECK(near_first.report.depth_on);
+    CHECK(far_first.report.depth_on);
+    CHECK(near_first.image == far_first.image);
+    // The reference: painted far to near without a depth stage, the order that is right.
+    const RenderResult painted =
+        render_scene(depth_scene("[render]\ndepth = false\n", far_quad + near_quad));
+    CHECK_FALSE(painted.report.depth_on);
+    CHECK(near_first.image == painted.image);
+    // Drawn near first, the far quad lost exactly the pixels the near one covers twice.
+    const RenderResult wrong =
+        render_scene(depth_scene("[render]\ndepth = false\n", near_quad + far_quad));
+    long long differ = 0;
+    for (std::size_t k = 0; k < wrong.image.pixels().size(); ++k) {
+        differ += wrong.image.pixels()[k] != painted.image.pixels()[k];
+    }
+    CHECK(differ > 100); // the overlap is large: without depth the order matters
+    CHECK(near_first.report.hidden.pixels == differ);
+    CHECK(far_first.report.hidden.pixels == 0); // near drawn last: nothing fails the test
+}
+
+TEST_CASE("a box without back-face culling is drawn correctly by the depth stage") {
+    const std::string box = R"(
+[image]
+width = 80
+height = 64
+[camera]
+position = [3.0, 2.5, -4.0]
+target = [0.0, 0.0, 0.0]
+[textures.f]
+kind = "f"
+cell = 2
+[[mesh]]
+primitive = "box"
+texture = "f"
+centre = [0.0, 0.0, 0.0]
+size = [1.0, 2.0, 1.5]
+texels_per_unit = 16
+)";
+    const Scene culled = parse_scene(box + "cull = \"back\"\n", "box.toml", ".");
+    const Scene whole = parse_scene(box, "box.toml", ".");
+    const RenderResult reference = render_scene(culled);
+    const RenderResult result = render_scene(whole);
+    CHECK_FALSE(reference.report.depth_on); // a culled convex mesh cannot overlap itself
+    CHECK(result.report.depth_on);          // all twelve faces can
+    CHECK(result.report.raster.triangles == 12);
+    CHECK(result.report.hidden.pixels > 0);
+    CHECK(result.image == reference.image);
+    // Without either, the back faces drawn last show through: the image is wrong.
+    Scene painted = whole;
+    painted.options.depth = DepthMode::off;
+    CHECK_FALSE(render_scene(painted).image == reference.image);
+}
+
+TEST_CASE("a scene whose meshes cannot overlap runs no depth stage") {
+    const std::string apart =
+        quad_mesh("left",
+                  "[[-1.8, -0.5, 0.0], [-0.8, -0.5, 0.0], [-0.8, 0.5, 0.5], "
+                  "[-1.8, 0.5, 0.5]]",
+                  "[1, 1, 0]") +
+        quad_mesh("right",
+                  "[[0.8, -0.5, 0.0], [1.8, -0.5, 1.0], [1.8, 0.5, 1.0], "
+                  "[0.8, 0.5, 0.0]]",
+                  "[0, 1, 1]");
+    const RenderResult result = render_scene(depth_scene("", apart));
+    CHECK_FALSE(result.report.depth_on);
+    CHECK(result.report.depth.triangles == 0);
+    CHECK(result.report.depth.pixels == 0);
+    CHECK(format_report(result.report).find("depth stage: off") != std::string::npos);
+    const RenderResult forced =
+        render_scene(depth_scene("[render]\ndepth = true\n", apart));
+    CHECK(forced.report.depth_on);
+    CHECK(forced.report.depth.triangles == 4);
+    CHECK(forced.report.depth.pixels == forced.report.raster.pixels);
+    CHECK(forced.report.hidden.pixels == 0);
+    CHECK(forced.image == result.image);
+}
+
+TEST_CASE("depth auto leaves every shipped scene's image as it was") {
+    for (const auto& path : shipped_scenes()) {
+        INFO(path.string());
+        Scene scene = load_scene(path);
+        if (scene.options.depth != DepthMode::automatic) {
+            continue; // a scene that asks for depth is drawn as it asks
+        }
+        const RenderResult with_auto = render_scene(scene);
+        scene.options.depth = DepthMode::off;
+        const RenderResult without = render_scene(scene);
+        CHECK(with_auto.image == without.image);
+    }
+}
+
+TEST_CASE("a depth tie between coplanar triangles goes to the one drawn later") {
+    // Camera-facing quads at the same depth: 1/w is the same constant on both, so the
+    // keys are exactly equal and every overlapping pixel is a tie.
+    const std::string a = quad_mesh(
+        "a", "[[-1, -1, 1], [0.5, -1, 1], [0.5, 0.5, 1], [-1, 0.5, 1]]", "[1,0,0]");
+    const std::string b = quad_mesh(
+        "b", "[[-0.5, -0.5, 1], [1, -0.5, 1], [1, 1, 1], [-0.5, 1, 1]]", "[0,0,1]");
+    for (const std::string& order : {a + b, b + a}) {
+        const RenderResult tested =
+            render_scene(depth_scene("[render]\ndepth = true\n", order));
+        const RenderResult painted =
+            render_scene(depth_scene("[render]\ndepth = false\n", order));
+        CHECK(tested.report.hidden.pixels == 0); // every tie passed the test
+        CHECK(tested.image == painted.image);    // later on top, as without depth
+    }
+}
+
+TEST_CASE("float 1/w resolves the same relative depth near and far") {
+    const double near = 0.1;
+    for (double w = near; w <= 1e4; w *= 1.37) {
+        INFO(w);
+        const double e = depth_resolution(w);
+        CHECK(e >= std::ldexp(1.0, -25));
+        CHECK(e <= 1.01 * std::ldexp(1.0, -23));
+        // Depths farther apart than e (relative) always store different keys, nearer
+        // one larger; and some pair e apart at most shares a key (the range itself).
+        const float q = nearness_key(1.0 / w);
+        CHECK(nearness_key(1.0 / (w * (1.0 + 1.01 * e))) < q);
+        CHECK(nearness_key(1.0 / (w * (1.0 - 1.01 * e))) > q);
+        long long shared = 0;
+        for (int k = -8; k <= 8; ++k) {
+            shared += nearness_key(1.0 / (w * (1.0 + k * e / 16))) == q;
+        }
+        CHECK(shared >= 8); // half of a window as wide as e shares the key
+        // A 24-bit fixed-point 1/w loses resolution in proportion to the distance.
+        const double fixed = fixed_depth_resolution(w, near, 24);
+        CHECK(fixed == doctest::Approx(w / near * std::ldexp(1.0, -24)).epsilon(0.01));
+    }
+    CHECK(fixed_depth_resolution(1e3, near, 24) > 1000.0 * depth_resolution(1e3));
+}
+
+TEST_CASE("the depth stage separates parallel quads 2^-21 apart near and far") {
+    for (const double w : {0.2, 3.0, 500.0}) {
+        INFO(w);
+        const double far_w = w * (1.0 + std::ldexp(1.0, -21));
+        const auto at = [](double z, double s) {
+            return fmt::format("[[{0}, {0}, {1}], [{2}, {0}, {1}], [{2}, {2}, {1}], "
+                               "[{0}, {2}, {1}]]",
+                               -s, z, s);
+        };
+        // The camera at the origin looks along +z; the quads fill most of the image.
+        const std::string scene =
+            "[image]\nwidth = 48\nheight = 40\n[camera]\nposition = [0, 0, 0]\n"
+            "target = [0, 0, 1]\nnear = 0.1\n[render]\ndepth = true\n" +
+            quad_mesh("near", at(w, 0.4 * w), "[1, 0, 0]") +
+            quad_mesh("far", at(far_w, 0.4 * w), "[0, 0, 1]");
+        const RenderResult r = render_scene(parse_scene(scene, "parallel.toml", "."));
+        long long red = 0, blue = 0;
+        for (const Rgba8 pixel : r.image.pixels()) {
+            red += pixel.r == 255;
+            blue += pixel.b != 0;
+        }
+        CHECK(blue == 0); // the far quad shows nowhere
+        CHECK(red > 500);
+        // Every pixel of the far quad failed the test: all but the near quad's.
+        CHECK(r.report.hidden.pixels == r.report.raster.pixels - red);
+    }
 }

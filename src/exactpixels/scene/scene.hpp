@@ -56,12 +56,20 @@ struct MapperChoice {
     Mapper mapper = {};    ///< the mapper when not automatic
 };
 
+/// Whether the renderer runs a depth stage (@sec:scene-depth).
+enum class DepthMode {
+    off,      ///< no depth stage: meshes drawn in file order, later on top
+    on,       ///< a depth buffer: the nearest surface wins, ties go to the later one
+    automatic ///< on only when meshes can overlap on screen (the default)
+};
+
 /// The render options of a scene.
 struct RenderOptions {
     Precision precision = Precision::float64; ///< the mappers' inner-loop arithmetic
     MapperChoice mapper = {};                 ///< which mapper, or auto
     double budget = 0.5;  ///< auto: the largest texel error allowed, texels, > 0
     bool rounding = true; ///< chapter 4's rounding modifier (false: rule 1 everywhere)
+    DepthMode depth = DepthMode::automatic; ///< `depth = true | false | "auto"`
 };
 
 /// A named texture of a scene.
