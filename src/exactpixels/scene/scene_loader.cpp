@@ -689,8 +689,8 @@ std::filesystem::path shipped_scene_folder() {
 
 std::vector<std::filesystem::path> shipped_scenes() {
     const std::filesystem::path folder = shipped_scene_folder();
-    return {folder / "corridor.toml", folder / "horizon.toml", folder / "gouraud.toml",
-            folder / "sprites.toml", folder / "near_plane.toml"};
+    return {folder / "corridor.toml", folder / "horizon.toml",    folder / "gouraud.toml",
+            folder / "sprites.toml",  folder / "near_plane.toml", folder / "boxes.toml"};
 }
 
 } // namespace exactpixels
