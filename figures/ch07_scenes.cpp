@@ -1,8 +1,10 @@
 // Chapter 7 figures: the report of every shipped scene, and for the perspective scenes
 // the time, divides and texel error of `auto` against `exact` and `affine`, as Markdown
-// fragments pulled into the chapter (ch07_reports.md, ch07_auto_vs_exact.md).
+// fragments pulled into the chapter (ch07_reports.md, ch07_auto_vs_exact.md), and the
+// depth stage's resolution and cost (ch07_depth_resolution.md, ch07_depth_cost.md).
 // Usage: fig_ch07_scenes FIGURE_DIR
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 
@@ -57,6 +59,38 @@ int main(int argc, char** argv) {
                                      best_ms(variant, 7), e.worst, e.mean);
             }
         }
+        // The depth buffer's relative resolution near and far (near plane at 0.1).
+        std::string resolution = "| depth $w$ | float $1/w$ | 24-bit fixed $1/w$ |\n"
+                                 "|---:|---:|---:|\n";
+        for (const double w : {0.1, 1.0, 10.0, 100.0, 1000.0}) {
+            resolution +=
+                fmt::format("| {} | {:.2e} | {:.2e} |\n", w, depth_resolution(w),
+                            fixed_depth_resolution(w, 0.1, 24));
+        }
+        std::ofstream(folder / "ch07_depth_resolution.md") << resolution;
+        // What the depth stage costs: every shipped scene with the stage forced on and
+        // forced off (off may be wrong; it is the time without the stage).
+        std::string cost = "| scene | auto turns it | pixels tested | hidden | "
+                           "ms with depth | ms without | depth stage ms |\n"
+                           "|---|---|---:|---:|---:|---:|---:|\n";
+        for (const std::filesystem::path& path : shipped_scenes()) {
+            Scene scene = load_scene(path);
+            const bool automatic = render_scene(scene).report.depth_on;
+            scene.options.depth = DepthMode::on;
+            const RenderReport on = render_scene(scene).report;
+            const double with_ms = best_ms(scene, 7);
+            double stage_ms = 1e300;
+            for (int k = 0; k < 7; ++k) {
+                stage_ms =
+                    std::min(stage_ms, 1e3 * render_scene(scene).report.depth.seconds);
+            }
+            scene.options.depth = DepthMode::off;
+            cost += fmt::format("| {} | {} | {} | {} | {:.2f} | {:.2f} | {:.3f} |\n",
+                                path.stem().string(), automatic ? "on" : "off",
+                                on.depth.pixels, on.hidden.pixels, with_ms,
+                                best_ms(scene, 7), stage_ms);
+        }
+        std::ofstream(folder / "ch07_depth_cost.md") << cost;
         std::ofstream(folder / "ch07_reports.md") << reports;
         std::ofstream(folder / "ch07_auto_vs_exact.md") << table;
         std::printf("wrote %s and %s\n", (folder / "ch07_reports.md").c_str(),

@@ -533,7 +533,7 @@ TEST_CASE("float 1/w resolves the same relative depth near and far") {
     CHECK(fixed_depth_resolution(1e3, near, 24) > 1000.0 * depth_resolution(1e3));
 }
 
-TEST_CASE("the depth stage separates parallel quads 2^-21 apart near and far") {
+TEST_CASE("the depth stage separates parallel quads near and far") {
     for (const double w : {0.2, 3.0, 500.0}) {
         INFO(w);
         const double far_w = w * (1.0 + std::ldexp(1.0, -21));
