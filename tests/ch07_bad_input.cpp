@@ -88,6 +88,9 @@ std::vector<BadScene> bad_scenes() {
         {"no mesh at all", "[image]\nwidth = 8\n", "1:1", "mesh", "nothing to draw"},
         {"a depth mode that is not one", scene_with("[render]\ndepth = \"maybe\"\n", ""),
          "5:9", "render.depth", "not one of: auto"},
+        {"an unknown colour interpolation",
+         scene_with("[render]\ncolours = \"smooth\"\n", ""), "5:11", "render.colours",
+         "not one of: screen"},
         {"a number for the depth mode", scene_with("[render]\ndepth = 1\n", ""), "5:9",
          "render.depth", "expected true, false or \"auto\""},
     };

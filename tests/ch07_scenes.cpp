@@ -582,3 +582,140 @@ TEST_CASE("the boxes scene looks the same in every order of its meshes") {
     scene.options.depth = DepthMode::off;
     CHECK_FALSE(render_scene(scene).image == result.image);
 }
+
+// ---- Perspective-correct vertex colours (@sec:scene-colours) ----
+
+TEST_CASE("the screen-colour error bound holds on random triangles") {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> depth(1.0, 30.0), unit(0.0, 1.0);
+    double closest = 0.0; // the largest measured / bound seen
+    for (int trial = 0; trial < 400; ++trial) {
+        const std::array<double, 3> w{depth(rng), depth(rng), depth(rng)};
+        std::array<Colour, 3> c{};
+        for (Colour& colour : c) {
+            colour = {unit(rng), unit(rng), unit(rng)};
+        }
+        const double bound = colour_error_bound(w, c);
+        double worst = 0.0; // over a grid of screen barycentrics
+        const int n = 64;
+        for (int i = 0; i <= n; ++i) {
+            for (int j = 0; i + j <= n; ++j) {
+                const std::array<double, 3> l{double(i) / n, double(j) / n,
+                                              double(n - i - j) / n};
+                const double q = l[0] / w[0] + l[1] / w[1] + l[2] / w[2];
+                for (int k = 0; k < 3; ++k) {
+                    const double screen =
+                        l[0] * c[0][k] + l[1] * c[1][k] + l[2] * c[2][k];
+                    const double exact = (l[0] * c[0][k] / w[0] + l[1] * c[1][k] / w[1] +
+                                          l[2] * c[2][k] / w[2]) /
+                                         q;
+                    worst = std::max(worst, 255.0 * std::abs(screen - exact));
+                }
+            }
+        }
+        CHECK(worst <= bound * (1.0 + 1e-12));
+        closest = std::max(closest, worst / bound);
+    }
+    CHECK(closest > 0.3); // not a loose bound: within a factor of 3.4 somewhere
+    CHECK(colour_error_bound({2.0, 2.0, 2.0}, {Colour{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}) ==
+          0.0);
+}
+
+namespace {
+
+// A long triangle from near the camera far into the distance, red near, blue far.
+const std::string steep_triangle = R"(
+[image]
+width = 64
+height = 64
+[camera]
+position = [0.0, 0.0, 0.0]
+target = [0.0, 0.0, 1.0]
+fov = 60
+[[mesh]]
+name = "steep"
+primitive = "triangles"
+positions = [[-1.0, -1.0, 1.0], [1.0, -1.0, 1.0], [0.0, 0.3, 12.0]]
+colours = [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
+)";
+
+/// The colour of the steep triangle at the point a pixel centre sees: the ray from the
+/// eye through (px, py) meets the triangle's plane; barycentrics there, in world space.
+Colour seen_colour(const Scene& scene, double px, double py) {
+    const auto& t = scene.meshes[0].triangles[0];
+    const double f =
+        0.5 * scene.height / std::tan(scene.camera.fov_degrees * std::acos(-1.0) / 360.0);
+    const glm::dvec3 ray{(px - 0.5 * scene.width) / f, -(py - 0.5 * scene.height) / f,
+                         1.0};
+    const glm::dvec3 a = t[0].position, b = t[1].position, c = t[2].position;
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const glm::dvec3 p = ray * (glm::dot(n, a) / glm::dot(n, ray));
+    const double area = glm::length(n);
+    const double la = glm::length(glm::cross(b - p, c - p)) / area;
+    const double lb = glm::length(glm::cross(c - p, a - p)) / area;
+    return la * t[0].colour + lb * t[1].colour + (1.0 - la - lb) * t[2].colour;
+}
+
+} // namespace
+
+TEST_CASE("perspective-correct colours are the colour of the point each pixel sees") {
+    Scene scene = parse_scene(steep_triangle + "[render]\ncolours = \"perspective\"\n",
+                              "steep.toml", ".");
+    const RenderResult corrected = render_scene(scene);
+    scene.options.colours = ColourInterpolation::screen;
+    const RenderResult screen = render_scene(scene);
+    int corrected_worst = 0, screen_worst = 0;
+    long long covered = 0;
+    for (int y = 0; y < scene.height; ++y) {
+        for (int x = 0; x < scene.width; ++x) {
+            const Rgba8 got = corrected.image.at(x, y);
+            if (got == Rgba8{0, 0, 0, 255}) {
+                continue; // background
+            }
+            ++covered;
+            const Rgba8 want = to_rgba8(seen_colour(scene, x + 0.5, y + 0.5));
+            const Rgba8 linear = screen.image.at(x, y);
+            for (const auto& [a, b] : {std::pair{got.r, want.r}, {got.b, want.b}}) {
+                corrected_worst = std::max(corrected_worst, std::abs(int(a) - int(b)));
+            }
+            for (const auto& [a, b] : {std::pair{linear.r, want.r}, {linear.b, want.b}}) {
+                screen_worst = std::max(screen_worst, std::abs(int(a) - int(b)));
+            }
+        }
+    }
+    CHECK(covered > 500);
+    CHECK(corrected_worst <= 1); // rounding to 8 bits only
+    CHECK(screen_worst > 20);    // the uncorrected path is visibly wrong here
+    CHECK(corrected.report.colour_perspective.pixels == corrected.report.colour.pixels);
+    CHECK(corrected.report.colour_perspective.divides == corrected.report.colour.pixels);
+    CHECK(screen.report.colour_perspective.pixels == 0);
+}
+
+TEST_CASE("auto corrects colours only on meshes whose bound exceeds the budget") {
+    const Scene scene = parse_scene(steep_triangle + R"(
+[[mesh]]
+name = "facing"
+primitive = "triangles"
+positions = [[-0.5, 0.5, 3.0], [0.5, 0.5, 3.0], [0.0, 0.9, 3.0]]
+colours = [[0.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 1.0]]
+[render]
+colours = "auto"
+)",
+                                    "auto.toml", ".");
+    const RenderResult result = render_scene(scene);
+    CHECK(result.report.colour.triangles == 2);
+    CHECK(result.report.colour_perspective.triangles == 1); // the steep one only
+    Scene everything = scene;
+    everything.options.colours = ColourInterpolation::perspective;
+    const RenderResult all = render_scene(everything);
+    CHECK(all.report.colour_perspective.triangles == 2);
+    // Constant depth: both paths agree, so auto's image is the all-perspective one to
+    // within 8-bit rounding of the divide.
+    int worst = 0;
+    for (std::size_t k = 0; k < all.image.pixels().size(); ++k) {
+        const Rgba8 a = all.image.pixels()[k], b = result.image.pixels()[k];
+        worst = std::max({worst, std::abs(int(a.r) - int(b.r)),
+                          std::abs(int(a.g) - int(b.g)), std::abs(int(a.b) - int(b.b))});
+    }
+    CHECK(worst <= 1);
+}

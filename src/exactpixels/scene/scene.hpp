@@ -63,6 +63,13 @@ enum class DepthMode {
     automatic ///< on only when meshes can overlap on screen (the default)
 };
 
+/// How vertex colours are interpolated (@sec:scene-colours).
+enum class ColourInterpolation {
+    screen,      ///< linearly on screen (Gouraud; wrong under perspective)
+    perspective, ///< c/w over 1/w, as chapter 3 interpolates u: one divide per pixel
+    automatic    ///< per mesh: perspective when screen's error bound exceeds the budget
+};
+
 /// The render options of a scene.
 struct RenderOptions {
     Precision precision = Precision::float64; ///< the mappers' inner-loop arithmetic
@@ -70,6 +77,9 @@ struct RenderOptions {
     double budget = 0.5;  ///< auto: the largest texel error allowed, texels, > 0
     bool rounding = true; ///< chapter 4's rounding modifier (false: rule 1 everywhere)
     DepthMode depth = DepthMode::automatic; ///< `depth = true | false | "auto"`
+    /// `colours = "screen" | "perspective" | "auto"`; auto spends `budget` in 8-bit
+    /// levels
+    ColourInterpolation colours = ColourInterpolation::screen;
 };
 
 /// A named texture of a scene.

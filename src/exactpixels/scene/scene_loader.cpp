@@ -338,6 +338,13 @@ void read_render(const TableReader& t, RenderOptions& options) {
     if (const auto* n = t.find("rounding")) {
         options.rounding = read_bool(c, *n, t.child("rounding"));
     }
+    if (const auto* n = t.find("colours")) {
+        const std::size_t k =
+            read_choice(c, *n, t.child("colours"), {"screen", "perspective", "auto"});
+        options.colours =
+            std::array{ColourInterpolation::screen, ColourInterpolation::perspective,
+                       ColourInterpolation::automatic}[k];
+    }
     if (const auto* n = t.find("depth")) { // true, false or "auto"
         if (n->is_string()) {
             read_choice(c, *n, t.child("depth"), {"auto"});
@@ -629,7 +636,8 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
     }
     if (const toml::table* t = section("render")) {
         read_render(TableReader(c, *t, "render",
-                                {"precision", "mapper", "budget", "rounding", "depth"}),
+                                {"precision", "mapper", "budget", "rounding", "depth",
+                                 "colours"}),
                     scene.options);
     }
     if (const toml::table* t = section("textures")) {

@@ -134,6 +134,21 @@ long long mapper_divides(Mapper mapper, int count) {
 }
 //< mapper-divides
 
+//> colour-bound
+double colour_error_bound(const std::array<double, 3>& w,
+                          const std::array<Colour, 3>& c) {
+    const double w_min = std::min({w[0], w[1], w[2]});
+    const double w_max = std::max({w[0], w[1], w[2]});
+    assert(w_min > 0.0);
+    double range = 0.0; // the largest change of one channel over the triangle
+    for (int k = 0; k < 3; ++k) {
+        range = std::max(range, std::max({c[0][k], c[1][k], c[2][k]}) -
+                                    std::min({c[0][k], c[1][k], c[2][k]}));
+    }
+    return 2.0 * affine_error_bound(w_max / w_min) * range * 255.0;
+}
+//< colour-bound
+
 void ScreenBox::add(Point2 p) {
     x0 = std::min(x0, p.x);
     y0 = std::min(y0, p.y);

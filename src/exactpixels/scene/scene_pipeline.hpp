@@ -73,6 +73,12 @@ AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget);
 /// quadratic subdivided 10 P; P = ceil(count / span) pieces (@eq:scene-divides).
 long long mapper_divides(Mapper mapper, int count);
 
+/// The worst error, in 8-bit levels (1/255), of a colour interpolated linearly on
+/// screen over a triangle whose corners have depths w (> 0) and colours c, against the
+/// perspective-correct colour: 2 affine_error_bound(w_max / w_min) times the largest
+/// channel range, times 255 (@eq:scene-colour-bound). Zero when the depths are equal.
+double colour_error_bound(const std::array<double, 3>& w, const std::array<Colour, 3>& c);
+
 //> depth-plan
 /// The smallest screen rectangle holding some points, pixels (empty until a point is
 /// added).

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cassert>
 #include <chrono>
 #include <cmath>
@@ -21,7 +22,7 @@
 namespace exactpixels {
 
 long long RenderReport::divides() const {
-    long long total = auto_choice.divides;
+    long long total = auto_choice.divides + colour_perspective.divides;
     for (const StageCounter& m : mappers) {
         total += m.divides;
     }
@@ -83,6 +84,7 @@ struct MeshContext {
     TexelMap* coordinates;
     RenderReport& report;
     DepthBuffer* depth;        // the depth stage's buffer, or nullptr when it is off
+    bool colour_perspective;   // colours as c/w over 1/w (else linear on screen)
     std::vector<Rgba8> row;    // one span of shaded pixels
     std::vector<char> visible; // depth stage: which pixels of the span passed the test
 };
@@ -128,11 +130,20 @@ void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
         report.texture.triangles += 1;
     }
     // Colour stage setup: only for meshes with vertex colours.
-    std::array<ScreenPlane, 3> rgb{};
+    std::array<ScreenPlane, 3> rgb{}; // c, or c/w when perspective-correct
+    ScreenPlane one_w{};
     if (m.stages.colour) {
+        const bool corrected = m.colour_perspective;
         for (int c = 0; c < 3; ++c) {
-            rgb[static_cast<std::size_t>(c)] =
-                plane_through(p, {colours[0][c], colours[1][c], colours[2][c]});
+            std::array<double, 3> value{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                value[k] = corrected ? colours[k][c] / tv[k].w : colours[k][c];
+            }
+            rgb[static_cast<std::size_t>(c)] = plane_through(p, value);
+        }
+        if (corrected) {
+            one_w = plane_through(p, {1.0 / tv[0].w, 1.0 / tv[1].w, 1.0 / tv[2].w});
+            report.colour_perspective.triangles += 1;
         }
         report.colour.triangles += 1;
     }
@@ -237,9 +248,17 @@ void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
             const Clock::time_point t0 = Clock::now();
             Colour c{rgb[0].at(x, y), rgb[1].at(x, y), rgb[2].at(x, y)};
             const Colour dc{rgb[0].g.dx, rgb[1].g.dx, rgb[2].g.dx};
+            double q = one_w.at(x, y); // perspective: 1/w, as chapter 3's exact mapper
             for (Rgba8& pixel : m.row) {
-                pixel = m.stages.texture ? multiply(pixel, c) : to_rgba8(c);
+                const Colour shade = m.colour_perspective ? c * (1.0 / q) : c;
+                pixel = m.stages.texture ? multiply(pixel, shade) : to_rgba8(shade);
                 c += dc;
+                q += one_w.g.dx;
+            }
+            if (m.colour_perspective) {
+                report.colour_perspective.spans += 1;
+                report.colour_perspective.pixels += count;
+                report.colour_perspective.divides += count;
             }
             report.colour.spans += 1;
             report.colour.pixels += count;
@@ -393,6 +412,19 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
     }
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& mesh = scene.meshes[i];
+        //> choose-colours
+        bool corrected = scene.options.colours == ColourInterpolation::perspective;
+        if (plan_mesh(mesh).colour) { // the screen path's bound, against the budget
+            for (const ProjectedTriangle& t : meshes[i]) {
+                const double bound = colour_error_bound(
+                    {t.corners[0].w, t.corners[1].w, t.corners[2].w}, t.colours);
+                report.colour_bound = std::max(report.colour_bound, bound);
+                corrected = corrected ||
+                            (scene.options.colours == ColourInterpolation::automatic &&
+                             bound > scene.options.budget);
+            }
+        }
+        //< choose-colours
         MeshContext m{scene,
                       mesh,
                       plan_mesh(mesh),
@@ -401,6 +433,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                       coordinates,
                       report,
                       depth ? &*depth : nullptr,
+                      corrected,
                       {},
                       {}};
         try {
@@ -434,6 +467,7 @@ std::string format_report(const RenderReport& r) {
     line("raster", r.raster, true);
     line("flat colour", r.flat, true);
     line("vertex colour", r.colour, true);
+    line("  perspective", r.colour_perspective, false);
     line("texture", r.texture, true);
     line("auto choice", r.auto_choice, false);
     for (std::size_t k = 0; k < r.mappers.size(); ++k) {

@@ -38,22 +38,25 @@ struct StageCounter {
 
 /// What ran while rendering a scene: one counter per stage and per mapper.
 struct RenderReport {
-    StageCounter geometry;    ///< triangles moved to view space and projected
-    StageCounter clipping;    ///< triangles that crossed the near plane
-    StageCounter culling;     ///< triangles skipped because their back faces the camera
-    StageCounter depth;       ///< depth stage: the triangles, spans and pixels it tested
-    StageCounter hidden;      ///< pixels that failed the depth test (spans with any)
-    StageCounter raster;      ///< coverage: the triangles, spans and pixels drawn
-    StageCounter flat;        ///< pixels written with the mesh's flat colour
-    StageCounter colour;      ///< vertex colours interpolated and applied
-    StageCounter texture;     ///< texture coordinates computed and texels sampled
-    StageCounter auto_choice; ///< spans whose mapper `auto` chose, and its divides
+    StageCounter geometry; ///< triangles moved to view space and projected
+    StageCounter clipping; ///< triangles that crossed the near plane
+    StageCounter culling;  ///< triangles skipped because their back faces the camera
+    StageCounter depth;    ///< depth stage: the triangles, spans and pixels it tested
+    StageCounter hidden;   ///< pixels that failed the depth test (spans with any)
+    StageCounter raster;   ///< coverage: the triangles, spans and pixels drawn
+    StageCounter flat;     ///< pixels written with the mesh's flat colour
+    StageCounter colour;   ///< vertex colours interpolated and applied
+    StageCounter colour_perspective; ///< of those, perspective-correct (c/w over 1/w)
+    StageCounter texture;            ///< texture coordinates computed and texels sampled
+    StageCounter auto_choice;        ///< spans whose mapper `auto` chose, and its divides
     std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
     double seconds = 0.0;                ///< the whole render
     bool depth_on = false;               ///< whether the depth stage ran
-    std::string depth_reason;            ///< why it ran or not (plan_depth)
+    double colour_bound =
+        0.0; ///< largest screen-colour error bound, levels (colour meshes)
+    std::string depth_reason; ///< why it ran or not (plan_depth)
 
-    /// Every divide performed: the mappers' and auto's.
+    /// Every divide performed: the mappers', auto's and the perspective colours'.
     long long divides() const;
 };
 
