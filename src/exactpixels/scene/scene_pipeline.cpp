@@ -226,11 +226,11 @@ DepthPlan plan_depth(DepthMode mode, const std::vector<MeshFootprint>& meshes,
     for (std::size_t i = 0; i < meshes.size(); ++i) {
         const ScreenBox a = meshes[i].box.clipped(viewport);
         if (meshes[i].can_overlap_itself && !a.empty()) {
-            return {true, fmt::format("auto: '{}' can overlap itself", meshes[i].name)};
+            return {true, fmt::format("auto: {} can overlap itself", meshes[i].name)};
         }
         for (std::size_t j = i + 1; j < meshes.size(); ++j) {
             if (a.intersects(meshes[j].box.clipped(viewport))) {
-                return {true, fmt::format("auto: '{}' and '{}' overlap on screen",
+                return {true, fmt::format("auto: {} and {} overlap on screen",
                                           meshes[i].name, meshes[j].name)};
             }
         }

@@ -99,7 +99,7 @@ struct ScreenBox {
 
 /// What the depth plan needs to know of a mesh after the geometry stage.
 struct MeshFootprint {
-    std::string name;                ///< for the report
+    std::string name;                ///< for the report: its key path, mesh[k]
     ScreenBox box;                   ///< around its projected, unculled triangles
     bool can_overlap_itself = false; ///< can_overlap_itself(mesh)
 };
@@ -113,7 +113,7 @@ bool can_overlap_itself(const SceneMesh& mesh);
 /// The depth stage's decision and the reason the report shows.
 struct DepthPlan {
     bool on = false;    ///< run the depth stage
-    std::string reason; ///< e.g. "auto: 'a' and 'b' overlap on screen"
+    std::string reason; ///< e.g. "auto: mesh[0] and mesh[2] overlap on screen"
 };
 
 /// `depth = true` and `false` decide alone; `auto` turns the stage on when a mesh can

@@ -357,7 +357,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& mesh = scene.meshes[i];
         const bool with_colours = plan_mesh(mesh).colour;
-        footprints[i].name = mesh.name;
+        footprints[i].name = fmt::format("mesh[{}]", i); // as messages name it
         footprints[i].can_overlap_itself = can_overlap_itself(mesh);
         for (const std::array<SceneVertex, 3>& triangle : mesh.triangles) {
             const Clock::time_point t0 = Clock::now();

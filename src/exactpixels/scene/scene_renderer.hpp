@@ -13,7 +13,8 @@
 // each pixel, ties going to the later triangle (depth_buffer.hpp, plan_depth). Coverage
 // is chapter 1's fixed-point scanline rasterizer (vertices snapped to 1/256 px, top-left
 // rule); texture coordinates come from chapter 3's span mappers with chapter 4's
-// rounding; colours are interpolated linearly on screen. Timings are wall clock seconds
+// rounding; vertex colours are interpolated linearly on screen or, as the scene asks,
+// perspective-correct (c/w over 1/w). Timings are wall clock seconds
 // of a single run; counts are exact.
 #pragma once
 
