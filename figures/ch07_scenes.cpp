@@ -1,9 +1,11 @@
 // Chapter 7 figures: the report of every shipped scene, and for the perspective scenes
 // the time, divides and texel error of `auto` against `exact` and `affine`, as Markdown
 // fragments pulled into the chapter (ch07_reports.md, ch07_auto_vs_exact.md), and the
-// error of Gouraud colours against perspective-correct ones (ch07_gouraud_error.md).
+// error of Gouraud colours against perspective-correct ones (ch07_gouraud_error.md), and
+// the depth stage's resolution and cost (ch07_depth_resolution.md, ch07_depth_cost.md).
 // Usage: fig_ch07_scenes FIGURE_DIR
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/gouraud_error.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
@@ -12,9 +14,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 using namespace exactpixels;
 
@@ -80,6 +84,69 @@ int main(int argc, char** argv) {
         if (!(std::ofstream(folder / "ch07_gouraud_error.md") << gouraud)) {
             throw Error((folder / "ch07_gouraud_error.md").string() + ": cannot write");
         }
+        // The depth buffer's relative resolution near and far (near plane at 0.1).
+        std::string resolution = "| depth $w$ | float $1/w$ | 24-bit fixed $1/w$ |\n"
+                                 "|---:|---:|---:|\n";
+        for (const double w : {0.1, 1.0, 10.0, 100.0, 1000.0}) {
+            resolution +=
+                fmt::format("| {} | {:.2e} | {:.2e} |\n", w, depth_resolution(w),
+                            fixed_depth_resolution(w, 0.1, 24));
+        }
+        std::ofstream(folder / "ch07_depth_resolution.md") << resolution;
+        // What the depth stage costs: every shipped scene with the stage forced on and
+        // forced off (off may be wrong; it is the time without the stage).
+        std::string cost = "| scene | auto turns it | pixels tested | hidden | "
+                           "ms with depth | ms without | depth stage ms |\n"
+                           "|---|---|---:|---:|---:|---:|---:|\n";
+        for (const std::filesystem::path& path : shipped_scenes()) {
+            Scene scene = load_scene(path);
+            const bool automatic = render_scene(scene).report.depth_on;
+            scene.options.depth = DepthMode::on;
+            const RenderReport on = render_scene(scene).report;
+            const double with_ms = best_ms(scene, 7);
+            double stage_ms = 1e300;
+            for (int k = 0; k < 7; ++k) {
+                stage_ms =
+                    std::min(stage_ms, 1e3 * render_scene(scene).report.depth.seconds);
+            }
+            scene.options.depth = DepthMode::off;
+            cost += fmt::format("| {} | {} | {} | {} | {:.2f} | {:.2f} | {:.3f} |\n",
+                                path.stem().string(), automatic ? "on" : "off",
+                                on.depth.pixels, on.hidden.pixels, with_ms,
+                                best_ms(scene, 7), stage_ms);
+        }
+        std::ofstream(folder / "ch07_depth_cost.md") << cost;
+        // The screen path's colour error on the Gouraud scene, against the corrected one.
+        std::string colours =
+            "| scene | colours | worst (levels) | mean (levels) | "
+            "bound (levels) | divides |\n|---|---|---:|---:|---:|---:|\n";
+        {
+            Scene scene = load_scene(shipped_scene_folder() / "gouraud.toml");
+            scene.options.colours = ColourInterpolation::perspective;
+            const RenderResult exact = render_scene(scene);
+            for (const auto& [word, mode] :
+                 {std::pair{"screen", ColourInterpolation::screen},
+                  std::pair{"auto", ColourInterpolation::automatic},
+                  std::pair{"perspective", ColourInterpolation::perspective}}) {
+                scene.options.colours = mode;
+                const RenderResult r = render_scene(scene);
+                int worst = 0;
+                double sum = 0.0;
+                for (std::size_t k = 0; k < r.image.pixels().size(); ++k) {
+                    const Rgba8 a = r.image.pixels()[k], b = exact.image.pixels()[k];
+                    for (const int d : {int(a.r) - int(b.r), int(a.g) - int(b.g),
+                                        int(a.b) - int(b.b)}) {
+                        worst = std::max(worst, std::abs(d));
+                        sum += std::abs(d);
+                    }
+                }
+                colours +=
+                    fmt::format("| gouraud | {} | {} | {:.4f} | {:.2f} | {} |\n", word,
+                                worst, sum / (3.0 * double(r.image.pixels().size())),
+                                r.report.colour_bound, r.report.divides());
+            }
+        }
+        std::ofstream(folder / "ch07_colours.md") << colours;
         std::ofstream(folder / "ch07_reports.md") << reports;
         std::ofstream(folder / "ch07_auto_vs_exact.md") << table;
         std::printf("wrote %s and %s\n", (folder / "ch07_reports.md").c_str(),

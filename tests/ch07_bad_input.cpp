@@ -112,6 +112,13 @@ std::vector<BadScene> bad_scenes() {
         {"a texture file that is a FIFO",
          scene_with("[textures.pipe]\nkind = \"png\"\nfile = \"fifo.png\"\n", ""), "6:8",
          "textures.pipe.file", "not a regular file"},
+        {"a depth mode that is not one", scene_with("[render]\ndepth = \"maybe\"\n", ""),
+         "5:9", "render.depth", "not one of: auto"},
+        {"an unknown colour interpolation",
+         scene_with("[render]\ncolours = \"smooth\"\n", ""), "5:11", "render.colours",
+         "not one of: screen"},
+        {"a number for the depth mode", scene_with("[render]\ndepth = 1\n", ""), "5:9",
+         "render.depth", "expected true, false or \"auto\""},
     };
 }
 

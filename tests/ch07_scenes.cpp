@@ -1,5 +1,6 @@
 // Chapter 7 tests: the shipped scenes render; each mesh runs only the stages it calls
 // for; `auto` stays within its budget; the derived bounds and divide counts hold.
+#include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/gouraud_error.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_pipeline.hpp"
@@ -10,6 +11,7 @@
 #include "exactpixels/texture/texture.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -148,7 +150,7 @@ TEST_CASE("a scene without textures runs no texture stage" *
 }
 
 TEST_CASE("geometry in front of the near plane does no clipping work") {
-    for (const char* name : {"corridor", "horizon", "gouraud", "sprites"}) {
+    for (const char* name : {"corridor", "horizon", "gouraud", "sprites", "boxes"}) {
         INFO(name);
         CHECK(render_scene(shipped(name)).report.clipping.triangles == 0);
     }
@@ -432,4 +434,361 @@ TEST_CASE("the chapter's TOML listings are scenes the loader accepts") {
         }
     }
     CHECK(blocks >= 1);
+}
+
+// ---- The depth stage (@sec:scene-depth) ----
+
+namespace {
+
+/// A camera-facing or tilted quad as a TOML mesh: corners, flat colour.
+std::string quad_mesh(const std::string& name, const std::string& corners,
+                      const std::string& colour) {
+    return "[[mesh]]\nname = \"" + name +
+           "\"\nprimitive = \"quad\"\ncorners = " + corners + "\ncolour = " + colour +
+           "\n";
+}
+
+const std::string depth_header = R"(
+[image]
+width = 96
+height = 72
+[camera]
+position = [0.0, 0.0, -4.0]
+target = [0.0, 0.0, 0.0]
+)";
+
+// Two tilted quads that overlap on screen without crossing in space: "near" is nearer
+// than "far" everywhere they overlap.
+const std::string near_quad = quad_mesh(
+    "near", "[[-1.4, -1.0, -0.5], [0.6, -1.0, 0.3], [0.6, 1.0, 0.3], [-1.4, 1.0, -0.5]]",
+    "[1.0, 0.2, 0.2]");
+const std::string far_quad = quad_mesh(
+    "far", "[[-0.6, -1.2, 1.5], [1.5, -1.2, 0.9], [1.5, 0.8, 0.9], [-0.6, 0.8, 1.5]]",
+    "[0.2, 0.3, 1.0]");
+
+Scene depth_scene(const std::string& render, const std::string& meshes) {
+    return parse_scene(depth_header + render + meshes, "depth.toml", ".");
+}
+
+} // namespace
+
+TEST_CASE("two overlapping quads give the same image in either file order") {
+    const RenderResult near_first = render_scene(depth_scene("", near_quad + far_quad));
+    const RenderResult far_first = render_scene(depth_scene("", far_quad + near_quad));
+    CHECK(near_first.report.depth_on);
+    CHECK(far_first.report.depth_on);
+    CHECK(near_first.image == far_first.image);
+    // The reference: painted far to near without a depth stage, the order that is right.
+    const RenderResult painted =
+        render_scene(depth_scene("[render]\ndepth = false\n", far_quad + near_quad));
+    CHECK_FALSE(painted.report.depth_on);
+    CHECK(near_first.image == painted.image);
+    // Drawn near first, the far quad lost exactly the pixels the near one covers twice.
+    const RenderResult wrong =
+        render_scene(depth_scene("[render]\ndepth = false\n", near_quad + far_quad));
+    long long differ = 0;
+    for (std::size_t k = 0; k < wrong.image.pixels().size(); ++k) {
+        differ += wrong.image.pixels()[k] != painted.image.pixels()[k];
+    }
+    CHECK(differ > 100); // the overlap is large: without depth the order matters
+    CHECK(near_first.report.hidden.pixels == differ);
+    CHECK(far_first.report.hidden.pixels == 0); // near drawn last: nothing fails the test
+}
+
+TEST_CASE("a box without back-face culling is drawn correctly by the depth stage") {
+    const std::string box = R"(
+[image]
+width = 80
+height = 64
+[camera]
+position = [3.0, 2.5, -4.0]
+target = [0.0, 0.0, 0.0]
+[textures.f]
+kind = "f"
+cell = 2
+[[mesh]]
+primitive = "box"
+texture = "f"
+centre = [0.0, 0.0, 0.0]
+size = [1.0, 2.0, 1.5]
+texels_per_unit = 16
+)";
+    const Scene culled = parse_scene(box + "cull = \"back\"\n", "box.toml", ".");
+    const Scene whole = parse_scene(box, "box.toml", ".");
+    const RenderResult reference = render_scene(culled);
+    const RenderResult result = render_scene(whole);
+    CHECK_FALSE(reference.report.depth_on); // a culled convex mesh cannot overlap itself
+    CHECK(result.report.depth_on);          // all twelve faces can
+    CHECK(result.report.raster.triangles == 12);
+    CHECK(result.report.hidden.pixels > 0);
+    CHECK(result.image == reference.image);
+    // Without either, the back faces drawn last show through: the image is wrong.
+    Scene painted = whole;
+    painted.options.depth = DepthMode::off;
+    CHECK_FALSE(render_scene(painted).image == reference.image);
+}
+
+TEST_CASE("a scene whose meshes cannot overlap runs no depth stage") {
+    const std::string apart =
+        quad_mesh("left",
+                  "[[-1.8, -0.5, 0.0], [-0.8, -0.5, 0.0], [-0.8, 0.5, 0.5], "
+                  "[-1.8, 0.5, 0.5]]",
+                  "[1, 1, 0]") +
+        quad_mesh("right",
+                  "[[0.8, -0.5, 0.0], [1.8, -0.5, 1.0], [1.8, 0.5, 1.0], "
+                  "[0.8, 0.5, 0.0]]",
+                  "[0, 1, 1]");
+    const RenderResult result = render_scene(depth_scene("", apart));
+    CHECK_FALSE(result.report.depth_on);
+    CHECK(result.report.depth.triangles == 0);
+    CHECK(result.report.depth.pixels == 0);
+    CHECK(format_report(result.report).find("depth stage: off") != std::string::npos);
+    const RenderResult forced =
+        render_scene(depth_scene("[render]\ndepth = true\n", apart));
+    CHECK(forced.report.depth_on);
+    CHECK(forced.report.depth.triangles == 4);
+    CHECK(forced.report.depth.pixels == forced.report.raster.pixels);
+    CHECK(forced.report.hidden.pixels == 0);
+    CHECK(forced.image == result.image);
+}
+
+TEST_CASE("depth auto leaves the image of every scene laid out in order as it was") {
+    // The five scenes of the first sections are laid out so that file order is right
+    // (boxes.toml, made to need depth, is tested below).
+    for (const char* name : {"corridor", "horizon", "gouraud", "sprites", "near_plane"}) {
+        INFO(name);
+        Scene scene = shipped(name);
+        const RenderResult with_auto = render_scene(scene);
+        scene.options.depth = DepthMode::off;
+        const RenderResult without = render_scene(scene);
+        CHECK(with_auto.image == without.image);
+    }
+}
+
+TEST_CASE("a depth tie between coplanar triangles goes to the one drawn later") {
+    // Camera-facing quads at the same depth: 1/w is the same constant on both, so the
+    // keys are exactly equal and every overlapping pixel is a tie.
+    const std::string a = quad_mesh(
+        "a", "[[-1, -1, 1], [0.5, -1, 1], [0.5, 0.5, 1], [-1, 0.5, 1]]", "[1,0,0]");
+    const std::string b = quad_mesh(
+        "b", "[[-0.5, -0.5, 1], [1, -0.5, 1], [1, 1, 1], [-0.5, 1, 1]]", "[0,0,1]");
+    for (const std::string& order : {a + b, b + a}) {
+        const RenderResult tested =
+            render_scene(depth_scene("[render]\ndepth = true\n", order));
+        const RenderResult painted =
+            render_scene(depth_scene("[render]\ndepth = false\n", order));
+        CHECK(tested.report.hidden.pixels == 0); // every tie passed the test
+        CHECK(tested.image == painted.image);    // later on top, as without depth
+    }
+}
+
+TEST_CASE("float 1/w resolves the same relative depth near and far") {
+    const double near = 0.1;
+    for (double w = near; w <= 1e4; w *= 1.37) {
+        INFO(w);
+        const double e = depth_resolution(w);
+        CHECK(e >= std::ldexp(1.0, -25));
+        CHECK(e <= 1.01 * std::ldexp(1.0, -23));
+        // Depths farther apart than e (relative) always store different keys, nearer
+        // one larger; and some pair e apart at most shares a key (the range itself).
+        const float q = nearness_key(1.0 / w);
+        CHECK(nearness_key(1.0 / (w * (1.0 + 1.01 * e))) < q);
+        CHECK(nearness_key(1.0 / (w * (1.0 - 1.01 * e))) > q);
+        long long shared = 0;
+        for (int k = -8; k <= 8; ++k) {
+            shared += nearness_key(1.0 / (w * (1.0 + k * e / 16))) == q;
+        }
+        CHECK(shared >= 8); // half of a window as wide as e shares the key
+        // A 24-bit fixed-point 1/w loses resolution in proportion to the distance.
+        const double fixed = fixed_depth_resolution(w, near, 24);
+        CHECK(fixed == doctest::Approx(w / near * std::ldexp(1.0, -24)).epsilon(0.01));
+    }
+    CHECK(fixed_depth_resolution(1e3, near, 24) > 1000.0 * depth_resolution(1e3));
+}
+
+TEST_CASE("the depth stage separates parallel quads near and far") {
+    for (const double w : {0.2, 3.0, 500.0}) {
+        INFO(w);
+        const double far_w = w * (1.0 + std::ldexp(1.0, -21));
+        const auto at = [](double z, double s) {
+            return fmt::format("[[{0}, {0}, {1}], [{2}, {0}, {1}], [{2}, {2}, {1}], "
+                               "[{0}, {2}, {1}]]",
+                               -s, z, s);
+        };
+        // The camera at the origin looks along +z; the quads fill most of the image.
+        const std::string scene =
+            "[image]\nwidth = 48\nheight = 40\n[camera]\nposition = [0, 0, 0]\n"
+            "target = [0, 0, 1]\nnear = 0.1\n[render]\ndepth = true\n" +
+            quad_mesh("near", at(w, 0.4 * w), "[1, 0, 0]") +
+            quad_mesh("far", at(far_w, 0.4 * w), "[0, 0, 1]");
+        const RenderResult r = render_scene(parse_scene(scene, "parallel.toml", "."));
+        long long red = 0, blue = 0;
+        for (const Rgba8 pixel : r.image.pixels()) {
+            red += pixel.r == 255;
+            blue += pixel.b != 0;
+        }
+        CHECK(blue == 0); // the far quad shows nowhere
+        CHECK(red > 500);
+        // Every pixel of the far quad failed the test: all but the near quad's.
+        CHECK(r.report.hidden.pixels == r.report.raster.pixels - red);
+    }
+}
+
+TEST_CASE("the boxes scene looks the same in every order of its meshes") {
+    Scene scene = shipped("boxes");
+    const RenderResult result = render_scene(scene);
+    CHECK(result.report.depth_on);
+    CHECK(result.report.hidden.pixels > 0);
+    std::sort(scene.meshes.begin(), scene.meshes.end(),
+              [](const SceneMesh& a, const SceneMesh& b) { return a.name < b.name; });
+    int orders = 0;
+    do { // all 24 orders of the four meshes
+        INFO(orders);
+        CHECK(render_scene(scene).image == result.image);
+        ++orders;
+    } while (std::next_permutation(
+        scene.meshes.begin(), scene.meshes.end(),
+        [](const SceneMesh& a, const SceneMesh& b) { return a.name < b.name; }));
+    CHECK(orders == 24);
+    // Without the depth stage no order is right: the long box passes through the tall
+    // one, so each hides part of the other.
+    scene.options.depth = DepthMode::off;
+    CHECK_FALSE(render_scene(scene).image == result.image);
+}
+
+// ---- Perspective-correct vertex colours (@sec:scene-colours) ----
+
+TEST_CASE("the screen-colour error bound holds on random triangles") {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> depth(1.0, 30.0), unit(0.0, 1.0);
+    double closest = 0.0; // the largest measured / bound seen
+    for (int trial = 0; trial < 400; ++trial) {
+        const std::array<double, 3> w{depth(rng), depth(rng), depth(rng)};
+        std::array<Colour, 3> c{};
+        for (Colour& colour : c) {
+            colour = {unit(rng), unit(rng), unit(rng)};
+        }
+        const double bound = colour_error_bound(w, c);
+        double worst = 0.0; // over a grid of screen barycentrics
+        const int n = 64;
+        for (int i = 0; i <= n; ++i) {
+            for (int j = 0; i + j <= n; ++j) {
+                const std::array<double, 3> l{double(i) / n, double(j) / n,
+                                              double(n - i - j) / n};
+                const double q = l[0] / w[0] + l[1] / w[1] + l[2] / w[2];
+                for (int k = 0; k < 3; ++k) {
+                    const double screen =
+                        l[0] * c[0][k] + l[1] * c[1][k] + l[2] * c[2][k];
+                    const double exact = (l[0] * c[0][k] / w[0] + l[1] * c[1][k] / w[1] +
+                                          l[2] * c[2][k] / w[2]) /
+                                         q;
+                    worst = std::max(worst, 255.0 * std::abs(screen - exact));
+                }
+            }
+        }
+        CHECK(worst <= bound * (1.0 + 1e-12));
+        closest = std::max(closest, worst / bound);
+    }
+    CHECK(closest > 0.3); // not a loose bound: within a factor of 3.4 somewhere
+    CHECK(colour_error_bound({2.0, 2.0, 2.0}, {Colour{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}) ==
+          0.0);
+}
+
+namespace {
+
+// A long triangle from near the camera far into the distance, red near, blue far.
+const std::string steep_triangle = R"(
+[image]
+width = 64
+height = 64
+[camera]
+position = [0.0, 0.0, 0.0]
+target = [0.0, 0.0, 1.0]
+fov = 60
+[[mesh]]
+name = "steep"
+primitive = "triangles"
+positions = [[-1.0, -1.0, 1.0], [1.0, -1.0, 1.0], [0.0, 0.3, 12.0]]
+colours = [[1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]
+)";
+
+/// The colour of the steep triangle at the point a pixel centre sees: the ray from the
+/// eye through (px, py) meets the triangle's plane; barycentrics there, in world space.
+Colour seen_colour(const Scene& scene, double px, double py) {
+    const auto& t = scene.meshes[0].triangles[0];
+    const double f =
+        0.5 * scene.height / std::tan(scene.camera.fov_degrees * std::acos(-1.0) / 360.0);
+    const glm::dvec3 ray{(px - 0.5 * scene.width) / f, -(py - 0.5 * scene.height) / f,
+                         1.0};
+    const glm::dvec3 a = t[0].position, b = t[1].position, c = t[2].position;
+    const glm::dvec3 n = glm::cross(b - a, c - a);
+    const glm::dvec3 p = ray * (glm::dot(n, a) / glm::dot(n, ray));
+    const double area = glm::length(n);
+    const double la = glm::length(glm::cross(b - p, c - p)) / area;
+    const double lb = glm::length(glm::cross(c - p, a - p)) / area;
+    return la * t[0].colour + lb * t[1].colour + (1.0 - la - lb) * t[2].colour;
+}
+
+} // namespace
+
+TEST_CASE("perspective-correct colours are the colour of the point each pixel sees") {
+    Scene scene = parse_scene(steep_triangle + "[render]\ncolours = \"perspective\"\n",
+                              "steep.toml", ".");
+    const RenderResult corrected = render_scene(scene);
+    scene.options.colours = ColourInterpolation::screen;
+    const RenderResult screen = render_scene(scene);
+    int corrected_worst = 0, screen_worst = 0;
+    long long covered = 0;
+    for (int y = 0; y < scene.height; ++y) {
+        for (int x = 0; x < scene.width; ++x) {
+            const Rgba8 got = corrected.image.at(x, y);
+            if (got == Rgba8{0, 0, 0, 255}) {
+                continue; // background
+            }
+            ++covered;
+            const Rgba8 want = to_rgba8(seen_colour(scene, x + 0.5, y + 0.5));
+            const Rgba8 linear = screen.image.at(x, y);
+            for (const auto& [a, b] : {std::pair{got.r, want.r}, {got.b, want.b}}) {
+                corrected_worst = std::max(corrected_worst, std::abs(int(a) - int(b)));
+            }
+            for (const auto& [a, b] : {std::pair{linear.r, want.r}, {linear.b, want.b}}) {
+                screen_worst = std::max(screen_worst, std::abs(int(a) - int(b)));
+            }
+        }
+    }
+    CHECK(covered > 500);
+    CHECK(corrected_worst <= 1); // rounding to 8 bits only
+    CHECK(screen_worst > 20);    // the uncorrected path is visibly wrong here
+    CHECK(corrected.report.colour_perspective.pixels == corrected.report.colour.pixels);
+    CHECK(corrected.report.colour_perspective.divides == corrected.report.colour.pixels);
+    CHECK(screen.report.colour_perspective.pixels == 0);
+}
+
+TEST_CASE("auto corrects colours only on meshes whose bound exceeds the budget") {
+    const Scene scene = parse_scene(steep_triangle + R"(
+[[mesh]]
+name = "facing"
+primitive = "triangles"
+positions = [[-0.5, 0.5, 3.0], [0.5, 0.5, 3.0], [0.0, 0.9, 3.0]]
+colours = [[0.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 1.0]]
+[render]
+colours = "auto"
+)",
+                                    "auto.toml", ".");
+    const RenderResult result = render_scene(scene);
+    CHECK(result.report.colour.triangles == 2);
+    CHECK(result.report.colour_perspective.triangles == 1); // the steep one only
+    Scene everything = scene;
+    everything.options.colours = ColourInterpolation::perspective;
+    const RenderResult all = render_scene(everything);
+    CHECK(all.report.colour_perspective.triangles == 2);
+    // Constant depth: both paths agree, so auto's image is the all-perspective one to
+    // within 8-bit rounding of the divide.
+    int worst = 0;
+    for (std::size_t k = 0; k < all.image.pixels().size(); ++k) {
+        const Rgba8 a = all.image.pixels()[k], b = result.image.pixels()[k];
+        worst = std::max({worst, std::abs(int(a.r) - int(b.r)),
+                          std::abs(int(a.g) - int(b.g)), std::abs(int(a.b) - int(b.b))});
+    }
+    CHECK(worst <= 1);
 }

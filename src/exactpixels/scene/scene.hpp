@@ -56,12 +56,30 @@ struct MapperChoice {
     Mapper mapper = {};    ///< the mapper when not automatic
 };
 
+/// Whether the renderer runs a depth stage (@sec:scene-depth).
+enum class DepthMode {
+    off,      ///< no depth stage: meshes drawn in file order, later on top
+    on,       ///< a depth buffer: the nearest surface wins, ties go to the later one
+    automatic ///< on only when meshes can overlap on screen (the default)
+};
+
+/// How vertex colours are interpolated (@sec:scene-colours).
+enum class ColourInterpolation {
+    screen,      ///< linearly on screen (Gouraud; wrong under perspective)
+    perspective, ///< c/w over 1/w, as chapter 3 interpolates u: one divide per pixel
+    automatic    ///< per mesh: perspective when screen's error bound exceeds the budget
+};
+
 /// The render options of a scene.
 struct RenderOptions {
     Precision precision = Precision::float64; ///< the mappers' inner-loop arithmetic
     MapperChoice mapper = {};                 ///< which mapper, or auto
     double budget = 0.5;  ///< auto: the largest texel error allowed, texels, > 0
     bool rounding = true; ///< chapter 4's rounding modifier (false: rule 1 everywhere)
+    DepthMode depth = DepthMode::automatic; ///< `depth = true | false | "auto"`
+    /// `colours = "screen" | "perspective" | "auto"`; auto spends `budget` in 8-bit
+    /// levels
+    ColourInterpolation colours = ColourInterpolation::screen;
 };
 
 /// A named texture of a scene.

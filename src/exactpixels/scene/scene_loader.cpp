@@ -355,6 +355,26 @@ void read_render(const TableReader& t, RenderOptions& options) {
     if (const auto* n = t.find("rounding")) {
         options.rounding = read_bool(c, *n, t.child("rounding"));
     }
+    if (const auto* n = t.find("colours")) {
+        const std::size_t k =
+            read_choice(c, *n, t.child("colours"), {"screen", "perspective", "auto"});
+        options.colours =
+            std::array{ColourInterpolation::screen, ColourInterpolation::perspective,
+                       ColourInterpolation::automatic}[k];
+    }
+    if (const auto* n = t.find("depth")) { // true, false or "auto"
+        if (n->is_string()) {
+            read_choice(c, *n, t.child("depth"), {"auto"});
+            options.depth = DepthMode::automatic;
+        } else if (n->is_boolean()) {
+            options.depth =
+                read_bool(c, *n, t.child("depth")) ? DepthMode::on : DepthMode::off;
+        } else {
+            c.fail(
+                n->source(), t.child("depth"),
+                fmt::format("expected true, false or \"auto\", got {}", type_name(*n)));
+        }
+    }
     t.finish();
 }
 
@@ -494,14 +514,19 @@ void read_primitive(const TableReader& t, SceneMesh& mesh, std::size_t primitive
                     glm::dvec3 p = centre;
                     p[axis] += side * h[axis];
                     // Walk the face one way on the + side and the other way on the -
-                    // side, so that every face is counter-clockwise seen from outside.
+                    // side, so that all faces turn the same way seen from outside.
                     const double ca = corners[k][0], cb = corners[k][1] * side;
                     p[a] += ca * h[a];
                     p[b] += cb * h[b];
                     q[static_cast<std::size_t>(k)] = planar_vertex(
                         p, {(ca + 1) * h[a], (1 - corners[k][1]) * h[b]}, s);
                 }
-                add_quad(mesh, q);
+                // The walk above turns from axis a to axis b, counter-clockwise about
+                // the outward axis in a right-handed frame; world space is left-handed
+                // (x right, y up, z forward), where that turn looks clockwise from
+                // outside. Reversed, each face is counter-clockwise seen from outside,
+                // which is what the renderer's back-face test takes as a front face.
+                add_quad(mesh, {q[0], q[3], q[2], q[1]});
             }
         }
     } else if (primitive == 3) { // floor: a horizontal rectangle at height y
@@ -685,9 +710,10 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
                     scene.camera);
     }
     if (const toml::table* t = section("render")) {
-        read_render(
-            TableReader(c, *t, "render", {"precision", "mapper", "budget", "rounding"}),
-            scene.options);
+        read_render(TableReader(c, *t, "render",
+                                {"precision", "mapper", "budget", "rounding", "depth",
+                                 "colours"}),
+                    scene.options);
     }
     if (const toml::table* t = section("textures")) {
         if (t->size() > static_cast<std::size_t>(max_scene_textures)) {
@@ -761,8 +787,8 @@ std::filesystem::path shipped_scene_folder() {
 
 std::vector<std::filesystem::path> shipped_scenes() {
     const std::filesystem::path folder = shipped_scene_folder();
-    return {folder / "corridor.toml", folder / "horizon.toml", folder / "gouraud.toml",
-            folder / "sprites.toml", folder / "near_plane.toml"};
+    return {folder / "corridor.toml", folder / "horizon.toml",    folder / "gouraud.toml",
+            folder / "sprites.toml",  folder / "near_plane.toml", folder / "boxes.toml"};
 }
 
 } // namespace exactpixels

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <fmt/format.h>
 
 namespace exactpixels {
 
@@ -141,5 +142,109 @@ long long mapper_divides(Mapper mapper, int count) {
     return 0;
 }
 //< mapper-divides
+
+//> colour-bound
+double colour_error_bound(const std::array<double, 3>& w,
+                          const std::array<Colour, 3>& c) {
+    const double w_min = std::min({w[0], w[1], w[2]});
+    const double w_max = std::max({w[0], w[1], w[2]});
+    assert(w_min > 0.0);
+    double range = 0.0; // the largest change of one channel over the triangle
+    for (int k = 0; k < 3; ++k) {
+        range = std::max(range, std::max({c[0][k], c[1][k], c[2][k]}) -
+                                    std::min({c[0][k], c[1][k], c[2][k]}));
+    }
+    return 2.0 * affine_error_bound(w_max / w_min) * range * 255.0;
+}
+//< colour-bound
+
+void ScreenBox::add(Point2 p) {
+    x0 = std::min(x0, p.x);
+    y0 = std::min(y0, p.y);
+    x1 = std::max(x1, p.x);
+    y1 = std::max(y1, p.y);
+}
+
+ScreenBox ScreenBox::clipped(Viewport viewport) const {
+    return {std::max(x0, 0.0), std::max(y0, 0.0), std::min(x1, double(viewport.width)),
+            std::min(y1, double(viewport.height))};
+}
+
+bool ScreenBox::intersects(const ScreenBox& o) const {
+    return !empty() && !o.empty() && x0 <= o.x1 && o.x0 <= x1 && y0 <= o.y1 && o.y0 <= y1;
+}
+
+namespace {
+
+/// Beyond this many corner-against-plane checks, convexity is not tested (the mesh is
+/// taken as able to overlap itself).
+constexpr std::size_t max_convexity_checks = 1'000'000;
+
+/// Which sides of the plane of triangle t the mesh's corners lie on, within a tolerance
+/// relative to the mesh's size: bit 1 some corner in front, bit 2 some behind.
+int sides_of_plane(const SceneMesh& mesh, const std::array<SceneVertex, 3>& t,
+                   double size) {
+    const glm::dvec3 n =
+        glm::cross(t[1].position - t[0].position, t[2].position - t[0].position);
+    const double tolerance = 1e-9 * glm::length(n) * size;
+    int sides = 0;
+    for (const auto& other : mesh.triangles) {
+        for (const SceneVertex& v : other) {
+            const double d = glm::dot(n, v.position - t[0].position);
+            sides |= d > tolerance ? 1 : d < -tolerance ? 2 : 0;
+        }
+    }
+    return sides;
+}
+
+} // namespace
+
+bool can_overlap_itself(const SceneMesh& mesh) {
+    if (mesh.triangles.size() < 2) {
+        return false;
+    }
+    glm::dvec3 lo = mesh.triangles[0][0].position, hi = lo;
+    for (const auto& t : mesh.triangles) {
+        for (const SceneVertex& v : t) {
+            lo = glm::min(lo, v.position);
+            hi = glm::max(hi, v.position);
+        }
+    }
+    const double size = glm::length(hi - lo);
+    if (sides_of_plane(mesh, mesh.triangles[0], size) == 0) {
+        return false; // planar
+    }
+    const std::size_t corners = 3 * mesh.triangles.size();
+    if (!mesh.cull_back || corners * mesh.triangles.size() > max_convexity_checks) {
+        return true;
+    }
+    for (const auto& t : mesh.triangles) {
+        if (sides_of_plane(mesh, t, size) == 3) {
+            return true; // not convex: front faces may overlap
+        }
+    }
+    return false;
+}
+
+DepthPlan plan_depth(DepthMode mode, const std::vector<MeshFootprint>& meshes,
+                     Viewport viewport) {
+    if (mode != DepthMode::automatic) {
+        const bool on = mode == DepthMode::on;
+        return {on, on ? "depth = true" : "depth = false"};
+    }
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+        const ScreenBox a = meshes[i].box.clipped(viewport);
+        if (meshes[i].can_overlap_itself && !a.empty()) {
+            return {true, fmt::format("auto: {} can overlap itself", meshes[i].name)};
+        }
+        for (std::size_t j = i + 1; j < meshes.size(); ++j) {
+            if (a.intersects(meshes[j].box.clipped(viewport))) {
+                return {true, fmt::format("auto: {} and {} overlap on screen",
+                                          meshes[i].name, meshes[j].name)};
+            }
+        }
+    }
+    return {false, "auto: no two meshes overlap on screen"};
+}
 
 } // namespace exactpixels

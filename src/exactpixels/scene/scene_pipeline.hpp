@@ -14,9 +14,14 @@
 // their change per pixel; errors are in texels of texture coordinate.
 #pragma once
 
+#include "exactpixels/raster/span.hpp"
 #include "exactpixels/scene/scene.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
+
+#include <limits>
+#include <string>
+#include <vector>
 
 namespace exactpixels {
 
@@ -67,5 +72,55 @@ AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget);
 /// for every precision): exact count; affine 0; subdivided 1 + 3 P; quadratic 10;
 /// quadratic subdivided 10 P; P = ceil(count / span) pieces (@eq:scene-divides).
 long long mapper_divides(Mapper mapper, int count);
+
+/// The worst error, in 8-bit levels (1/255), of a colour interpolated linearly on
+/// screen over a triangle whose corners have depths w (> 0) and colours c, against the
+/// perspective-correct colour: 2 affine_error_bound(w_max / w_min) times the largest
+/// channel range, times 255 (@eq:scene-colour-bound). Zero when the depths are equal.
+double colour_error_bound(const std::array<double, 3>& w, const std::array<Colour, 3>& c);
+
+//> depth-plan
+/// The smallest screen rectangle holding some points, pixels (empty until a point is
+/// added).
+struct ScreenBox {
+    double x0 = std::numeric_limits<double>::infinity();  ///< left
+    double y0 = std::numeric_limits<double>::infinity();  ///< top
+    double x1 = -std::numeric_limits<double>::infinity(); ///< right
+    double y1 = -std::numeric_limits<double>::infinity(); ///< bottom
+    /// Grows the box to hold p.
+    void add(Point2 p);
+    /// The part of the box inside the viewport [0, width] x [0, height] (may be empty).
+    ScreenBox clipped(Viewport viewport) const;
+    /// True when the box holds no point.
+    bool empty() const { return x0 > x1 || y0 > y1; }
+    /// True when the two closed boxes share a point.
+    bool intersects(const ScreenBox& other) const;
+};
+
+/// What the depth plan needs to know of a mesh after the geometry stage.
+struct MeshFootprint {
+    std::string name;                ///< for the report: its key path, mesh[k]
+    ScreenBox box;                   ///< around its projected, unculled triangles
+    bool can_overlap_itself = false; ///< can_overlap_itself(mesh)
+};
+
+/// True unless the mesh provably cannot cover a pixel twice at different depths: one
+/// triangle; all its corners in one plane (overlaps there are ties, which go to the
+/// later triangle as without depth); or back-culled and convex (every corner on one side
+/// of every triangle's plane, so the faces left after culling do not overlap).
+bool can_overlap_itself(const SceneMesh& mesh);
+
+/// The depth stage's decision and the reason the report shows.
+struct DepthPlan {
+    bool on = false;    ///< run the depth stage
+    std::string reason; ///< e.g. "auto: mesh[0] and mesh[2] overlap on screen"
+};
+
+/// `depth = true` and `false` decide alone; `auto` turns the stage on when a mesh can
+/// overlap itself or two meshes' screen boxes (inside the viewport) intersect, the only
+/// ways two surfaces can reach the same pixel.
+DepthPlan plan_depth(DepthMode mode, const std::vector<MeshFootprint>& meshes,
+                     Viewport viewport);
+//< depth-plan
 
 } // namespace exactpixels

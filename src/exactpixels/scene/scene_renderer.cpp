@@ -4,6 +4,7 @@
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/raster/screen_plane.hpp"
+#include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/scene_pipeline.hpp"
 #include "exactpixels/texture/clipping.hpp"
 #include "exactpixels/texture/perspective.hpp"
@@ -11,16 +12,17 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cassert>
 #include <chrono>
 #include <cmath>
-#include <limits>
+#include <optional>
 #include <vector>
 
 namespace exactpixels {
 
 long long RenderReport::divides() const {
-    long long total = auto_choice.divides;
+    long long total = auto_choice.divides + colour_perspective.divides;
     for (const StageCounter& m : mappers) {
         total += m.divides;
     }
@@ -81,13 +83,25 @@ struct MeshContext {
     Framebuffer& frame;
     TexelMap* coordinates;
     RenderReport& report;
-    std::vector<Rgba8> row; // one span of shaded pixels
+    DepthBuffer* depth;        // the depth stage's buffer, or nullptr when it is off
+    bool colour_perspective;   // colours as c/w over 1/w (else linear on screen)
+    std::vector<Rgba8> row;    // one span of shaded pixels
+    std::vector<char> visible; // depth stage: which pixels of the span passed the test
+};
+
+/// A triangle after the geometry stage: projected, clipped, not culled, with what the
+/// stages need at its corners.
+struct ProjectedTriangle {
+    std::array<TexturedVertex, 3> corners; ///< pixels, depth w, texels
+    std::array<Colour, 3> colours;         ///< vertex colours (used by the colour stage)
+    std::array<double, 3> nearness;        ///< 1/w (perspective) or -z (orthographic)
 };
 
 //> draw-triangle
 /// Rasterizes one projected triangle and runs the mesh's stages on its spans.
-void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
-                   const std::array<Colour, 3>& colours) {
+void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
+    const std::array<TexturedVertex, 3>& tv = triangle.corners;
+    const std::array<Colour, 3>& colours = triangle.colours;
     RenderReport& report = m.report;
     const Clock::time_point start = Clock::now();
     std::array<FixedPoint2, 3> snapped{};
@@ -116,13 +130,28 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
         report.texture.triangles += 1;
     }
     // Colour stage setup: only for meshes with vertex colours.
-    std::array<ScreenPlane, 3> rgb{};
+    std::array<ScreenPlane, 3> rgb{}; // c, or c/w when perspective-correct
+    ScreenPlane one_w{};
     if (m.stages.colour) {
+        const bool corrected = m.colour_perspective;
         for (int c = 0; c < 3; ++c) {
-            rgb[static_cast<std::size_t>(c)] =
-                plane_through(p, {colours[0][c], colours[1][c], colours[2][c]});
+            std::array<double, 3> value{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                value[k] = corrected ? colours[k][c] / tv[k].w : colours[k][c];
+            }
+            rgb[static_cast<std::size_t>(c)] = plane_through(p, value);
+        }
+        if (corrected) {
+            one_w = plane_through(p, {1.0 / tv[0].w, 1.0 / tv[1].w, 1.0 / tv[2].w});
+            report.colour_perspective.triangles += 1;
         }
         report.colour.triangles += 1;
+    }
+    // Depth stage setup: only when the scene runs one. Nearness is linear on screen.
+    ScreenPlane nearness{};
+    if (m.depth != nullptr) {
+        nearness = plane_through(p, triangle.nearness);
+        report.depth.triangles += 1;
     }
     const Rgba8 flat = to_rgba8(m.mesh.colour);
     if (!m.stages.texture && !m.stages.colour) {
@@ -137,6 +166,32 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
         const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
         report.raster.spans += 1;
         report.raster.pixels += count;
+        //> depth-stage
+        if (m.depth != nullptr) { // test every pixel first: a hidden span is not shaded
+            const Clock::time_point t0 = Clock::now();
+            m.visible.assign(static_cast<std::size_t>(count), 0);
+            int shown = 0;
+            for (int k = 0; k < count; ++k) {
+                const float q = nearness_key(nearness.at(x + k, y));
+                const bool seen = m.depth->test_and_write(s.x_begin + k, s.y, q);
+                m.visible[static_cast<std::size_t>(k)] = seen;
+                shown += seen;
+            }
+            report.depth.spans += 1;
+            report.depth.pixels += count;
+            report.hidden.spans += shown < count;
+            report.hidden.pixels += count - shown;
+            const double spent = seconds_since(t0);
+            report.depth.seconds += spent;
+            shading_seconds += spent;
+            if (shown == 0) {
+                return;
+            }
+        }
+        //< depth-stage
+        const auto seen = [&](int k) {
+            return m.depth == nullptr || m.visible[static_cast<std::size_t>(k)] != 0;
+        };
         m.row.assign(static_cast<std::size_t>(count), flat);
         //> texture-stage
         if (m.stages.texture) {
@@ -160,7 +215,7 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
                      [&](int k, int i, int j, double uu, double vv) {
                          m.row[static_cast<std::size_t>(k)] =
                              fetch_texel(*m.texture, i, j, m.mesh.wrap);
-                         if (m.coordinates != nullptr) {
+                         if (m.coordinates != nullptr && seen(k)) {
                              const std::size_t at =
                                  static_cast<std::size_t>(s.y) *
                                      static_cast<std::size_t>(m.frame.width()) +
@@ -193,9 +248,17 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
             const Clock::time_point t0 = Clock::now();
             Colour c{rgb[0].at(x, y), rgb[1].at(x, y), rgb[2].at(x, y)};
             const Colour dc{rgb[0].g.dx, rgb[1].g.dx, rgb[2].g.dx};
+            double q = one_w.at(x, y); // perspective: 1/w, as chapter 3's exact mapper
             for (Rgba8& pixel : m.row) {
-                pixel = m.stages.texture ? multiply(pixel, c) : to_rgba8(c);
+                const Colour shade = m.colour_perspective ? c * (1.0 / q) : c;
+                pixel = m.stages.texture ? multiply(pixel, shade) : to_rgba8(shade);
                 c += dc;
+                q += one_w.g.dx;
+            }
+            if (m.colour_perspective) {
+                report.colour_perspective.spans += 1;
+                report.colour_perspective.pixels += count;
+                report.colour_perspective.divides += count;
             }
             report.colour.spans += 1;
             report.colour.pixels += count;
@@ -212,10 +275,15 @@ void draw_triangle(MeshContext& m, const std::array<TexturedVertex, 3>& tv,
         }
         //< colour-stage
         for (int k = 0; k < count; ++k) {
-            m.frame.at(s.x_begin + k, s.y) = m.row[static_cast<std::size_t>(k)];
+            if (seen(k)) {
+                m.frame.at(s.x_begin + k, s.y) = m.row[static_cast<std::size_t>(k)];
+            }
         }
         if (m.coordinates != nullptr && !m.stages.texture) {
             for (int k = 0; k < count; ++k) { // an untextured pixel now
+                if (!seen(k)) {
+                    continue;
+                }
                 m.coordinates->covered[static_cast<std::size_t>(s.y) *
                                            static_cast<std::size_t>(m.frame.width()) +
                                        static_cast<std::size_t>(s.x_begin + k)] = false;
@@ -302,7 +370,87 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
     const CameraFrame camera = camera_frame(scene.camera);
     const bool perspective = scene.camera.projection == Projection::perspective;
     const Pinhole lens = pinhole(scene);
-    for (const SceneMesh& mesh : scene.meshes) {
+    // The geometry stage, for every mesh first: the depth stage's plan needs to know
+    // where on screen each mesh lands.
+    std::vector<std::vector<ProjectedTriangle>> meshes(scene.meshes.size());
+    std::vector<MeshFootprint> footprints(scene.meshes.size());
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const SceneMesh& mesh = scene.meshes[i];
+        const bool with_colours = plan_mesh(mesh).colour;
+        footprints[i].name = fmt::format("mesh[{}]", i); // as messages name it
+        footprints[i].can_overlap_itself = can_overlap_itself(mesh);
+        for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
+            const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
+            const Clock::time_point t0 = Clock::now();
+            std::array<ViewVertex, 3> view{};
+            std::array<Colour, 3> colours{};
+            bool in_front = true;
+            for (std::size_t k = 0; k < 3; ++k) {
+                const glm::dvec3 d = triangle[k].position - camera.eye;
+                view[k] = {{glm::dot(d, camera.right), glm::dot(d, camera.up),
+                            glm::dot(d, camera.forward)},
+                           triangle[k].uv};
+                colours[k] = triangle[k].colour;
+                in_front = in_front && view[k].position.z >= scene.camera.near;
+            }
+            report.geometry.triangles += 1;
+            //> clip-only-when-needed
+            std::vector<ClippedCorners> pieces{{view, colours}};
+            if (perspective && !in_front) { // the only triangles that pay for it
+                const Clock::time_point c0 = Clock::now();
+                pieces = clip_corners(view, colours, scene.camera.near, with_colours);
+                report.clipping.triangles += 1;
+                report.clipping.seconds += seconds_since(c0);
+            }
+            //< clip-only-when-needed
+            for (const ClippedCorners& piece : pieces) {
+                ProjectedTriangle t{};
+                for (std::size_t k = 0; k < 3; ++k) {
+                    t.corners[k] = project_vertex(scene, lens, piece.view[k]);
+                    try {
+                        check_finite(t.corners[k], scene.options.precision, index);
+                    } catch (const Error& error) {
+                        throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
+                    }
+                    t.nearness[k] =
+                        perspective ? 1.0 / t.corners[k].w : -piece.view[k].position.z;
+                }
+                t.colours = piece.colours;
+                if (mesh.cull_back && screen_area2(t.corners) >= 0.0) {
+                    report.culling.triangles += 1;
+                    continue;
+                }
+                for (const TexturedVertex& v : t.corners) {
+                    footprints[i].box.add(v.position);
+                }
+                meshes[i].push_back(t);
+            }
+            report.geometry.seconds += seconds_since(t0);
+        }
+    }
+    const DepthPlan depth_plan =
+        plan_depth(scene.options.depth, footprints, Viewport{scene.width, scene.height});
+    report.depth_on = depth_plan.on;
+    report.depth_reason = depth_plan.reason;
+    std::optional<DepthBuffer> depth;
+    if (depth_plan.on) {
+        depth.emplace(scene.width, scene.height);
+    }
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        const SceneMesh& mesh = scene.meshes[i];
+        //> choose-colours
+        bool corrected = scene.options.colours == ColourInterpolation::perspective;
+        if (plan_mesh(mesh).colour) { // the screen path's bound, against the budget
+            for (const ProjectedTriangle& t : meshes[i]) {
+                const double bound = colour_error_bound(
+                    {t.corners[0].w, t.corners[1].w, t.corners[2].w}, t.colours);
+                report.colour_bound = std::max(report.colour_bound, bound);
+                corrected = corrected ||
+                            (scene.options.colours == ColourInterpolation::automatic &&
+                             bound > scene.options.budget);
+            }
+        }
+        //< choose-colours
         MeshContext m{scene,
                       mesh,
                       plan_mesh(mesh),
@@ -310,50 +458,13 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                       result.image,
                       coordinates,
                       report,
+                      depth ? &*depth : nullptr,
+                      corrected,
+                      {},
                       {}};
         try {
-            for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
-                const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
-                const Clock::time_point t0 = Clock::now();
-                std::array<ViewVertex, 3> view{};
-                std::array<Colour, 3> colours{};
-                bool in_front = true;
-                for (std::size_t k = 0; k < 3; ++k) {
-                    const glm::dvec3 d = triangle[k].position - camera.eye;
-                    view[k] = {{glm::dot(d, camera.right), glm::dot(d, camera.up),
-                                glm::dot(d, camera.forward)},
-                               triangle[k].uv};
-                    colours[k] = triangle[k].colour;
-                    in_front = in_front && view[k].position.z >= scene.camera.near;
-                }
-                report.geometry.triangles += 1;
-                //> clip-only-when-needed
-                std::vector<ClippedCorners> pieces{{view, colours}};
-                if (perspective && !in_front) { // the only triangles that pay for it
-                    const Clock::time_point c0 = Clock::now();
-                    pieces =
-                        clip_corners(view, colours, scene.camera.near, m.stages.colour);
-                    report.clipping.triangles += 1;
-                    report.clipping.seconds += seconds_since(c0);
-                }
-                //< clip-only-when-needed
-                std::vector<std::array<TexturedVertex, 3>> projected;
-                for (const ClippedCorners& piece : pieces) {
-                    std::array<TexturedVertex, 3> tv{};
-                    for (std::size_t k = 0; k < 3; ++k) {
-                        tv[k] = project_vertex(scene, lens, piece.view[k]);
-                        check_finite(tv[k], scene.options.precision, index);
-                    }
-                    projected.push_back(tv);
-                }
-                report.geometry.seconds += seconds_since(t0);
-                for (std::size_t k = 0; k < projected.size(); ++k) {
-                    if (mesh.cull_back && screen_area2(projected[k]) >= 0.0) {
-                        report.culling.triangles += 1;
-                        continue;
-                    }
-                    draw_triangle(m, projected[k], pieces[k].colours);
-                }
+            for (const ProjectedTriangle& t : meshes[i]) {
+                draw_triangle(m, t);
             }
         } catch (const Error& error) {
             throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
@@ -377,15 +488,20 @@ std::string format_report(const RenderReport& r) {
     line("geometry", r.geometry, true);
     line("clipping", r.clipping, true);
     line("culling", r.culling, false);
+    line("depth", r.depth, false);
+    line("  hidden", r.hidden, false);
     line("raster", r.raster, true);
     line("flat colour", r.flat, true);
     line("vertex colour", r.colour, true);
+    line("  perspective", r.colour_perspective, false);
     line("texture", r.texture, true);
     line("auto choice", r.auto_choice, false);
     for (std::size_t k = 0; k < r.mappers.size(); ++k) {
         line(fmt::format("  mapper {}", mapper_kind_name(static_cast<MapperKind>(k))),
              r.mappers[k], false);
     }
+    out +=
+        fmt::format("depth stage: {} ({})\n", r.depth_on ? "on" : "off", r.depth_reason);
     out += fmt::format("total: {} divides, {:.3f} ms\n", r.divides(), 1e3 * r.seconds);
     return out;
 }

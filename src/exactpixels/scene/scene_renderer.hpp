@@ -8,12 +8,14 @@
 //   std::fputs(format_report(result.report).c_str(), stdout);
 //   TexelError e = check_against_exact(scene);   // worst and mean texel error
 //
-// Meshes are drawn in file order, each over the ones before (there is no depth buffer:
-// scenes are laid out so that the order is right, or use `cull = "back"` on closed
-// meshes). Coverage is chapter 1's fixed-point scanline rasterizer (vertices snapped to
-// 1/256 px, top-left rule); texture coordinates come from chapter 3's span mappers with
-// chapter 4's rounding; colours are interpolated linearly on screen. Timings are wall
-// clock seconds of a single run; counts are exact.
+// Meshes are drawn in file order, each over the ones before; when meshes can overlap on
+// screen (or the scene says `depth = true`) a depth stage keeps the nearest surface at
+// each pixel, ties going to the later triangle (depth_buffer.hpp, plan_depth). Coverage
+// is chapter 1's fixed-point scanline rasterizer (vertices snapped to 1/256 px, top-left
+// rule); texture coordinates come from chapter 3's span mappers with chapter 4's
+// rounding; vertex colours are interpolated linearly on screen or, as the scene asks,
+// perspective-correct (c/w over 1/w). Timings are wall clock seconds
+// of a single run; counts are exact.
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
@@ -37,18 +39,25 @@ struct StageCounter {
 
 /// What ran while rendering a scene: one counter per stage and per mapper.
 struct RenderReport {
-    StageCounter geometry;    ///< triangles moved to view space and projected
-    StageCounter clipping;    ///< triangles that crossed the near plane
-    StageCounter culling;     ///< triangles skipped because their back faces the camera
-    StageCounter raster;      ///< coverage: the triangles, spans and pixels drawn
-    StageCounter flat;        ///< pixels written with the mesh's flat colour
-    StageCounter colour;      ///< vertex colours interpolated and applied
-    StageCounter texture;     ///< texture coordinates computed and texels sampled
-    StageCounter auto_choice; ///< spans whose mapper `auto` chose, and its divides
+    StageCounter geometry; ///< triangles moved to view space and projected
+    StageCounter clipping; ///< triangles that crossed the near plane
+    StageCounter culling;  ///< triangles skipped because their back faces the camera
+    StageCounter depth;    ///< depth stage: the triangles, spans and pixels it tested
+    StageCounter hidden;   ///< pixels that failed the depth test (spans with any)
+    StageCounter raster;   ///< coverage: the triangles, spans and pixels drawn
+    StageCounter flat;     ///< pixels written with the mesh's flat colour
+    StageCounter colour;   ///< vertex colours interpolated and applied
+    StageCounter colour_perspective; ///< of those, perspective-correct (c/w over 1/w)
+    StageCounter texture;            ///< texture coordinates computed and texels sampled
+    StageCounter auto_choice;        ///< spans whose mapper `auto` chose, and its divides
     std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
     double seconds = 0.0;                ///< the whole render
+    bool depth_on = false;               ///< whether the depth stage ran
+    double colour_bound =
+        0.0; ///< largest screen-colour error bound, levels (colour meshes)
+    std::string depth_reason; ///< why it ran or not (plan_depth)
 
-    /// Every divide performed: the mappers' and auto's.
+    /// Every divide performed: the mappers', auto's and the perspective colours'.
     long long divides() const;
 };
 
