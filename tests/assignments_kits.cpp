@@ -17,6 +17,7 @@
 // build recompiles only what differs between two kits (the stubbed files and the tests).
 // Every build is still a correct build of that kit: make sees every changed file.
 #include "support/process.hpp"
+#include "support/text_lines.hpp"
 
 #include <doctest/doctest.h>
 
@@ -60,14 +61,7 @@ void write_file(const fs::path& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-        lines.push_back(line);
-    }
-    return lines;
-}
+using exactpixels::testing::lines_of;
 
 std::string trimmed(const std::string& line) {
     const auto first = line.find_first_not_of(" \t");

@@ -13,6 +13,7 @@
 //
 // Label `bookcheck`: runs in the `book` workflow after the book is built.
 #include "support/process.hpp"
+#include "support/text_lines.hpp"
 
 #include "exactpixels/base/png.hpp"
 
@@ -52,14 +53,7 @@ std::string quoted(const fs::path& path) {
     return out;
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
-    std::vector<std::string> lines;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-        lines.push_back(line);
-    }
-    return lines;
-}
+using exactpixels::testing::lines_of;
 
 enum class Place { text, listing, equation };
 
