@@ -30,6 +30,7 @@
 // Errors name file and line and make the program exit with status 1.
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/error.hpp"
+#include "support/declared_points.hpp" // tests/support: the grade reporter reads it too
 
 #include <algorithm>
 #include <cctype>
@@ -46,6 +47,9 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+
+using exactpixels::testing::DeclaredPoints;
+using exactpixels::testing::parse_declared_points;
 
 namespace {
 
@@ -379,34 +383,14 @@ std::vector<TestDecl> test_declarations(const fs::path& root, const fs::path& re
             std::size_t unused = 0;
             const std::string description =
                 q == std::string::npos ? "" : literal_at(decorators, q, &unused);
-            std::string_view rest = description;
-            while (!rest.empty()) {
-                const auto semi = rest.find(';');
-                const std::string_view item = trim(rest.substr(0, semi));
-                rest = semi == std::string_view::npos ? std::string_view{}
-                                                      : rest.substr(semi + 1);
-                const auto colon = item.find(':');
-                if (colon == std::string_view::npos) {
-                    continue;
-                }
-                const std::string_view key = trim(item.substr(0, colon));
-                const std::string value(trim(item.substr(colon + 1)));
-                if (key == "points") {
-                    const bool digits =
-                        !value.empty() &&
-                        std::all_of(value.begin(), value.end(), [](char c) {
-                            return std::isdigit(static_cast<unsigned char>(c));
-                        });
-                    if (!digits) {
-                        throw KitError(where(rel, test.line) + ": test \"" + test.name +
-                                       "\": points '" + value +
-                                       "' is not a whole number");
-                    }
-                    test.points = std::stoi(value);
-                } else if (key == "exercise") {
-                    test.exercise = value;
-                }
+            const DeclaredPoints declared = parse_declared_points(description);
+            if (!declared.bad_points.empty()) {
+                throw KitError(where(rel, test.line) + ": test \"" + test.name +
+                               "\": points '" + declared.bad_points +
+                               "' is not a whole number");
             }
+            test.points = declared.points;
+            test.exercise = declared.exercise;
         }
         tests.push_back(test);
         at = after;

@@ -30,6 +30,8 @@
 // prints "TEST RUN|SKIP POINTS EXERCISE NAME" per test case (SKIP: marked doctest::skip),
 // in the order of a run; the kits' grade runner (src/kits/template/grade_runner.cpp)
 // reads it to run every test case in a process of its own.
+#include "support/declared_points.hpp"
+
 #include <doctest/doctest.h>
 
 #include <cstdlib>
@@ -43,46 +45,19 @@ namespace exactpixels::testing {
 
 namespace {
 
-/// What a test case's description declares: "points: N; exercise: ID" (either may be
-/// missing; unknown keys are ignored).
+/// What a test case's description declares (declared_points.hpp), with "-" for no
+/// exercise as the grade lines print it.
 struct Declared {
     int points = 0;             ///< points earned when the test case passes
     std::string exercise = "-"; ///< the exercise region it checks, "-" for none
 };
 
-std::string_view trim(std::string_view text) {
-    while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) {
-        text.remove_prefix(1);
-    }
-    while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) {
-        text.remove_suffix(1);
-    }
-    return text;
-}
-
 Declared parse_description(const char* description) {
-    Declared declared;
     if (description == nullptr) {
-        return declared;
+        return {};
     }
-    std::string_view rest = description;
-    while (!rest.empty()) {
-        const auto end = rest.find(';');
-        const std::string_view item = trim(rest.substr(0, end));
-        rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
-        const auto colon = item.find(':');
-        if (colon == std::string_view::npos) {
-            continue;
-        }
-        const std::string_view key = trim(item.substr(0, colon));
-        const std::string value(trim(item.substr(colon + 1)));
-        if (key == "points") {
-            declared.points = std::atoi(value.c_str());
-        } else if (key == "exercise" && !value.empty()) {
-            declared.exercise = value;
-        }
-    }
-    return declared;
+    const DeclaredPoints d = parse_declared_points(description);
+    return {d.points, d.exercise.empty() ? "-" : d.exercise};
 }
 
 /// Prints one line per test case and a total; see the top of this file.

@@ -82,39 +82,39 @@ std::vector<AccuracyScene> accuracy_scenes() {
 std::vector<MapperConfig> accuracy_mappers() {
     using K = MapperKind;
     using P = Precision;
-    const auto m = [](std::string name, K kind, P precision, int span = 16,
-                      bool choose = false) {
-        return MapperConfig{
-            std::move(name), {{kind, span}, precision, {}, Wrap::repeat}, choose};
+    // Each configuration is named by its mapper's one spelling and its precision
+    // ("quadratic:16 fixed"), with " +rule" when chapter 4's rule is chosen.
+    const auto m = [](K kind, P precision, int span = 16, bool choose = false) {
+        const MapperSettings settings{{kind, span}, precision, {}, Wrap::repeat};
+        const std::string name =
+            mapper_name(settings.mapper) + " " + precision_name(precision);
+        return MapperConfig{choose ? name + " +rule" : name, settings, choose};
     };
     std::vector<MapperConfig> list = {
-        m("affine fixed", K::affine, P::fixed), // the baseline of every time ratio
-        m("affine float", K::affine, P::float32),
-        m("affine double", K::affine, P::float64),
+        m(K::affine, P::fixed), // the baseline of every time ratio
+        m(K::affine, P::float32),
+        m(K::affine, P::float64),
     };
     for (const int n : {4, 8, 16, 32}) {
-        list.push_back(m("subdivided-" + std::to_string(n) + " float", K::subdivided,
-                         P::float32, n));
-        list.push_back(
-            m("subdivided-" + std::to_string(n) + " fixed", K::subdivided, P::fixed, n));
+        list.push_back(m(K::subdivided, P::float32, n));
+        list.push_back(m(K::subdivided, P::fixed, n));
     }
-    list.push_back(m("quadratic float", K::quadratic, P::float32));
-    list.push_back(m("quadratic double", K::quadratic, P::float64));
-    list.push_back(m("quadratic fixed", K::quadratic, P::fixed));
-    list.push_back(m("quadratic-8 float", K::quadratic_subdivided, P::float32, 8));
-    list.push_back(m("quadratic-8 fixed", K::quadratic_subdivided, P::fixed, 8));
-    list.push_back(m("quadratic-16 float", K::quadratic_subdivided, P::float32, 16));
-    list.push_back(m("quadratic-16 fixed", K::quadratic_subdivided, P::fixed, 16));
-    list.push_back(m("exact float", K::exact, P::float32));
-    list.push_back(m("exact double", K::exact, P::float64));
-    list.push_back(m("exact fixed", K::exact, P::fixed));
+    list.push_back(m(K::quadratic, P::float32));
+    list.push_back(m(K::quadratic, P::float64));
+    list.push_back(m(K::quadratic, P::fixed));
+    for (const int n : {8, 16}) {
+        list.push_back(m(K::quadratic_subdivided, P::float32, n));
+        list.push_back(m(K::quadratic_subdivided, P::fixed, n));
+    }
+    list.push_back(m(K::exact, P::float32));
+    list.push_back(m(K::exact, P::float64));
+    list.push_back(m(K::exact, P::fixed));
     // The same fixed-point loops with chapter 4's rule chosen per triangle.
-    list.push_back(m("affine fixed +rule", K::affine, P::fixed, 16, true));
-    list.push_back(m("subdivided-16 fixed +rule", K::subdivided, P::fixed, 16, true));
-    list.push_back(
-        m("quadratic-16 fixed +rule", K::quadratic_subdivided, P::fixed, 16, true));
-    list.push_back(m("exact double +rule", K::exact, P::float64, 16, true));
-    list.push_back(m("exact fixed +rule", K::exact, P::fixed, 16, true));
+    list.push_back(m(K::affine, P::fixed, 16, true));
+    list.push_back(m(K::subdivided, P::fixed, 16, true));
+    list.push_back(m(K::quadratic_subdivided, P::fixed, 16, true));
+    list.push_back(m(K::exact, P::float64, 16, true));
+    list.push_back(m(K::exact, P::fixed, 16, true));
     return list;
 }
 //< accuracy-mappers

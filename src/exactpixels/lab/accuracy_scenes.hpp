@@ -47,7 +47,7 @@ struct AccuracyScene {
 /// One mapper as the benchmark runs it: chapter 3's settings, and whether chapter 4's
 /// rounding rule is chosen per triangle (the "rounding modifier") or rule 1 is kept.
 struct MapperConfig {
-    std::string name;             ///< short, unique, no commas: "subdivided-16 fixed"
+    std::string name;             ///< short, unique, no commas: "subdivided:16 fixed"
     MapperSettings settings;      ///< kind, span, precision, wrap
     bool choose_rounding = false; ///< true: TexelRounding from choose_rounding()
 };
@@ -86,7 +86,7 @@ void map_with(TexelMap& map, const AccuracyScene& scene, const MapperConfig& map
 TexelError measure_mapper_error(const AccuracyScene& scene, const MapperConfig& mapper);
 
 /// The benchmark's name for one run: "scene/mapper" with spaces as '_' and '+' dropped,
-/// e.g. "floor/subdivided-16_fixed_rule".
+/// e.g. "floor/subdivided:16_fixed_rule".
 std::string benchmark_name(const AccuracyScene& scene, const MapperConfig& mapper);
 
 /// Pixel writes one drawing of the scene makes (overdraw counted): the "per pixel" of
