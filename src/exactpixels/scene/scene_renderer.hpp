@@ -51,8 +51,12 @@ struct RenderReport {
     StageCounter texture;            ///< texture coordinates computed and texels sampled
     StageCounter auto_choice;        ///< spans whose mapper `auto` chose, and its divides
     std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
-    double seconds = 0.0;                ///< the whole render
-    bool depth_on = false;               ///< whether the depth stage ran
+    StageCounter filter; ///< textured pixels filtered (any filter but nearest)
+    /// Triangles per filter the filter stage ran: bilinear, trilinear, anisotropic.
+    std::array<long long, 3> filter_triangles{};
+    int mip_chains = 0;    ///< mip chains built (one per texture that needed one)
+    double seconds = 0.0;  ///< the whole render
+    bool depth_on = false; ///< whether the depth stage ran
     double colour_bound =
         0.0; ///< largest screen-colour error bound, levels (colour meshes)
     std::string depth_reason; ///< why it ran or not (plan_depth)
