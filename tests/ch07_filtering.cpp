@@ -1,8 +1,10 @@
 // Chapter 8's filters in chapter 7's scene renderer: the `filter` key, what `auto`
 // decides per triangle, and what it buys on the horizon scene.
+#include "exactpixels/base/error.hpp"
 #include "exactpixels/lab/filter_measure.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
+#include "exactpixels/scene/supersampled_reference.hpp"
 #include "exactpixels/texture/srgb.hpp"
 #include "exactpixels/texture/texture.hpp"
 
@@ -17,39 +19,6 @@ namespace {
 
 Scene shipped(const std::string& name) {
     return load_scene(shipped_scene_folder() / (name + ".toml"));
-}
-
-/// The frame in linear light, pixel by pixel.
-std::vector<LinearTexel> linear(const Framebuffer& frame) {
-    std::vector<LinearTexel> out;
-    out.reserve(frame.pixels().size());
-    for (const Rgba8 p : frame.pixels()) {
-        out.push_back(decode_texel(p));
-    }
-    return out;
-}
-
-/// The reference for a scene: rendered with nearest at `s` times the size in each
-/// direction (the same field of view, so each pixel is an s x s block of samples on a
-/// regular grid inside it) and box-averaged in linear light.
-std::vector<LinearTexel> supersampled_reference(Scene scene, int s) {
-    scene.width *= s;
-    scene.height *= s;
-    scene.options.filter = SceneFilter::nearest;
-    const std::vector<LinearTexel> big = linear(render_scene(scene).image);
-    const int w = scene.width / s, h = scene.height / s;
-    std::vector<LinearTexel> out(
-        static_cast<std::size_t>(w) * static_cast<std::size_t>(h), LinearTexel{0.0});
-    for (int y = 0; y < scene.height; ++y) {
-        for (int x = 0; x < scene.width; ++x) {
-            out[static_cast<std::size_t>(y / s) * static_cast<std::size_t>(w) +
-                static_cast<std::size_t>(x / s)] +=
-                big[static_cast<std::size_t>(y) * static_cast<std::size_t>(scene.width) +
-                    static_cast<std::size_t>(x)] /
-                double(s * s);
-        }
-    }
-    return out;
 }
 
 } // namespace
@@ -110,8 +79,22 @@ TEST_CASE("on the horizon auto is closer than nearest to the supersampled refere
     Scene nearest = scene;
     nearest.options.filter = SceneFilter::nearest;
     const double e_nearest =
-        rms_code_error(linear(render_scene(nearest).image), reference);
-    const double e_auto = rms_code_error(linear(render_scene(scene).image), reference);
+        rms_code_error(linear_pixels(render_scene(nearest).image), reference);
+    const double e_auto =
+        rms_code_error(linear_pixels(render_scene(scene).image), reference);
     MESSAGE("rms error in 8-bit codes: nearest ", e_nearest, ", auto ", e_auto);
     CHECK(e_auto < e_nearest);
+}
+
+TEST_CASE("the supersampled reference at one sample per pixel is the nearest render") {
+    Scene scene = shipped("horizon_filtered");
+    scene.width = 80;
+    scene.height = 60;
+    const std::vector<LinearTexel> one = supersampled_reference(scene, 1);
+    scene.options.filter = SceneFilter::nearest;
+    CHECK(one == linear_pixels(render_scene(scene).image));
+    CHECK_THROWS_AS(supersampled_reference(scene, 0), Error);
+    CHECK_THROWS_AS(supersampled_reference(scene, supersample_max_factor + 1), Error);
+    scene.width = max_image_side / 2 + 1;
+    CHECK_THROWS_AS(supersampled_reference(scene, 2), Error);
 }
