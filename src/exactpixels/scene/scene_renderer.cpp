@@ -25,7 +25,7 @@
 namespace exactpixels {
 
 long long RenderReport::divides() const {
-    long long total = auto_choice.divides + colour_perspective.divides;
+    long long total = auto_choice.divides + colour_perspective.divides + filter.divides;
     for (const StageCounter& m : mappers) {
         total += m.divides;
     }
@@ -295,10 +295,12 @@ void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
             if (filter != Filter::nearest) { // the exact coordinate and derivatives
                 const Clock::time_point f0 = Clock::now();
                 const FilterSettings fs{.filter = filter, .wrap = m.mesh.wrap};
+                int filtered = 0;
                 for (int k = 0; k < count; ++k) {
                     if (!seen(k)) {
                         continue;
                     }
+                    filtered += 1;
                     const auto [u, v] =
                         projected_coordinates(snapped_corners, Point2{x + k, y});
                     const TexCoord uv{u.p / u.q, v.p / v.q}; // q = 1/w > 0
@@ -306,7 +308,8 @@ void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
                         sample_filtered(*m.chain, uv, exact_derivatives(u, v), fs));
                 }
                 report.filter.spans += 1;
-                report.filter.pixels += count;
+                report.filter.pixels += filtered;
+                report.filter.divides += 3LL * filtered; // u, v and 1/q^2
                 report.filter.seconds += seconds_since(f0);
             }
             //< filter-stage

@@ -51,7 +51,7 @@ struct RenderReport {
     StageCounter texture;            ///< texture coordinates computed and texels sampled
     StageCounter auto_choice;        ///< spans whose mapper `auto` chose, and its divides
     std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
-    StageCounter filter; ///< textured pixels filtered (any filter but nearest)
+    StageCounter filter; ///< pixels filtered (any filter but nearest), 3 divides each
     /// Triangles per filter the filter stage ran: bilinear, trilinear, anisotropic.
     std::array<long long, 3> filter_triangles{};
     int mip_chains = 0;    ///< mip chains built (one per texture that needed one)
@@ -61,7 +61,8 @@ struct RenderReport {
         0.0; ///< largest screen-colour error bound, levels (colour meshes)
     std::string depth_reason; ///< why it ran or not (plan_depth)
 
-    /// Every divide performed: the mappers', auto's and the perspective colours'.
+    /// Every divide performed: the mappers', auto's, the perspective colours' and the
+    /// filter stage's.
     long long divides() const;
 };
 
