@@ -117,6 +117,10 @@ std::vector<BadScene> bad_scenes() {
         {"an unknown colour interpolation",
          scene_with("[render]\ncolours = \"smooth\"\n", ""), "5:11", "render.colours",
          "not one of: screen"},
+        {"an unknown texture filter", scene_with("[render]\nfilter = \"cubic\"\n", ""),
+         "5:10", "render.filter", "not one of: nearest"},
+        {"a number for the texture filter", scene_with("[render]\nfilter = 2\n", ""),
+         "5:10", "render.filter", "expected"},
         {"a number for the depth mode", scene_with("[render]\ndepth = 1\n", ""), "5:9",
          "render.depth", "expected true, false or \"auto\""},
     };

@@ -70,6 +70,15 @@ enum class ColourInterpolation {
     automatic    ///< per mesh: perspective when screen's error bound exceeds the budget
 };
 
+/// How the scene renderer turns texture coordinates into colours (chapter 8).
+enum class SceneFilter {
+    nearest,     ///< one texel per pixel, chapter 3's sampling (the default)
+    bilinear,    ///< chapter 8's bilinear on level 0
+    trilinear,   ///< chapter 8's trilinear across the mip chain
+    anisotropic, ///< chapter 8's trilinear probes along the footprint's longer side
+    automatic    ///< per triangle: bilinear where no corner is minified, else trilinear
+};
+
 /// The render options of a scene.
 struct RenderOptions {
     Precision precision = Precision::float64; ///< the mappers' inner-loop arithmetic
@@ -80,6 +89,8 @@ struct RenderOptions {
     /// `colours = "screen" | "perspective" | "auto"`; auto spends `budget` in 8-bit
     /// levels
     ColourInterpolation colours = ColourInterpolation::screen;
+    /// `filter = "nearest" | "bilinear" | "trilinear" | "anisotropic" | "auto"`
+    SceneFilter filter = SceneFilter::nearest;
 };
 
 /// A named texture of a scene.

@@ -362,6 +362,14 @@ void read_render(const TableReader& t, RenderOptions& options) {
             std::array{ColourInterpolation::screen, ColourInterpolation::perspective,
                        ColourInterpolation::automatic}[k];
     }
+    if (const auto* n = t.find("filter")) {
+        const std::size_t k =
+            read_choice(c, *n, t.child("filter"),
+                        {"nearest", "bilinear", "trilinear", "anisotropic", "auto"});
+        options.filter = std::array{SceneFilter::nearest, SceneFilter::bilinear,
+                                    SceneFilter::trilinear, SceneFilter::anisotropic,
+                                    SceneFilter::automatic}[k];
+    }
     if (const auto* n = t.find("depth")) { // true, false or "auto"
         if (n->is_string()) {
             read_choice(c, *n, t.child("depth"), {"auto"});
@@ -712,7 +720,7 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
     if (const toml::table* t = section("render")) {
         read_render(TableReader(c, *t, "render",
                                 {"precision", "mapper", "budget", "rounding", "depth",
-                                 "colours"}),
+                                 "colours", "filter"}),
                     scene.options);
     }
     if (const toml::table* t = section("textures")) {

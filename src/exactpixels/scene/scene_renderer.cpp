@@ -7,6 +7,9 @@
 #include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/scene_pipeline.hpp"
 #include "exactpixels/texture/clipping.hpp"
+#include "exactpixels/texture/filter.hpp"
+#include "exactpixels/texture/level_of_detail.hpp"
+#include "exactpixels/texture/mipmap.hpp"
 #include "exactpixels/texture/perspective.hpp"
 #include "exactpixels/texture/rounding.hpp"
 
@@ -22,7 +25,7 @@
 namespace exactpixels {
 
 long long RenderReport::divides() const {
-    long long total = auto_choice.divides + colour_perspective.divides;
+    long long total = auto_choice.divides + colour_perspective.divides + filter.divides;
     for (const StageCounter& m : mappers) {
         total += m.divides;
     }
@@ -87,7 +90,54 @@ struct MeshContext {
     bool colour_perspective;   // colours as c/w over 1/w (else linear on screen)
     std::vector<Rgba8> row;    // one span of shaded pixels
     std::vector<char> visible; // depth stage: which pixels of the span passed the test
+    MipChain* chain;           // filter stage: the texture in linear light, or nullptr
+    bool* full_chain;          // filter stage: whether *chain has all its levels
 };
+
+//> choose-filter
+/// The filter a triangle gets under the scene's `filter` key. `auto` looks at the
+/// exact derivatives at the three corners (@eq:derivatives): where no corner is
+/// minified (lambda <= 0 at each, @eq:level) bilinear on level 0 is all a pixel needs
+/// and no mip chain is built; else trilinear, or anisotropic where a minified corner's
+/// footprint is at least twice as long as it is wide (@eq:anisotropy).
+Filter triangle_filter(SceneFilter wanted, const std::array<TexturedVertex, 3>& t) {
+    switch (wanted) {
+    case SceneFilter::nearest:
+        return Filter::nearest;
+    case SceneFilter::bilinear:
+        return Filter::bilinear;
+    case SceneFilter::trilinear:
+        return Filter::trilinear;
+    case SceneFilter::anisotropic:
+        return Filter::anisotropic;
+    case SceneFilter::automatic:
+        break;
+    }
+    Filter chosen = Filter::bilinear;
+    for (const TexturedVertex& corner : t) {
+        const TexelDerivatives d = derivatives_at(t, corner.position);
+        if (isotropic_level(d) > 0.0) {
+            if (anisotropy(d, 8).probes >= 2) {
+                return Filter::anisotropic;
+            }
+            chosen = Filter::trilinear;
+        }
+    }
+    return chosen;
+}
+//< choose-filter
+
+/// Makes the mesh's chain ready for `filter`: level 0 for bilinear, every level (built
+/// once per texture, limits checked by build_mip_chain) for the mip filters.
+void prepare_chain(MeshContext& m, Filter filter) {
+    if (filter != Filter::bilinear && !*m.full_chain) {
+        *m.chain = build_mip_chain(*m.texture);
+        *m.full_chain = true;
+        m.report.mip_chains += 1;
+    } else if (m.chain->levels.empty()) {
+        m.chain->levels.push_back(decode_texture(*m.texture));
+    }
+}
 
 /// A triangle after the geometry stage: projected, clipped, not culled, with what the
 /// stages need at its corners.
@@ -128,6 +178,20 @@ void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
             affine_rounding = choose_rounding(tv, MapperKind::affine);
         }
         report.texture.triangles += 1;
+    }
+    // Filter stage setup: only for textured meshes of scenes that ask for a filter.
+    std::array<TexturedVertex, 3> snapped_corners = tv; // the corners the planes use
+    for (std::size_t k = 0; k < 3; ++k) {
+        snapped_corners[k].position = p[k];
+    }
+    Filter filter = Filter::nearest;
+    if (m.stages.texture && options.filter != SceneFilter::nearest) {
+        filter = triangle_filter(options.filter, snapped_corners);
+        prepare_chain(m, filter);
+        report.filter.triangles += 1;
+        report.filter_triangles[filter == Filter::bilinear    ? 0
+                                : filter == Filter::trilinear ? 1
+                                                              : 2] += 1;
     }
     // Colour stage setup: only for meshes with vertex colours.
     std::array<ScreenPlane, 3> rgb{}; // c, or c/w when perspective-correct
@@ -227,6 +291,28 @@ void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
                              m.coordinates->v[at] = vv;
                          }
                      });
+            //> filter-stage
+            if (filter != Filter::nearest) { // the exact coordinate and derivatives
+                const Clock::time_point f0 = Clock::now();
+                const FilterSettings fs{.filter = filter, .wrap = m.mesh.wrap};
+                int filtered = 0;
+                for (int k = 0; k < count; ++k) {
+                    if (!seen(k)) {
+                        continue;
+                    }
+                    filtered += 1;
+                    const auto [u, v] =
+                        projected_coordinates(snapped_corners, Point2{x + k, y});
+                    const TexCoord uv{u.p / u.q, v.p / v.q}; // q = 1/w > 0
+                    m.row[static_cast<std::size_t>(k)] = encode_linear(
+                        sample_filtered(*m.chain, uv, exact_derivatives(u, v), fs));
+                }
+                report.filter.spans += 1;
+                report.filter.pixels += filtered;
+                report.filter.divides += 3LL * filtered; // u, v and 1/q^2
+                report.filter.seconds += seconds_since(f0);
+            }
+            //< filter-stage
             StageCounter& used = report.mappers[static_cast<std::size_t>(mapper.kind)];
             const long long divides = mapper_divides(mapper, count);
             used.triangles += mapper_used[static_cast<std::size_t>(mapper.kind)] ? 0 : 1;
@@ -432,6 +518,8 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
         plan_depth(scene.options.depth, footprints, Viewport{scene.width, scene.height});
     report.depth_on = depth_plan.on;
     report.depth_reason = depth_plan.reason;
+    std::vector<MipChain> chains(scene.textures.size()); // filled on demand
+    std::vector<bool> full_chains(scene.textures.size(), false);
     std::optional<DepthBuffer> depth;
     if (depth_plan.on) {
         depth.emplace(scene.width, scene.height);
@@ -461,10 +549,17 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                       depth ? &*depth : nullptr,
                       corrected,
                       {},
-                      {}};
+                      {},
+                      mesh.texture ? &chains[*mesh.texture] : nullptr,
+                      nullptr};
+        bool full_chain = mesh.texture && full_chains[*mesh.texture];
+        m.full_chain = &full_chain;
         try {
             for (const ProjectedTriangle& t : meshes[i]) {
                 draw_triangle(m, t);
+            }
+            if (mesh.texture) {
+                full_chains[*mesh.texture] = full_chain;
             }
         } catch (const Error& error) {
             throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
@@ -499,6 +594,13 @@ std::string format_report(const RenderReport& r) {
     for (std::size_t k = 0; k < r.mappers.size(); ++k) {
         line(fmt::format("  mapper {}", mapper_kind_name(static_cast<MapperKind>(k))),
              r.mappers[k], false);
+    }
+    line("filter", r.filter, false);
+    if (r.filter.triangles > 0) {
+        out += fmt::format("filter stage: {} bilinear, {} trilinear, {} anisotropic "
+                           "triangles; {} mip chains built\n",
+                           r.filter_triangles[0], r.filter_triangles[1],
+                           r.filter_triangles[2], r.mip_chains);
     }
     out +=
         fmt::format("depth stage: {} ({})\n", r.depth_on ? "on" : "off", r.depth_reason);

@@ -51,13 +51,18 @@ struct RenderReport {
     StageCounter texture;            ///< texture coordinates computed and texels sampled
     StageCounter auto_choice;        ///< spans whose mapper `auto` chose, and its divides
     std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
-    double seconds = 0.0;                ///< the whole render
-    bool depth_on = false;               ///< whether the depth stage ran
+    StageCounter filter; ///< pixels filtered (any filter but nearest), 3 divides each
+    /// Triangles per filter the filter stage ran: bilinear, trilinear, anisotropic.
+    std::array<long long, 3> filter_triangles{};
+    int mip_chains = 0;    ///< mip chains built (one per texture that needed one)
+    double seconds = 0.0;  ///< the whole render
+    bool depth_on = false; ///< whether the depth stage ran
     double colour_bound =
         0.0; ///< largest screen-colour error bound, levels (colour meshes)
     std::string depth_reason; ///< why it ran or not (plan_depth)
 
-    /// Every divide performed: the mappers', auto's and the perspective colours'.
+    /// Every divide performed: the mappers', auto's, the perspective colours' and the
+    /// filter stage's.
     long long divides() const;
 };
 
