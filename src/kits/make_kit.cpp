@@ -538,6 +538,16 @@ std::vector<fs::path> kit_files(const fs::path& root, const std::string& number)
             code += read_text(root / header);
         }
     }
+    // A fixture the chapter's code names by path ("tests/fixtures/NAME") comes along.
+    if (fs::is_directory(root / "tests/fixtures")) {
+        for (const auto& entry : fs::directory_iterator(root / "tests/fixtures")) {
+            const std::string name = entry.path().filename().string();
+            if (code.find("tests/fixtures/" + name + "/") != std::string::npos ||
+                code.find("tests/fixtures/" + name + "\"") != std::string::npos) {
+                add_tree(fs::relative(entry.path(), root), everything);
+            }
+        }
+    }
     // The library: the layers the chapter's code includes, and those beneath them. The
     // base layer always comes (the command-line program needs it).
     const auto layers = read_layers(root);
