@@ -9,6 +9,7 @@
 #include "exactpixels/scene/gouraud_error.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
+#include "support/figure_file.hpp"
 
 #include <fmt/format.h>
 
@@ -16,7 +17,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -81,9 +82,7 @@ int main(int argc, char** argv) {
         gouraud += "\n: Gouraud colours (linear on screen) against perspective-correct "
                    "colours on the shipped scenes with vertex colours, measured by "
                    "`gouraud_perspective_error`. {#tbl:gouraud-error}\n";
-        if (!(std::ofstream(folder / "ch07_gouraud_error.md") << gouraud)) {
-            throw Error((folder / "ch07_gouraud_error.md").string() + ": cannot write");
-        }
+        write_figure_file(folder / "ch07_gouraud_error.md", gouraud);
         // The depth buffer's relative resolution near and far (near plane at 0.1).
         std::string resolution = "| depth $w$ | float $1/w$ | 24-bit fixed $1/w$ |\n"
                                  "|---:|---:|---:|\n";
@@ -92,7 +91,7 @@ int main(int argc, char** argv) {
                 fmt::format("| {} | {:.2e} | {:.2e} |\n", w, depth_resolution(w),
                             fixed_depth_resolution(w, 0.1, 24));
         }
-        std::ofstream(folder / "ch07_depth_resolution.md") << resolution;
+        write_figure_file(folder / "ch07_depth_resolution.md", resolution);
         // What the depth stage costs: every shipped scene with the stage forced on and
         // forced off (off may be wrong; it is the time without the stage).
         std::string cost = "| scene | auto turns it | pixels tested | hidden | "
@@ -115,7 +114,7 @@ int main(int argc, char** argv) {
                                 on.depth.pixels, on.hidden.pixels, with_ms,
                                 best_ms(scene, 7), stage_ms);
         }
-        std::ofstream(folder / "ch07_depth_cost.md") << cost;
+        write_figure_file(folder / "ch07_depth_cost.md", cost);
         // The screen path's colour error on the Gouraud scene, against the corrected one.
         std::string colours =
             "| scene | colours | worst (levels) | mean (levels) | "
@@ -146,9 +145,9 @@ int main(int argc, char** argv) {
                                 r.report.colour_bound, r.report.divides());
             }
         }
-        std::ofstream(folder / "ch07_colours.md") << colours;
-        std::ofstream(folder / "ch07_reports.md") << reports;
-        std::ofstream(folder / "ch07_auto_vs_exact.md") << table;
+        write_figure_file(folder / "ch07_colours.md", colours);
+        write_figure_file(folder / "ch07_reports.md", reports);
+        write_figure_file(folder / "ch07_auto_vs_exact.md", table);
         std::printf("wrote %s and %s\n", (folder / "ch07_reports.md").c_str(),
                     (folder / "ch07_auto_vs_exact.md").c_str());
     } catch (const Error& error) {
