@@ -6,6 +6,7 @@
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/base/test_pattern.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
+#include "exactpixels/scene/scene_renderer.hpp"
 #include "support/png_chunks.hpp"
 
 #include <doctest/doctest.h>
@@ -128,6 +129,19 @@ TEST_CASE("the worst inputs under the limits stay under the stated peaks") {
         run_measured({"render", folder / "big.toml", "-o", folder / "b.png"});
     CHECK(big.exit_code == 0);
     CHECK(big.bytes < 512 * mebibyte); // 128 MiB of texels, 64 MiB of frame, the PNG
+
+    // The same scene with --check: two TexelMaps of the largest image beside it. The
+    // peak stays under the stated bound, and above the two maps alone (the maps were
+    // really made, so the measurement sees the check).
+    const Peak checked =
+        run_measured({"render", folder / "big.toml", "--check", "-o", folder / "c.png"});
+    CHECK(checked.exit_code == 0);
+    const double maps = 2.0 * texel_map_bytes_per_pixel * double(max_image_pixels);
+    CHECK(double(checked.bytes) > maps);
+    CHECK(checked.bytes < max_check_peak_bytes);
+    MESSAGE(fmt::format("render --check peak: {:.0f} MiB (bound {} MiB, maps {:.0f} MiB)",
+                        double(checked.bytes) / double(mebibyte),
+                        max_check_peak_bytes / mebibyte, maps / double(mebibyte)));
 
     // The largest scene file, all of it vertex data (the parser's worst case).
     std::string text = "[image]\nwidth = 64\nheight = 64\n[[mesh]]\n"
