@@ -4,8 +4,10 @@
 // slivers) are drawn at growing distances from the origin by the fixed-point and float
 // rasterizers and the naive one, counting centres covered by no triangle (gaps) or by
 // two or more (overlaps). Writes ch02_float_table.md into the folder argv[1].
+#include "exactpixels/base/error.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/naive_rasterizer.hpp"
+#include "support/figure_file.hpp"
 
 #include <fmt/format.h>
 
@@ -13,10 +15,10 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <numbers>
 #include <random>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -184,11 +186,7 @@ std::array<long, 4> float_errors(int size, int offset, int count) {
 int main(int argc, char** argv) {
     const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
     const auto path = folder / "ch02_float_table.md";
-    std::ofstream out(path);
-    if (!out) {
-        std::fprintf(stderr, "fig_ch02_float: cannot write %s\n", path.c_str());
-        return 1;
-    }
+    std::ostringstream out;
     const int offsets[] = {0, 1 << 12, 1 << 16, 1 << 18, (1 << 20) - side - 8};
     const char* names[] = {"fixed 8x8", "float 1x1", "float 8x8", "naive"};
     const Mesh meshes[] = {grid_mesh("grid, vertices on centres", 8, 0.0),
@@ -230,8 +228,10 @@ int main(int argc, char** argv) {
            "same vertices, and from the exact coverage of the vertices before they were "
            "rounded to float, for random triangles about the given size across "
            "(fig_ch02_float). {#tbl:edge-float-wrong}\n";
-    if (!out) {
-        std::fprintf(stderr, "fig_ch02_float: cannot write %s\n", path.c_str());
+    try {
+        write_figure_file(path, out.str());
+    } catch (const Error& error) {
+        std::fprintf(stderr, "fig_ch02_float: %s\n", error.what());
         return 1;
     }
     std::printf("wrote %s\n", path.c_str());

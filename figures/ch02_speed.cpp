@@ -9,6 +9,7 @@
 // several times, the median of its runs is used. A missing or unreadable CSV is an
 // error naming the file.
 #include "exactpixels/base/error.hpp"
+#include "support/figure_file.hpp"
 
 #include <fmt/format.h>
 
@@ -191,11 +192,7 @@ int main(int argc, char** argv) {
         for (const auto& [name, text] :
              {std::pair{"ch02_speed_table.md", table.str()},
               std::pair{"ch02_speed_sweep.dat", sweep.str()}}) {
-            std::ofstream out(folder / name);
-            out << text;
-            if (!out) {
-                throw Error(fmt::format("{}: cannot write", (folder / name).string()));
-            }
+            exactpixels::write_figure_file(folder / name, text);
         }
     } catch (const Error& error) {
         std::fprintf(stderr, "fig_ch02_speed: %s\n", error.what());

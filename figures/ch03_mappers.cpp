@@ -6,6 +6,7 @@
 #include "exactpixels/lab/perspective_scenes.hpp"
 #include "exactpixels/texture/perspective_error.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
+#include "support/figure_file.hpp"
 
 #include <fmt/format.h>
 
@@ -13,7 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -61,7 +62,7 @@ Rgba8 heat(double d) {
 }
 
 void write_scene_figures(const fs::path& folder, const std::string& name,
-                         const PerspectiveScene& scene, std::FILE* table) {
+                         const PerspectiveScene& scene, std::string& table) {
     std::vector<Framebuffer> renders, heats;
     TexelMap exact(panel_w, panel_h);
     map_scene(exact, scene, variants[0].settings);
@@ -89,8 +90,8 @@ void write_scene_figures(const fs::path& folder, const std::string& name,
             }
         }
         heats.push_back(h);
-        std::fprintf(table, "| %s | %s | %d | %d | %.1f %% | %.3g |\n", name.c_str(),
-                     v.name, pixels, wrong, 100.0 * wrong / pixels, worst);
+        table += fmt::format("| {} | {} | {} | {} | {:.1f} % | {:.3g} |\n", name, v.name,
+                             pixels, wrong, 100.0 * wrong / pixels, worst);
     }
     write_png(folder / ("ch03_" + name + "_mappers.png"), side_by_side(renders));
     write_png(folder / ("ch03_" + name + "_heat.png"),
@@ -110,19 +111,20 @@ void write_span_data(const fs::path& folder) {
                     [&](int k, double u, double) { affine[k] = u; });
     map_span_quadratic(s, [&](int k, double u, double) { quad[k] = u; });
     map_span_subdivided(s, 16, [&](int k, double u, double) { sub[k] = u; });
-    std::ofstream out(folder / "ch03_span_u.dat");
+    std::ostringstream out;
     out << "# pixel exact affine quadratic subdivided16 (u in texels; r = 4, 64 "
            "texels)\n";
     for (int k = 0; k < count; ++k) {
         out << k << ' ' << exact[k] << ' ' << affine[k] << ' ' << quad[k] << ' ' << sub[k]
             << '\n';
     }
+    write_figure_file(folder / "ch03_span_u.dat", out.str());
 }
 
 /// The error of affine and quadratic for a range of depth ratios, and how large r may
 /// grow before each errs by more than half a texel.
 void write_error_tables(const fs::path& folder) {
-    std::ofstream table(folder / "ch03_error_table.md");
+    std::ostringstream table;
     table
         << "| depth ratio $r$ | affine, fraction of $\\Delta U$ | quadratic, fraction of "
            "$\\Delta U$ | affine, $\\Delta U = 64$ | quadratic, $\\Delta U = 64$ |\n"
@@ -136,7 +138,9 @@ void write_error_tables(const fs::path& folder) {
              "(@eq:affine-bound) and quadratic (@eq:quadratic-error, maximised "
              "numerically). {#tbl:span-error}\n";
 
-    std::ofstream limits(folder / "ch03_limit_table.md");
+    write_figure_file(folder / "ch03_error_table.md", table.str());
+
+    std::ostringstream limits;
     limits << "| span extent $\\Delta U$ (texels) | affine: largest $r$ | quadratic: "
               "largest "
               "$r$ |\n|---:|---:|---:|\n";
@@ -149,25 +153,21 @@ void write_error_tables(const fs::path& folder) {
     }
     limits << "\n: The largest depth ratio $r$ over one span for which each mapper stays "
               "within half a texel of the exact coordinate. {#tbl:span-limit}\n";
+    write_figure_file(folder / "ch03_limit_table.md", limits.str());
 }
 } // namespace
 
 int main(int argc, char** argv) {
     const fs::path folder = argc > 1 ? argv[1] : ".";
     try {
-        std::FILE* table = std::fopen((folder / "ch03_scene_table.md").c_str(), "w");
-        if (table == nullptr) {
-            throw Error((folder / "ch03_scene_table.md").string() + ": cannot write");
-        }
-        std::fprintf(table, "| scene | mapper | pixels | wrong texel | share | worst "
-                            "distance (texels) |\n|---|---|---:|---:|---:|---:|\n");
+        std::string table = "| scene | mapper | pixels | wrong texel | share | worst "
+                            "distance (texels) |\n|---|---|---:|---:|---:|---:|\n";
         write_scene_figures(folder, "floor", floor_scene(panel_w, panel_h), table);
         write_scene_figures(folder, "wall", wall_scene(panel_w, panel_h), table);
-        std::fprintf(table,
-                     "\n: Pixels where each mapper picks another texel than the exact "
-                     "one (double), and its largest distance from the exact "
-                     "coordinate. {#tbl:scene-error}\n");
-        std::fclose(table);
+        table += "\n: Pixels where each mapper picks another texel than the exact "
+                 "one (double), and its largest distance from the exact "
+                 "coordinate. {#tbl:scene-error}\n";
+        write_figure_file(folder / "ch03_scene_table.md", table);
         write_span_data(folder);
         write_error_tables(folder);
     } catch (const Error& error) {

@@ -15,6 +15,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/lab/accuracy_scenes.hpp"
 #include "exactpixels/texture/texel_error.hpp"
+#include "support/figure_file.hpp"
 
 #include <fmt/format.h>
 
@@ -110,11 +111,7 @@ std::string texels(double e) {
 }
 
 void write(const fs::path& path, const std::string& text) {
-    std::ofstream out(path);
-    out << text;
-    if (!out) {
-        throw Error(fmt::format("{}: cannot write", path.string()));
-    }
+    write_figure_file(path, text);
 }
 
 } // namespace

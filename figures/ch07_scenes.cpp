@@ -14,6 +14,7 @@
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 #include "exactpixels/scene/supersampled_reference.hpp"
+#include "support/figure_file.hpp"
 
 #include <fmt/format.h>
 
@@ -21,7 +22,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -86,9 +87,7 @@ int main(int argc, char** argv) {
         gouraud += "\n: Gouraud colours (linear on screen) against perspective-correct "
                    "colours on the shipped scenes with vertex colours, measured by "
                    "`gouraud_perspective_error`. {#tbl:gouraud-error}\n";
-        if (!(std::ofstream(folder / "ch07_gouraud_error.md") << gouraud)) {
-            throw Error((folder / "ch07_gouraud_error.md").string() + ": cannot write");
-        }
+        write_figure_file(folder / "ch07_gouraud_error.md", gouraud);
         // The depth buffer's relative resolution near and far (near plane at 0.1).
         std::string resolution = "| depth $w$ | float $1/w$ | 24-bit fixed $1/w$ |\n"
                                  "|---:|---:|---:|\n";
@@ -97,7 +96,7 @@ int main(int argc, char** argv) {
                 fmt::format("| {} | {:.2e} | {:.2e} |\n", w, depth_resolution(w),
                             fixed_depth_resolution(w, 0.1, 24));
         }
-        std::ofstream(folder / "ch07_depth_resolution.md") << resolution;
+        write_figure_file(folder / "ch07_depth_resolution.md", resolution);
         // What the depth stage costs: every shipped scene with the stage forced on and
         // forced off (off may be wrong; it is the time without the stage).
         std::string cost = "| scene | auto turns it | pixels tested | hidden | "
@@ -120,7 +119,7 @@ int main(int argc, char** argv) {
                                 on.depth.pixels, on.hidden.pixels, with_ms,
                                 best_ms(scene, 7), stage_ms);
         }
-        std::ofstream(folder / "ch07_depth_cost.md") << cost;
+        write_figure_file(folder / "ch07_depth_cost.md", cost);
         // The screen path's colour error on the Gouraud scene, against the corrected one.
         std::string colours =
             "| scene | colours | worst (levels) | mean (levels) | "
@@ -151,7 +150,7 @@ int main(int argc, char** argv) {
                                 r.report.colour_bound, r.report.divides());
             }
         }
-        std::ofstream(folder / "ch07_colours.md") << colours;
+        write_figure_file(folder / "ch07_colours.md", colours);
         //> scene-filters-figure
         // The filter stage on the horizon: each filter against an 8 x 8 supersampled
         // reference, its cost, and nearest beside auto.
@@ -199,19 +198,13 @@ int main(int argc, char** argv) {
                        "of 7 renders (this build's quick figures), and the RMS error "
                        "against the scene supersampled 8 x 8 per pixel "
                        "(`supersampled_reference`). {#tbl:scene-filters}\n";
-            if (!(std::ofstream(folder / "ch07_scene_filters.md") << filters)) {
-                throw Error((folder / "ch07_scene_filters.md").string() +
-                            ": cannot write");
-            }
-            if (!(std::ofstream(folder / "ch07_scene_filters.txt") << facts)) {
-                throw Error((folder / "ch07_scene_filters.txt").string() +
-                            ": cannot write");
-            }
+            write_figure_file(folder / "ch07_scene_filters.md", filters);
+            write_figure_file(folder / "ch07_scene_filters.txt", facts);
             write_png(folder / "ch07_horizon_filters.png", pair);
         }
         //< scene-filters-figure
-        std::ofstream(folder / "ch07_reports.md") << reports;
-        std::ofstream(folder / "ch07_auto_vs_exact.md") << table;
+        write_figure_file(folder / "ch07_reports.md", reports);
+        write_figure_file(folder / "ch07_auto_vs_exact.md", table);
         std::printf("wrote %s and %s\n", (folder / "ch07_reports.md").c_str(),
                     (folder / "ch07_auto_vs_exact.md").c_str());
     } catch (const Error& error) {

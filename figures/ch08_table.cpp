@@ -12,6 +12,7 @@
 // error is deterministic, only the times move from run to run.
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/lab/filter_measure.hpp"
+#include "support/figure_file.hpp"
 
 #include <fmt/format.h>
 
@@ -100,12 +101,7 @@ void mark_front(std::vector<Row>& rows) {
 }
 
 void write(const fs::path& path, const std::string& text) {
-    std::ofstream out(path);
-    out << text;
-    out.close();
-    if (!out) {
-        throw Error(fmt::format("{}: cannot write", path.string()));
-    }
+    write_figure_file(path, text);
 }
 
 } // namespace

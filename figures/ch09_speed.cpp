@@ -8,13 +8,14 @@
 // Usage: fig_ch09_speed FIGURE_DIR
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/lab/benchmark_csv.hpp"
+#include "support/figure_file.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -54,7 +55,7 @@ double pixel_rate(const BenchmarkRuns& r, const std::string& mode,
 
 void write_dat(const BenchmarkRuns& r, const std::string& mode,
                const std::filesystem::path& path) {
-    std::ofstream out(path);
+    std::ostringstream out;
     out << "# area walk blocks runs masks tiled llvmpipe plain (Mpix/s, one core)\n";
     for (const int area : areas) {
         out << area;
@@ -65,9 +66,7 @@ void write_dat(const BenchmarkRuns& r, const std::string& mode,
         out << ' ' << (mode == "flat" ? pixel_rate(r, mode, "plain", area) / 1e6 : 0.0)
             << '\n';
     }
-    if (!out) {
-        throw Error(fmt::format("{}: cannot be written", path.string()));
-    }
+    write_figure_file(path, out.str());
 }
 
 std::string table(const BenchmarkRuns& r) {
@@ -160,11 +159,7 @@ std::string instruction_table(const BenchmarkRuns& r) {
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
-    std::ofstream out(path);
-    out << text;
-    if (!out) {
-        throw Error(fmt::format("{}: cannot be written", path.string()));
-    }
+    write_figure_file(path, text);
 }
 
 } // namespace

@@ -22,23 +22,21 @@ execute_process(
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "assignment-${kit}: make-kit failed (see above)")
 endif()
-file(REMOVE ${OUTPUT}/${kit}.zip)
-execute_process(
-  COMMAND ${CMAKE_COMMAND} -E tar cf ${kit}.zip --format=zip ${kit}
-  WORKING_DIRECTORY ${OUTPUT}
-  RESULT_VARIABLE status)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "assignment-${kit}: zipping ${kit} failed")
+# Both zips are written to a temporary name and renamed into place only when tar
+# succeeded (zip_atomically.cmake): a failure leaves the previous zip, never half of one.
+include(${CMAKE_CURRENT_LIST_DIR}/zip_atomically.cmake)
+zip_atomically(ZIP ${OUTPUT}/${kit}.zip DIRECTORY ${OUTPUT} ENTRIES ${kit}
+               RESULT_VARIABLE problem)
+if(problem)
+  message(FATAL_ERROR "assignment-${kit}: zipping ${kit} failed: ${problem}")
 endif()
-file(REMOVE ${OUTPUT}/${kit}-gradescope.zip)
 file(GLOB entries RELATIVE ${OUTPUT}/${kit} ${OUTPUT}/${kit}/*)
 list(REMOVE_ITEM entries .exactpixels-kit)
-execute_process(
-  COMMAND ${CMAKE_COMMAND} -E tar cf ../${kit}-gradescope.zip --format=zip ${entries}
-  WORKING_DIRECTORY ${OUTPUT}/${kit}
-  RESULT_VARIABLE status)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "assignment-${kit}: zipping the Gradescope autograder failed")
+zip_atomically(ZIP ${OUTPUT}/${kit}-gradescope.zip DIRECTORY ${OUTPUT}/${kit}
+               ENTRIES ${entries} RESULT_VARIABLE problem)
+if(problem)
+  message(FATAL_ERROR
+          "assignment-${kit}: zipping the Gradescope autograder failed: ${problem}")
 endif()
 message(STATUS "assignment-${kit}: ${OUTPUT}/${kit}-gradescope.zip (Gradescope)")
 message(STATUS "assignment-${kit}: ${OUTPUT}/${kit}/ and ${OUTPUT}/${kit}.zip")

@@ -608,13 +608,12 @@ std::string format_report(const RenderReport& r) {
     return out;
 }
 
-TexelError check_against_exact(const Scene& scene) {
+TexelError check_against_exact(Scene scene) {
     TexelMap map(scene.width, scene.height), reference(scene.width, scene.height);
     render_scene(scene, &map);
-    Scene exact = scene;
-    exact.options.mapper = {false, {MapperKind::exact}};
-    exact.options.precision = Precision::float64;
-    render_scene(exact, &reference);
+    scene.options.mapper = {false, {MapperKind::exact}};
+    scene.options.precision = Precision::float64;
+    render_scene(scene, &reference);
     return compare_texel_maps(reference, map);
 }
 

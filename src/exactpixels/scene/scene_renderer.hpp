@@ -82,8 +82,23 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates = nullptr);
 /// The report as a table: one line per stage and per mapper that ran.
 std::string format_report(const RenderReport& report);
 
+/// Bytes a TexelMap holds per pixel: the covered bit, the texel indices i and j, and the
+/// coordinates u and v.
+inline constexpr double texel_map_bytes_per_pixel =
+    0.125 + 2.0 * sizeof(int) + 2.0 * sizeof(double);
+
+/// The most memory `render --check` may take, bytes (1088 MiB), for the largest scene the
+/// limits allow (scene_loader.hpp): the check holds two TexelMaps of max_image_pixels
+/// (2 x 24.125 B x 2^24 = 772 MiB) beside the textures (max_scene_texture_bytes,
+/// 128 MiB), the image being written (64 MiB) and the image of the render in progress
+/// (64 MiB): 1028 MiB, plus 60 MiB for the program and the allocator. A second copy of
+/// the textures (128 MiB) would break it. tests/ch07_limits.cpp measures the peak.
+inline constexpr long long max_check_peak_bytes = 1088LL << 20;
+
 /// Renders the scene as it asks and again with the exact mapper in double precision,
-/// and measures the texel error of the first against the second.
-TexelError check_against_exact(const Scene& scene);
+/// and measures the texel error of the first against the second. The scene is taken by
+/// value and its options changed in place for the second render, so a caller that
+/// moves its scene in keeps one copy of the textures, not two.
+TexelError check_against_exact(Scene scene);
 
 } // namespace exactpixels
