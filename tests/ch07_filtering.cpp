@@ -38,7 +38,9 @@ TEST_CASE(
     }
 }
 
-TEST_CASE("auto builds no mip chain where no triangle is minified") {
+// A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
+TEST_CASE("auto builds no mip chain where no triangle is minified" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     // A 16 x 16 texture over an orthographic 240 x 240 square: 15 pixels per texel.
     const std::string text = R"(
 [image]
@@ -73,7 +75,9 @@ uv = [[0.0, 16.0], [16.0, 16.0], [16.0, 0.0], [0.0, 16.0], [16.0, 0.0], [0.0, 0.
     CHECK(h.filter_triangles[1] + h.filter_triangles[2] > 0);
 }
 
-TEST_CASE("on the horizon auto is closer than nearest to the supersampled reference") {
+// A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
+TEST_CASE("on the horizon auto is closer than nearest to the supersampled reference" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     const Scene scene = shipped("horizon_filtered");
     const std::vector<LinearTexel> reference = supersampled_reference(scene, 8);
     Scene nearest = scene;

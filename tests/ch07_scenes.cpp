@@ -495,7 +495,9 @@ TEST_CASE("two overlapping quads give the same image in either file order") {
     CHECK(far_first.report.hidden.pixels == 0); // near drawn last: nothing fails the test
 }
 
-TEST_CASE("a box without back-face culling is drawn correctly by the depth stage") {
+// A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
+TEST_CASE("a box without back-face culling is drawn correctly by the depth stage" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     const std::string box = R"(
 [image]
 width = 80
@@ -731,7 +733,9 @@ Colour seen_colour(const Scene& scene, double px, double py) {
 
 } // namespace
 
-TEST_CASE("perspective-correct colours are the colour of the point each pixel sees") {
+// A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
+TEST_CASE("perspective-correct colours are the colour of the point each pixel sees" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     Scene scene = parse_scene(steep_triangle + "[render]\ncolours = \"perspective\"\n",
                               "steep.toml", ".");
     const RenderResult corrected = render_scene(scene);
@@ -764,7 +768,9 @@ TEST_CASE("perspective-correct colours are the colour of the point each pixel se
     CHECK(screen.report.colour_perspective.pixels == 0);
 }
 
-TEST_CASE("auto corrects colours only on meshes whose bound exceeds the budget") {
+// A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
+TEST_CASE("auto corrects colours only on meshes whose bound exceeds the budget" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     const Scene scene = parse_scene(steep_triangle + R"(
 [[mesh]]
 name = "facing"
