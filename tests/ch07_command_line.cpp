@@ -1,5 +1,6 @@
 // Chapter 0's rule for the command line, tested on all three commands (so in chapter 7's
-// suite, whose kit has every layer): every usage mistake on the command line is bad input like any other:
+// suite, whose kit has every layer): every usage mistake on the command line is bad
+// input like any other:
 // exit code 2 and one line on standard error that names the option, with long words cut.
 #include "support/process.hpp"
 

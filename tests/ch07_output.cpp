@@ -1,5 +1,6 @@
 // Chapter 0's output discipline, tested through all three commands (pattern, coverage,
-// render), so in chapter 7's suite, whose kit has every layer: the one output discipline of every file the project writes
+// render), so in chapter 7's suite, whose kit has every layer: the one output
+// discipline of every file the project writes
 // (atomic_file.hpp). Nothing lost: a write that fails (a full disk, a file size limit)
 // leaves the old file as it was and no temporary file. Nothing clobbered: an output that
 // is an input, a device, a FIFO, a directory or a symbolic link is refused, and files
