@@ -49,6 +49,13 @@ b_bound = eps * qmax / q_far
 a_bound = eps * (ufar * qmax) / (ufar * q_far)  # max p <= u_far max q when u_far is largest
 same("far pixel: eps max q / q", b_bound, eps * R)
 same("far pixel: both together", a_bound + b_bound, 2 * eps * R)
+# Anywhere else on the row p's relative error is at most eps R u_max / |u|, so in texels
+# |u| (a + b) <= eps R (u_max + |u|) <= 2 eps R u_max.
+u_here = sp.Symbol("u_here", positive=True)
+a_anywhere = eps * (umax * qmax) / (u_here * q_far)
+holds("in texels the error is at most 2 eps R u_max",
+      sp.simplify(2 * eps * R * umax - u_here * (a_anywhere + b_bound)
+                  - eps * R * (umax - u_here)) == 0)
 # The test's float tolerance, 8 2^-24 R 4096, is that bound with a factor of 4 to spare
 # for |u| up to 4096 texels.
 same("float tolerance", 8 * sp.Integer(2)**-24 * R * 4096,
