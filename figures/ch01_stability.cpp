@@ -1,13 +1,73 @@
 // Figure data: the gradient stability study of chapter 1. Writes ch01_stability.md (the
-// table the chapter pulls in) and ch01_stability.dat (for ch01_stability.gp) into the
-// folder argv[1].
+// table the chapter pulls in), ch01_stability.dat (for ch01_stability.gp) and
+// ch01_stability_facts.txt (the summaries the chapter's prose quotes, one "NAME VALUE"
+// per line) into the folder argv[1].
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/raster/gradient_stability.hpp"
 #include "support/figure_file.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <sstream>
+#include <vector>
+
+namespace {
+
+/// The range [lo, hi] of a value over the double rows with a non-zero y-delta.
+struct Range {
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -std::numeric_limits<double>::infinity();
+    void add(double v) {
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+    }
+};
+
+/// The facts the chapter states about the study, in `double`: ranges over the non-zero
+/// y-deltas, pooled shares of wins, and the zero-delta row on its own.
+std::string stability_facts(const std::vector<exactpixels::StabilityRow>& rows) {
+    Range split_p99, split_median, closed_p99, closed_median, p99_ratio;
+    double trials = 0, closed_wins = 0, split_wins = 0;
+    std::ostringstream out;
+    out << "# Chapter 1's stability study in double (fig_ch01_stability)\n";
+    for (const exactpixels::StabilityRow& r : rows) {
+        if (r.precision != "double") {
+            continue;
+        }
+        const double share = 100.0 / r.triangles;
+        if (r.y_delta == 0) {
+            out << "zero_split_median " << r.split_median << "\nzero_closed_median "
+                << r.closed_median << "\nzero_split_p99 " << r.split_p99
+                << "\nzero_closed_p99 " << r.closed_p99 << "\nzero_split_wins_percent "
+                << r.split_better * share << "\nzero_closed_wins_percent "
+                << r.closed_better * share << '\n';
+            continue;
+        }
+        split_p99.add(r.split_p99);
+        split_median.add(r.split_median);
+        closed_p99.add(r.closed_p99);
+        closed_median.add(r.closed_median);
+        p99_ratio.add(r.split_p99 / r.closed_p99);
+        trials += r.triangles;
+        closed_wins += r.closed_better;
+        split_wins += r.split_better;
+    }
+    const auto range = [&](const char* name, const Range& v) {
+        out << name << "_lo " << v.lo << '\n' << name << "_hi " << v.hi << '\n';
+    };
+    range("split_p99", split_p99);
+    range("split_median", split_median);
+    range("closed_p99", closed_p99);
+    range("closed_median", closed_median);
+    range("p99_ratio", p99_ratio);
+    out << "closed_wins_percent " << 100.0 * closed_wins / trials
+        << "\nsplit_wins_percent " << 100.0 * split_wins / trials << '\n';
+    return out.str();
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
     using namespace exactpixels;
@@ -30,6 +90,7 @@ int main(int argc, char** argv) {
     try {
         write_figure_file(folder / "ch01_stability.md", table.str());
         write_figure_file(folder / "ch01_stability.dat", data.str());
+        write_figure_file(folder / "ch01_stability_facts.txt", stability_facts(rows));
     } catch (const Error& error) {
         std::fprintf(stderr, "fig_ch01_stability: %s\n", error.what());
         return 1;

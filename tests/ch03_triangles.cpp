@@ -7,6 +7,7 @@
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/texture/texture.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
+#include "support/measured_facts.hpp"
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>
@@ -18,6 +19,7 @@
 #include <unistd.h>
 
 using namespace exactpixels;
+using exactpixels::testing::record_fact;
 namespace fs = std::filesystem;
 
 namespace {
@@ -248,6 +250,9 @@ TEST_CASE("exact float picks exact double's texel everywhere but at counted near
         CHECK(largest <
               2e-3); // float loses no more than a few thousandths of a texel here
         CHECK(differ <= near_ties);
+        record_fact("ch03_float_error_" + name, largest);
+        record_fact("ch03_near_ties_" + name, near_ties);
+        record_fact("ch03_float_differs_" + name, differ);
         MESSAGE(name << ": " << pixels << " pixels, float error up to " << largest
                      << " texels, " << near_ties << " near-ties, " << differ
                      << " pixels where float and double differ");

@@ -3,6 +3,7 @@
 // the sign of dc/dx; in float it is within a stated bound; per row it can differ across a
 // triangle.
 #include "exactpixels/texture/rounding.hpp"
+#include "support/measured_facts.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>
@@ -16,6 +17,7 @@
 
 using namespace exactpixels;
 using testing::Rational;
+using testing::record_fact;
 
 namespace {
 
@@ -199,6 +201,7 @@ TEST_CASE("the float numerator is within the stated rounding bound of the exact 
     }
     MESSAGE("worst float error: " << worst << " of the bound; " << sign_checks
                                   << " pixels had |n| above the bound");
+    record_fact("ch04_float_numerator_of_bound", worst);
     CHECK(sign_checks > span_count * span_length / 2);
 }
 
@@ -256,6 +259,8 @@ TEST_CASE("the chosen rule can differ between rows of one perspective triangle" 
     }
     MESSAGE(rows_differing_from_triangle
             << " of " << rows_checked << " rows need the other rule than the centroid's");
+    record_fact("ch04_wall_rows_checked", rows_checked);
+    record_fact("ch04_wall_rows_other_rule", rows_differing_from_triangle);
     CHECK(rows_differing_from_triangle > 0);
     CHECK(rows_differing_from_triangle < rows_checked);
 }

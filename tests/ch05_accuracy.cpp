@@ -3,12 +3,14 @@
 #include "exactpixels/lab/accuracy_scenes.hpp"
 #include "exactpixels/texture/perspective_error.hpp"
 #include "exactpixels/texture/texel_error.hpp"
+#include "support/measured_facts.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cmath>
 
 using namespace exactpixels;
+using exactpixels::testing::record_fact;
 
 namespace {
 MapperConfig find(const std::string& name) {
@@ -77,6 +79,8 @@ TEST_CASE("on the facing wall only the rounding rule decides, at exactly the tie
 
 TEST_CASE("the grazing floor spans depth ratios from 1.1 to 20") {
     const auto r = span_depth_ratios(grazing_floor_scene());
+    record_fact("ch05_floor_ratio_low", r[0]);
+    record_fact("ch05_floor_ratio_high", r[1]);
     CHECK(r[0] >= 1.1);
     CHECK(r[0] <= 1.2);
     CHECK(r[1] >= 20.0);
@@ -97,6 +101,8 @@ TEST_CASE("the measured affine error meets chapter 3's bound on a single recedin
     const TexelError e = measure_mapper_error(quad, find("affine double"));
     const double bound = affine_error_bound(r) * 100.0; // 50 texels for r = 9
     MESSAGE("affine worst " << e.worst << " texels, chapter 3's bound " << bound);
+    record_fact("ch05_quad_affine_worst", e.worst);
+    record_fact("ch05_quad_affine_bound", bound);
     CHECK(e.worst <= bound);
     CHECK(e.worst >= 0.99 * bound);
 }

@@ -5,6 +5,7 @@
 // agree bit for bit.
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/texture/clipping.hpp"
+#include "support/measured_facts.hpp"
 
 #include <doctest/doctest.h>
 
@@ -13,6 +14,7 @@
 #include <limits>
 
 using namespace exactpixels;
+using exactpixels::testing::record_fact;
 
 namespace {
 std::uint64_t state = 7;
@@ -140,6 +142,11 @@ TEST_CASE("drawn through the clip, every pixel gets the texel a traced ray finds
     }
     MESSAGE(pixels << " pixels drawn through the clip; largest uv error " << worst
                    << " of the allowance");
+    record_fact("ch06_clip_pixels", pixels);
+    record_fact("ch06_clip_trials", 60);
+    record_fact("ch06_clip_misses", misses);
+    record_fact("ch06_clip_holes", holes);
+    record_fact("ch06_clip_uv_of_allowance", worst);
     CHECK(pixels > 10000);
     CHECK(misses == 0); // no drawn pixel whose ray misses the triangle or hits behind
     CHECK(holes == 0);  // no pixel clearly inside left undrawn

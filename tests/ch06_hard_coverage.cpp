@@ -7,6 +7,7 @@
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
+#include "support/measured_facts.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>
@@ -15,10 +16,12 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <vector>
 
 using namespace exactpixels;
 using exactpixels::testing::Int128;
+using exactpixels::testing::record_fact;
 
 namespace {
 
@@ -97,17 +100,24 @@ TEST_CASE("a sliver thinner than a pixel across the frame is covered exactly") {
     // A wedge 1/16 to 1/2 px wide at its end over 600 px of length: most rows hold no
     // centre at all, a few hold one. Exact in fixed point, against the brute-force test.
     const Viewport vp{640, 200};
+    int sliver_mismatches = 0;
     for (const double width : {1.0 / 16, 1.0 / 4, 1.0 / 2}) {
         const std::array<Point2, 3> sliver{
             {{10.25, 3.5}, {610.75, 190.25}, {610.75 + width, 190.25}}};
         MESSAGE("sliver " << width << " px wide: " << reference_count(sliver, vp)
                           << " pixels covered");
         CHECK(reference_count(sliver, vp) > 0); // the test is not vacuous
+        record_fact("ch06_sliver_pixels_" + std::to_string(int(1 / width)),
+                    reference_count(sliver, vp));
+        int mismatches = 0;
         for (const RasterizerKind kind : all_kinds) {
             INFO("width " << width << ", rasterizer " << int(kind));
             CHECK(mismatches_with_reference(sliver, vp, kind) == 0);
+            mismatches += mismatches_with_reference(sliver, vp, kind);
         }
+        sliver_mismatches += mismatches;
     }
+    record_fact("ch06_sliver_mismatches", sliver_mismatches);
 }
 
 TEST_CASE("the 720-sliver fan covers every pixel of its disc exactly once") {
@@ -121,6 +131,7 @@ TEST_CASE("the 720-sliver fan covers every pixel of its disc exactly once") {
         const double a = k * std::numbers::pi / 360.0;
         return centre + radius * Point2{std::cos(a), std::sin(a)};
     };
+    int fan_twice = 0, fan_gaps = 0, fan_outside = 0; // over all three rasterizers
     for (const RasterizerKind kind : all_kinds) {
         std::vector<int> counts(static_cast<std::size_t>(vp.width * vp.height), 0);
         for (int k = 0; k < 720; ++k) {
@@ -142,7 +153,13 @@ TEST_CASE("the 720-sliver fan covers every pixel of its disc exactly once") {
         CHECK(twice == 0);
         CHECK(gaps == 0);
         CHECK(outside == 0);
+        fan_twice += twice;
+        fan_gaps += gaps;
+        fan_outside += outside;
     }
+    record_fact("ch06_fan_twice", fan_twice);
+    record_fact("ch06_fan_gaps", fan_gaps);
+    record_fact("ch06_fan_outside", fan_outside);
 }
 
 TEST_CASE("at the fixed-point limit coverage is exact; past it, an Error and no pixel") {
@@ -287,6 +304,7 @@ TEST_CASE("rotating the vertex order or reversing the winding changes no pixel")
         }
     }
     MESSAGE("largest u/v change over all orders: " << worst_uv << " texels");
+    record_fact("ch06_order_uv_change", worst_uv);
     CHECK(worst_uv <= 1e-9);
     CHECK(index_mismatches == 0);
 }

@@ -7,14 +7,18 @@
 #include "exactpixels/texture/quadratic.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
+#include "support/measured_facts.hpp"
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <string>
 
 using namespace exactpixels;
+using exactpixels::testing::record_fact;
 
 namespace {
 #ifdef NDEBUG
@@ -30,7 +34,12 @@ TEST_CASE("near-zero y-deltas: both gradient setups stay finite and close to exa
     // epsilons of the precision, on the largest error over all triangles: 2^10 for the
     // closed form, and the same for the split edge; never NaN or infinite.
     const std::vector<StabilityRow> rows = gradient_stability_study(trials, 5);
+    std::map<std::string, double> worst; // the chapter quotes each method's worst
     for (const StabilityRow& r : rows) {
+        worst["closed_" + r.precision] =
+            std::max(worst["closed_" + r.precision], r.closed_max);
+        worst["split_" + r.precision] =
+            std::max(worst["split_" + r.precision], r.split_max);
         INFO("y-delta " << r.y_delta << ", " << r.precision);
         MESSAGE("y-delta " << r.y_delta << " " << r.precision << ": closed max "
                            << r.closed_max << " eps, split max " << r.split_max
@@ -39,6 +48,10 @@ TEST_CASE("near-zero y-deltas: both gradient setups stay finite and close to exa
         CHECK(std::isfinite(r.split_max));
         CHECK(r.closed_max <= 256.0);
         CHECK(r.split_max <= 256.0);
+    }
+    record_fact("ch06_ydelta_trials", trials);
+    for (const auto& [name, value] : worst) {
+        record_fact("ch06_ydelta_" + name, value);
     }
 }
 
@@ -129,6 +142,10 @@ TEST_CASE("a tiny far triangle: float loses it, relative coordinates keep it") {
     MESSAGE("far tiny triangle, largest error in c: float "
             << e_float << ", float relative " << e_relative << ", double " << e_double
             << ", fixed " << e_fixed);
+    record_fact("ch06_far_float", e_float);
+    record_fact("ch06_far_float_relative", e_relative);
+    record_fact("ch06_far_double", e_double);
+    record_fact("ch06_far_fixed", e_fixed);
     CHECK(e_float > 1e-3); // the failure the safeguard exists for
     CHECK(e_relative <= 1e-5);
     CHECK(e_double <= 1e-9);
@@ -197,6 +214,11 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
     MESSAGE("edge-on, " << pixels << " pixels, 1/w ratio along a row up to " << ratio
                         << ", worst texel error: double " << worst[0] << ", 16.16 "
                         << worst[1] << ", float " << worst[2]);
+    record_fact("ch06_edge_on_pixels", pixels);
+    record_fact("ch06_edge_on_ratio", ratio);
+    record_fact("ch06_edge_on_double", worst[0]);
+    record_fact("ch06_edge_on_fixed", worst[1]);
+    record_fact("ch06_edge_on_float", worst[2]);
     CHECK(pixels > 5000);
     CHECK(ratio > 100.0);
     CHECK(worst[0] <= 1e-6);
@@ -229,6 +251,9 @@ TEST_CASE("long spans in float: stepping drifts, re-evaluating the plane does no
     });
     MESSAGE("float over " << n << " px: stepping drift " << drift << " texels, fresh "
                           << fresh << " texels, bound " << n * 0x1p-24 * u_max);
+    record_fact("ch06_drift_stepped", drift);
+    record_fact("ch06_drift_bound", n * 0x1p-24 * u_max);
+    record_fact("ch06_drift_fresh", fresh);
     CHECK(drift <= n * 0x1p-24 * u_max);
     CHECK(fresh <= 0x1p-23 * u_max);
     CHECK(mapper_drift == drift);

@@ -85,6 +85,20 @@ TEST_CASE("claim: runs reach between 30 and 40 % of a plain fill at 65536 px") {
     CHECK(share < 0.40);
 }
 
+TEST_CASE("claim: flat 8x8 blocks beat the walk at 1000 px and up, not at 80 px") {
+    CHECK(rate("flat", "blocks", 80) < rate("flat", "walk", 80));
+    for (const int area : {1000, 65536}) {
+        INFO(area << " px");
+        CHECK(rate("flat", "blocks", area) > rate("flat", "walk", area));
+    }
+}
+
+TEST_CASE("claim: flat 8x8 blocks reach under a fifth of a plain fill at 65536 px") {
+    const double share = rate("flat", "blocks", 65536) / rate("flat", "plain", 65536);
+    CHECK(share > 0.10);
+    CHECK(share < 0.20);
+}
+
 TEST_CASE("claim: with a depth test llvmpipe comes within 1.3x at 1000 and 65536 px") {
     for (const int area : {1000, 65536}) {
         INFO(area << " px");
