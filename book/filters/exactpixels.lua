@@ -755,10 +755,11 @@ end
 -- a table whose widest cells, heading included, fit the line gets natural widths (no
 -- wrapping at all); otherwise each column gets its longest word, plus a share of the rest
 -- of the line in proportion to how much longer its longest body cell is (headings may
--- wrap between words, names and numbers in the body should not). Widths are in
--- characters of the tables' \small face (about 4.6 pt each) on the 155 mm text block
--- (439 pt), less 12 pt between columns. book/latex/header.tex forbids breaking a word in
--- a cell, and the PDF check fails on a word wider than its column.
+-- wrap between words, names and numbers in the body should not), each word with two
+-- characters to spare. Widths are in characters of the tables' \small face (about 4.6
+-- pt each) on the 155 mm text block (439 pt), less 12 pt between columns.
+-- book/latex/header.tex forbids breaking a word in a cell, and the PDF check fails on a
+-- word wider than its column.
 local table_line_pt, table_char_pt, table_gap_pt = 439, 4.6, 12
 local function table_text_widths(tbl)
   local words, body, all = {}, {}, {}
@@ -797,7 +798,7 @@ local function latex_table_widths(doc)
       local room = (table_line_pt - table_gap_pt * (n - 1)) / table_char_pt
       local sum_words, sum_body, sum_all = 0, 0, 0
       for k = 1, n do
-        words[k] = (words[k] or 0) + 1
+        words[k] = (words[k] or 0) + 2 -- a little room: italic math and bold run wide
         body[k] = math.max((body[k] or 0) + 1, words[k])
         sum_words, sum_body = sum_words + words[k], sum_body + body[k]
         sum_all = sum_all + (all[k] or 0) + 1
