@@ -85,7 +85,7 @@ void write_labelled(const fs::path& folder, const std::string& stem,
     if (!in || bytes.empty()) {
         throw Error(fmt::format("{}: cannot read the panels back", png.string()));
     }
-    constexpr int label_h = 26;
+    constexpr int label_h = 30;
     const int width = int(panels.size()) * (panel_w + gap) - gap;
     std::string svg = fmt::format(
         "<svg xmlns=\"http://www.w3.org/2000/svg\" "
@@ -96,8 +96,8 @@ void write_labelled(const fs::path& folder, const std::string& stem,
         width, panel_h + label_h, panel_h, base64(bytes));
     for (std::size_t p = 0; p < panels.size(); ++p) {
         svg += fmt::format("<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" "
-                           "font-size=\"17\" text-anchor=\"middle\">({}) {}</text>\n",
-                           int(p) * (panel_w + gap) + panel_w / 2, panel_h + 19,
+                           "font-size=\"20\" text-anchor=\"middle\">({}) {}</text>\n",
+                           int(p) * (panel_w + gap) + panel_w / 2, panel_h + 22,
                            char('a' + p), names[p]);
     }
     svg += "</svg>\n";
