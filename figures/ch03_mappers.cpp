@@ -1,5 +1,7 @@
 // Chapter 3 figures: the floor and the wall by each mapper, error heat maps, u along one
-// span (data for ch03_span_u.gp), and the measured tables the chapter pulls in.
+// span (data for ch03_span_u.gp), and the measured tables the chapter pulls in. The
+// panels of each scene figure are PNG pictures inside one SVG that labels them (a), (b),
+// ... with their mapper, so the caption can refer to each panel by its letter.
 // Usage: fig_ch03_mappers FIGURE_DIR
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
@@ -12,8 +14,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -47,6 +52,56 @@ Framebuffer side_by_side(const std::vector<Framebuffer>& panels) {
         }
     }
     return out;
+}
+
+/// `bytes` in base 64 (RFC 4648), for a picture inside an SVG (a data: URL).
+std::string base64(const std::string& bytes) {
+    static const char digits[] =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        const std::size_t n = std::min<std::size_t>(3, bytes.size() - i);
+        std::uint32_t group = 0;
+        for (std::size_t k = 0; k < 3; ++k) {
+            group = (group << 8) | (k < n ? std::uint8_t(bytes[i + k]) : 0u);
+        }
+        for (std::size_t k = 0; k < 4; ++k) {
+            out += k <= n ? digits[(group >> (18 - 6 * k)) & 63u] : '=';
+        }
+    }
+    return out;
+}
+
+/// Writes `panels` side by side as `stem`.png and as `stem`.svg: the same picture with
+/// the label "(a) NAME", "(b) NAME", ... under each panel (the book shows the SVG).
+void write_labelled(const fs::path& folder, const std::string& stem,
+                    const std::vector<Framebuffer>& panels,
+                    const std::vector<std::string>& names) {
+    const fs::path png = folder / (stem + ".png");
+    write_png(png, side_by_side(panels));
+    std::ifstream in(png, std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in),
+                            std::istreambuf_iterator<char>()};
+    if (!in || bytes.empty()) {
+        throw Error(fmt::format("{}: cannot read the panels back", png.string()));
+    }
+    constexpr int label_h = 30;
+    const int width = int(panels.size()) * (panel_w + gap) - gap;
+    std::string svg = fmt::format(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" "
+        "xmlns:xlink=\"http://www.w3.org/1999/xlink\" width=\"{0}\" height=\"{1}\" "
+        "viewBox=\"0 0 {0} {1}\">\n<rect width=\"{0}\" height=\"{1}\" fill=\"white\"/>\n"
+        "<image x=\"0\" y=\"0\" width=\"{0}\" height=\"{2}\" "
+        "xlink:href=\"data:image/png;base64,{3}\"/>\n",
+        width, panel_h + label_h, panel_h, base64(bytes));
+    for (std::size_t p = 0; p < panels.size(); ++p) {
+        svg += fmt::format("<text x=\"{}\" y=\"{}\" font-family=\"sans-serif\" "
+                           "font-size=\"20\" text-anchor=\"middle\">({}) {}</text>\n",
+                           int(p) * (panel_w + gap) + panel_w / 2, panel_h + 22,
+                           char('a' + p), names[p]);
+    }
+    svg += "</svg>\n";
+    write_figure_file(folder / (stem + ".svg"), svg);
 }
 
 /// Texel distance d to a colour: black for 0, then dark blue (1/64 texel) through red to
@@ -93,9 +148,14 @@ void write_scene_figures(const fs::path& folder, const std::string& name,
         table += fmt::format("| {} | {} | {} | {} | {:.1f} % | {:.3g} |\n", name, v.name,
                              pixels, wrong, 100.0 * wrong / pixels, worst);
     }
-    write_png(folder / ("ch03_" + name + "_mappers.png"), side_by_side(renders));
-    write_png(folder / ("ch03_" + name + "_heat.png"),
-              side_by_side(std::vector<Framebuffer>(heats.begin() + 1, heats.end())));
+    std::vector<std::string> names;
+    for (const Variant& v : variants) {
+        names.emplace_back(v.name);
+    }
+    write_labelled(folder, "ch03_" + name + "_mappers", renders, names);
+    write_labelled(folder, "ch03_" + name + "_heat",
+                   std::vector<Framebuffer>(heats.begin() + 1, heats.end()),
+                   std::vector<std::string>(names.begin() + 1, names.end()));
 }
 
 /// u along one span of 64 pixels, depth ratio 4, 64 texels: exact, affine, quadratic and

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace fs = std::filesystem;
 using exactpixels::testing::run_command;
@@ -173,6 +174,55 @@ TEST_CASE("a named test must exist in the named file") {
         title + "[a name too long for one line]{.test file=\"tests/ch07_demo.cpp\"}\n");
     CHECK(wrapped.exit_code == 0);
     CHECK(wrapped.out.find("ch07_demo.cpp.html#src-2") != std::string::npos);
+}
+
+TEST_CASE("in LaTeX a named test is set in the lighter \\eptest face, in HTML a link") {
+    FixtureBook book;
+    book.write("chapters/07-demo/chapter.md",
+               title +
+                   "So [the answer is 42]{.test file=\"tests/ch07_demo.cpp\"} holds.\n");
+    const auto latex =
+        book.run_filter("chapters/07-demo/chapter.md", "latex", "EP_CHAPTERS=07-demo");
+    REQUIRE(latex.exit_code == 0);
+    CHECK(latex.out.find("\\eptest{the answer is 42}") != std::string::npos);
+    CHECK(latex.out.find("\\texttt{the") == std::string::npos);
+    CHECK(latex.out.find("\\textbf{the") == std::string::npos);
+}
+
+TEST_CASE("in LaTeX a table's columns are sized from its words, never split inside one") {
+    FixtureBook book;
+    // Pandoc would give the seven columns of this long pipe table one seventh each, and
+    // break "subdivided-16" in the first.
+    const std::string wide =
+        "| mapper | ns/px | × affine | worst (texels) | mean (texels) | differing | "
+        "front "
+        "|\n|:--|--:|--:|--:|--:|--:|:-:|\n"
+        "| subdivided-16 fixed +rule | 6.90 | 1.42 | 0.000123 | 0 | 50.00 % | yes |\n"
+        "| affine | 4.87 | 1.00 | 0 | 0 | 50.00 % |  |\n\n: A wide table.\n\n"
+        "| a | b |\n|---|---|\n| x | y |\n\n: A narrow table.\n";
+    book.write("chapters/07-demo/chapter.md", title + wide);
+    const auto latex =
+        book.run_filter("chapters/07-demo/chapter.md", "latex", "EP_CHAPTERS=07-demo");
+    REQUIRE(latex.exit_code == 0);
+    // The narrow table: natural widths, nothing wraps.
+    CHECK(latex.out.find("\\begin{longtable}[]{@{}ll@{}}") != std::string::npos);
+    // The wide one: fractions of the line, the name column the widest and wide enough
+    // for its longest row (26 characters of about 4.6 pt in 439 pt less 6 gaps of 12).
+    std::vector<double> widths;
+    const std::string key = "\\real{";
+    for (auto at = latex.out.find(key); at != std::string::npos;
+         at = latex.out.find(key, at + 1)) {
+        widths.push_back(std::stod(latex.out.substr(at + key.size())));
+    }
+    REQUIRE(widths.size() == 7);
+    CHECK(std::max_element(widths.begin(), widths.end()) == widths.begin());
+    CHECK(widths[0] * (439 - 6 * 12) >= 26 * 4.6);
+    double sum = 0;
+    for (const double w : widths) {
+        CHECK(w > 0);
+        sum += w;
+    }
+    CHECK(sum <= 1.0001);
 }
 
 TEST_CASE("a figure the build did not make fails the book") {

@@ -114,7 +114,8 @@ BookReport check_html_book(const fs::path& book, const fs::path& screenshots) {
             for (const auto& image : r["images"].array) {
                 ++report.images;
                 if (!image["ok"].boolean) {
-                    report.problems.push_back(name + ": broken image " + image["url"].str());
+                    report.problems.push_back(name + ": broken image " +
+                                              image["url"].str());
                 }
             }
             for (const auto& text : r["rawTex"].array) {
@@ -127,9 +128,26 @@ BookReport check_html_book(const fs::path& book, const fs::path& screenshots) {
                 report.problems.push_back(
                     name + ": " + box["what"].str() + " wider than its box (" +
                     std::to_string(static_cast<int>(box["scroll"].number)) + " px in " +
+                    std::to_string(static_cast<int>(box["client"].number)) + " px at a " +
+                    std::to_string(viewport_width) +
+                    " px wide window): " + box["text"].str());
+            }
+            for (const auto& box : r["tall"].array) {
+                report.problems.push_back(
+                    name + ": equation taller than its box (" +
+                    std::to_string(static_cast<int>(box["scroll"].number)) + " px in " +
                     std::to_string(static_cast<int>(box["client"].number)) +
-                    " px at a " + std::to_string(viewport_width) + " px wide window): " +
-                    box["text"].str());
+                    " px): " + box["text"].str());
+            }
+            for (const auto& cell : r["wrapped"].array) {
+                report.problems.push_back(
+                    name + ": table cell wraps a single word over " +
+                    std::to_string(static_cast<int>(cell["lines"].number)) +
+                    " lines: " + cell["text"].str());
+            }
+            for (const auto& heading : r["unnumbered"].array) {
+                report.problems.push_back(
+                    name + ": unnumbered section heading in a chapter: " + heading.str());
             }
             auto& ids = ids_of[page];
             for (const auto& id : r["ids"].array) {
@@ -155,9 +173,8 @@ BookReport check_html_book(const fs::path& book, const fs::path& screenshots) {
                 continue;
             }
             const auto hash = url.find('#');
-            fs::path target = percent_decode(url.substr(7, hash == std::string::npos
-                                                                ? std::string::npos
-                                                                : hash - 7));
+            fs::path target = percent_decode(
+                url.substr(7, hash == std::string::npos ? std::string::npos : hash - 7));
             const std::string anchor =
                 hash == std::string::npos ? "" : percent_decode(url.substr(hash + 1));
             if (fs::is_directory(target)) {
@@ -182,8 +199,8 @@ BookReport check_html_book(const fs::path& book, const fs::path& screenshots) {
             }
             if (!found) {
                 report.problems.push_back(name + ": link to a missing anchor " +
-                                          fs::relative(key, root).string() + "#" + anchor +
-                                          " (\"" + link["text"].str() + "\")");
+                                          fs::relative(key, root).string() + "#" +
+                                          anchor + " (\"" + link["text"].str() + "\")");
             }
         }
     }
@@ -204,10 +221,15 @@ struct BrokenBook {
     BrokenBook() {
         fs::remove_all(root);
         fs::create_directories(root);
-        std::ofstream(root / "style.css") << "pre { width: 200px; overflow-x: auto; }\n";
+        std::ofstream(root / "style.css")
+            << "pre { width: 200px; overflow-x: auto; }\n"
+               ".equation > p:first-child { height: 4px; overflow: auto; }\n"
+               "td { width: 3em; }\n";
         std::ofstream(root / "broken.html")
             << "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
                "<title>t</title><link rel=\"stylesheet\" href=\"style.css\"></head><body>"
+               "<h1><span class=\"secnum\">1</span> A chapter</h1>"
+               "<h2><span class=\"secnum\">1.1</span> Numbered</h2><h2>Exercises</h2>"
                "<p><a href=\"gone.html\">a missing page</a> "
                "<a href=\"fine.html#nowhere\">a missing anchor</a> "
                "<a href=\"fine.html#here\">a good anchor</a> "
@@ -216,12 +238,21 @@ struct BrokenBook {
                "<p>Left as TeX: $$x = \\frac{a}{b}$$</p>"
                "<p><span class=\"math inline\">\\(\\frac{a\\)</span></p>"
                "<p><math><merror><mtext>bad</mtext></merror></math></p>"
-               "<pre>" + std::string(120, 'x') + "</pre>"
-               "<script>console.error('a console error')</script>"
-               "</body></html>\n";
+               "<pre>" +
+                   std::string(120, 'x') +
+                   "</pre>"
+                   "<div class=\"equation\"><p><math display=\"block\"><mfrac><mi>a</mi>"
+                   "<mi>b</mi></mfrac></math></p><p>(1)</p></div>"
+                   "<table><tr><td>subdivided-16-fixed-rule</td><td>two "
+                   "words</td></tr></table>"
+                   "<script>console.error('a console error')</script>"
+                   "</body></html>\n";
         std::ofstream(root / "fine.html")
             << "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
                "<title>t</title><link rel=\"stylesheet\" href=\"style.css\"></head><body>"
+               "<h1><span class=\"secnum\">1</span> A chapter</h1>"
+               "<h2><span class=\"secnum\">1.1</span> A section</h2>"
+               "<table><tr><td>fixed</td><td>1.25</td></tr></table>"
                "<p id=\"here\">A fine page with <math><mi>x</mi></math> and "
                "<a href=\"broken.html\">a link</a>.</p><pre>short</pre></body></html>\n";
     }
@@ -248,9 +279,17 @@ TEST_CASE("the browser check catches each fault a reader would see") {
     CHECK(mentions(report.problems, "broken.html", "unrendered math"));
     CHECK(mentions(report.problems, "broken.html", "<merror>"));
     CHECK(mentions(report.problems, "broken.html", "listing wider than its box"));
+    CHECK(mentions(report.problems, "broken.html", "equation taller than its box"));
+    CHECK(mentions(report.problems, "broken.html", "table cell wraps a single word"));
+    CHECK(mentions(report.problems, "broken.html", "lines: subdivided-16-fixed-rule"));
+    CHECK_FALSE(mentions(report.problems, "broken.html", "two words"));
+    CHECK(mentions(report.problems, "broken.html",
+                   "unnumbered section heading in a chapter: Exercises"));
+    CHECK_FALSE(mentions(report.problems, "broken.html", "chapter: 1.1"));
     // The clean page has no problem, and both first screens were saved.
-    CHECK_FALSE(std::any_of(report.problems.begin(), report.problems.end(),
-                            [](const std::string& p) { return p.rfind("fine.html", 0) == 0; }));
+    CHECK_FALSE(
+        std::any_of(report.problems.begin(), report.problems.end(),
+                    [](const std::string& p) { return p.rfind("fine.html", 0) == 0; }));
     CHECK(report.screenshots.size() == 2);
     for (const auto& shot : report.screenshots) {
         CHECK(fs::file_size(shot) > 1000);

@@ -2,6 +2,9 @@
 // PNG (build/book/pages/, poppler's pdftoppm) and the check fails on
 //   - a listing or display equation wider than the text block by more than 5 pt
 //     (LaTeX's "Overfull \hbox" in the log; the place is found in the .tex),
+//   - a word in a table cell wider than its column (book/latex/header.tex forbids
+//     breaking a word in a cell, so such a word makes an Overfull \hbox inside the
+//     table instead of being split over two lines), or a table wider than the page,
 //   - a figure LaTeX did not find, did not include, or that is blank,
 //   - an unresolved reference: "??" in the text (pdftotext), or LaTeX's undefined
 //     references or "labels may have changed" (one pass too few),
@@ -37,6 +40,9 @@ namespace {
 // than one character of the listing font, so no code character is ever outside the text
 // block.
 constexpr double overfull_limit_pt = 5.0;
+// How far a word may stick out of its table column: 1 pt, well inside the 6 pt of space
+// LaTeX leaves on each side of a column, so the word never touches its neighbour.
+constexpr double table_overfull_limit_pt = 1.0;
 
 std::string read_text(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);
@@ -55,7 +61,7 @@ std::string quoted(const fs::path& path) {
 
 using exactpixels::testing::lines_of;
 
-enum class Place { text, listing, equation };
+enum class Place { text, listing, equation, table };
 
 // What each line of a LaTeX file is part of: a listing (verbatim environments, as Pandoc
 // writes code), a display equation, or running text. Index 0 is line 1.
@@ -67,6 +73,8 @@ std::vector<Place> places_of(const std::string& tex) {
         R"(\\\[|\\begin\{(equation|align|gather|multline)\*?\})");
     static const std::regex math_end(
         R"(\\\]|\\end\{(equation|align|gather|multline)\*?\})");
+    static const std::regex table_begin(R"(\\begin\{(longtable|tabular)\})");
+    static const std::regex table_end(R"(\\end\{(longtable|tabular)\})");
     std::vector<Place> places;
     Place now = Place::text;
     for (const auto& line : lines_of(tex)) {
@@ -75,10 +83,14 @@ std::vector<Place> places_of(const std::string& tex) {
             here = now = Place::listing;
         } else if (now == Place::text && std::regex_search(line, math_begin)) {
             here = now = Place::equation;
+        } else if (now == Place::text && std::regex_search(line, table_begin)) {
+            here = now = Place::table;
         }
         if (now == Place::listing && std::regex_search(line, listing_end)) {
             now = Place::text;
         } else if (now == Place::equation && std::regex_search(line, math_end)) {
+            now = Place::text;
+        } else if (now == Place::table && std::regex_search(line, table_end)) {
             now = Place::text;
         }
         places.push_back(here);
@@ -110,13 +122,17 @@ std::vector<std::string> latex_log_problems(const std::string& log,
         const std::string where = first <= tex_lines.size() ? tex_lines[first - 1] : "";
         const std::string what = place == Place::listing    ? "a listing"
                                  : place == Place::equation ? "an equation"
+                                 : place == Place::table    ? "a table cell"
                                                             : "text";
-        const std::string message = what + " " + (*it)[1].str() +
-                                    " pt wider than the page "
-                                    "(.tex line " +
+        const std::string room = place == Place::table
+                                     ? " pt wider than its column or the page "
+                                     : " pt wider than the page ";
+        const std::string message = what + " " + (*it)[1].str() + room + "(.tex line " +
                                     std::to_string(first) + ": " + where.substr(0, 100) +
                                     ")";
-        if (place != Place::text && width > overfull_limit_pt) {
+        if (place == Place::table && width > table_overfull_limit_pt) {
+            problems.push_back(message);
+        } else if (place != Place::text && width > overfull_limit_pt) {
             problems.push_back(message);
         } else if (width > overfull_limit_pt) {
             notes.push_back(message);
@@ -233,7 +249,7 @@ TEST_CASE("the PDF check catches overfull listings and equations, missing figure
         std::string(EXACTPIXELS_SOURCE_DIR) + "/book/latex/header.tex";
     const std::string tex =
         "\\documentclass{article}\n"
-        "\\usepackage{graphicx}\n"
+        "\\usepackage{graphicx,longtable,array,xcolor}\n"
         "\\input{" +
         header +
         "}\n"
@@ -256,6 +272,10 @@ TEST_CASE("the PDF check catches overfull listings and equations, missing figure
         "a_{18} + a_{19} + a_{20} + a_{21} + a_{22} + a_{23} + a_{24} "
         "+ a_{25} + a_{26} + a_{27} + a_{28} + a_{29} + a_{30} \\]\n"
         "\n"
+        "\\begin{longtable}[]{@{}p{2em}p{8em}@{}}\n"
+        "subdivided-16 & two short words that may wrap \\\\\n"
+        "\\end{longtable}\n"
+        "\n"
         "\\includegraphics{ch99_missing.pdf}\n"
         "\\end{document}\n";
     run_pdflatex(folder, tex);
@@ -276,6 +296,10 @@ TEST_CASE("the PDF check catches overfull listings and equations, missing figure
         return p.rfind("a listing ", 0) == 0 && p.rfind("a listing line", 0) != 0;
     })); // the plain verbatim block: a real Overfull \hbox
     CHECK(has("an equation"));
+    CHECK(has("a table cell")); // "subdivided-16" may not be split over two lines
+    CHECK(std::count_if(problems.begin(), problems.end(), [](const std::string& p) {
+              return p.find("a table cell") != std::string::npos;
+          }) == 1); // the cell of short words wraps between them, as it may
     CHECK(has("file not found by LaTeX: ch99_missing.pdf"));
     CHECK(has("undefined Reference 'sec:nowhere'"));
     CHECK(has("there were undefined references"));

@@ -9,6 +9,12 @@
 //   mathErrors every MathML <merror>, and every <math> the browser laid out with no size
 //   wide      every listing (<pre>) or display equation whose content is wider than its
 //             box (scrollWidth > clientWidth): the reader would have to scroll
+//   tall       every display equation whose content is taller than its box
+//             (scrollHeight > clientHeight): a vertical scroll bar, or a clipped formula
+//   wrapped    every table cell whose text is one word (no space) laid out on more than
+//             one line: a name or number broken inside itself
+//   unnumbered on a chapter page (its <h1> carries a section number), every <h2> that
+//             has none, such as an Exercises heading left unnumbered
 (() => {
   const short = (text) => text.replace(/\s+/g, " ").trim().slice(0, 80);
   const links = [...document.querySelectorAll("a[href], link[href]")].map((a) => ({
@@ -60,5 +66,56 @@
       });
     }
   }
-  return { links, images, ids, rawTex, mathErrors, wide };
+  const tall = [];
+  for (const box of document.querySelectorAll(".equation > p:first-child")) {
+    if (box.scrollHeight > box.clientHeight + 1) {
+      tall.push({
+        text: short(box.textContent || ""),
+        scroll: box.scrollHeight,
+        client: box.clientHeight,
+      });
+    }
+  }
+
+  // A cell's lines: the distinct tops of the boxes its text is laid out in.
+  const wrapped = [];
+  for (const cell of document.querySelectorAll("td, th")) {
+    const text = (cell.textContent || "").trim();
+    if (text === "" || /\s/.test(text)) {
+      continue;
+    }
+    const range = document.createRange();
+    range.selectNodeContents(cell);
+    const tops = new Set();
+    for (const rect of range.getClientRects()) {
+      if (rect.width > 0 && rect.height > 0) {
+        tops.add(Math.round(rect.top));
+      }
+    }
+    // A new line starts more than half a line below the last one (a sub- or superscript
+    // in the same line is shifted by less).
+    const style = getComputedStyle(cell);
+    const lineHeight = parseFloat(style.lineHeight) || 1.2 * parseFloat(style.fontSize);
+    let lines = 0;
+    let last = -Infinity;
+    for (const top of [...tops].sort((a, b) => a - b)) {
+      if (top - last > 0.6 * lineHeight) {
+        ++lines;
+        last = top;
+      }
+    }
+    if (lines > 1) {
+      wrapped.push({ text: short(text), lines });
+    }
+  }
+
+  const unnumbered = [];
+  if (document.querySelector("h1 .secnum")) {
+    for (const h of document.querySelectorAll("h2")) {
+      if (!h.querySelector(".secnum")) {
+        unnumbered.push(short(h.textContent || ""));
+      }
+    }
+  }
+  return { links, images, ids, rawTex, mathErrors, wide, tall, wrapped, unnumbered };
 })()

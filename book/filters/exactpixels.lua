@@ -553,10 +553,14 @@ local function test_reference(span, dir)
     fail(dir, name, "the text names test '" .. name .. "' but " .. file
       .. " has no TEST_CASE(\"" .. name .. "\")")
   end
-  local label = pandoc.Code(name)
   if target == "latex" then
-    return pandoc.Span({ label }, { class = "test" })
+    -- \eptest (book/latex/header.tex): a lighter face that breaks like prose.
+    local inlines = pandoc.List({ pandoc.RawInline("latex", "\\eptest{") })
+    inlines:extend(pandoc.Inlines(name))
+    inlines:insert(pandoc.RawInline("latex", "}"))
+    return pandoc.Span(inlines, { class = "test" })
   end
+  local label = pandoc.Code(name)
   source_page(file)
   local href = "source/" .. file:gsub("/", "_") .. ".html#src-" .. line_number
   return pandoc.Link({ label }, href, file .. ", line " .. line_number, { class = "test" })
@@ -745,6 +749,80 @@ local function fixed_delimiters(doc)
   })
 end
 
+-- Tables in the PDF. Pandoc gives a pipe table whose lines are long columns in proportion
+-- to its dashes ("|:--|--:|": all equal), and LaTeX then breaks a name such as
+-- "subdivided-16 fixed" inside a narrow column. Size the columns from their text instead:
+-- a table whose widest cells, heading included, fit the line gets natural widths (no
+-- wrapping at all); otherwise each column gets its longest word, plus a share of the rest
+-- of the line in proportion to how much longer its longest body cell is (headings may
+-- wrap between words, names and numbers in the body should not), each word with two
+-- characters to spare. Widths are in characters of the tables' \small face (about 4.6
+-- pt each) on the 155 mm text block (439 pt), less 12 pt between columns.
+-- book/latex/header.tex forbids breaking a word in a cell, and the PDF check fails on a
+-- word wider than its column.
+local table_line_pt, table_char_pt, table_gap_pt = 439, 4.6, 12
+local function table_text_widths(tbl)
+  local words, body, all = {}, {}, {}
+  local function measure(row, in_body)
+    for k, cell in ipairs(row.cells) do
+      -- Math does not break: one word, with each TeX command counted as one character.
+      local text = pandoc.utils.stringify(pandoc.List(cell.contents):map(function(block)
+        return pandoc.walk_block(block, { Math = function(m)
+          local shown = m.text:gsub("\\%a+", "x"):gsub("\\[ ,;]", "x")
+          return pandoc.Str((shown:gsub("[%s{}_^$\\]", "")))
+        end })
+      end))
+      local length = utf8.len(text) or #text
+      all[k] = math.max(all[k] or 0, length)
+      if in_body then body[k] = math.max(body[k] or 0, length) end
+      for word in text:gmatch("%S+") do
+        words[k] = math.max(words[k] or 0, utf8.len(word) or #word)
+      end
+    end
+  end
+  for _, row in ipairs(tbl.head.rows) do measure(row, false) end
+  for _, b in ipairs(tbl.bodies) do
+    for _, row in ipairs(b.head) do measure(row, false) end
+    for _, row in ipairs(b.body) do measure(row, true) end
+  end
+  for _, row in ipairs(tbl.foot.rows) do measure(row, true) end
+  return words, body, all
+end
+
+local function latex_table_widths(doc)
+  if target ~= "latex" then return doc end
+  return doc:walk({
+    Table = function(tbl)
+      local n = #tbl.colspecs
+      local words, body, all = table_text_widths(tbl)
+      local room = (table_line_pt - table_gap_pt * (n - 1)) / table_char_pt
+      local sum_words, sum_body, sum_all = 0, 0, 0
+      for k = 1, n do
+        words[k] = (words[k] or 0) + 2 -- a little room: italic math and bold run wide
+        body[k] = math.max((body[k] or 0) + 1, words[k])
+        sum_words, sum_body = sum_words + words[k], sum_body + body[k]
+        sum_all = sum_all + (all[k] or 0) + 1
+      end
+      local share = 0
+      if sum_body > sum_words then
+        share = math.min(1, math.max(0, (room - sum_words) / (sum_body - sum_words)))
+      end
+      local used = 0
+      for k = 1, n do used = used + words[k] + (body[k] - words[k]) * share end
+      for k = 1, n do
+        local width = nil -- natural: the column as wide as its widest cell
+        if sum_all > room then
+          -- what is left of the line goes to the columns in proportion to their words
+          local base = words[k] + (body[k] - words[k]) * share
+          width = (base + math.max(0, room - used) * base / used) / math.max(room, used)
+        end
+        tbl.colspecs[k] = { tbl.colspecs[k][1], width }
+      end
+      return tbl
+    end,
+  })
+end
+
 -- A page that is not a chapter: references and named tests resolve, headings are not
 -- numbered, and `::: contents` is filled with the table of contents.
 local function render_page(doc)
@@ -763,7 +841,7 @@ local function render_page(doc)
       fail(nil, "```", "a code block typed by hand: mark it .pseudocode / .text / .sh / .toml")
     end,
   })
-  return fixed_delimiters(doc)
+  return latex_table_widths(fixed_delimiters(doc))
 end
 
 local teacher = os.getenv("EP_TEACHER") == "1"
@@ -875,5 +953,5 @@ function Pandoc(doc)
   if target == "html" and state.title then
     doc.meta.pagetitle = state.title
   end
-  return fixed_delimiters(doc)
+  return latex_table_widths(fixed_delimiters(doc))
 end
