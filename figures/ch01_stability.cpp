@@ -1,7 +1,9 @@
 // Figure data: the gradient stability study of chapter 1. Writes ch01_stability.md (the
-// table the chapter pulls in), ch01_stability.dat (for ch01_stability.gp) and
+// table the chapter pulls in), ch01_stability.dat (for ch01_stability.gp),
 // ch01_stability_facts.txt (the summaries the chapter's prose quotes, one "NAME VALUE"
-// per line) into the folder argv[1].
+// per line) and ch01_stability_far.txt (the same study with every triangle moved by
+// 3072 px in x and y, to about 4000 px; Exercise 5's solution quotes its facts) into
+// the folder argv[1].
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/raster/gradient_stability.hpp"
 #include "support/figure_file.hpp"
@@ -11,6 +13,8 @@
 #include <filesystem>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -64,6 +68,29 @@ std::string stability_facts(const std::vector<exactpixels::StabilityRow>& rows) 
     range("p99_ratio", p99_ratio);
     out << "closed_wins_percent " << 100.0 * closed_wins / trials
         << "\nsplit_wins_percent " << 100.0 * split_wins / trials << '\n';
+
+// One fact per line, "NAME VALUE": for each y-delta (named by its index, d0 = 1e-2 ..
+// d5 = 0) and precision, the medians and 99th percentiles of both methods and how often
+// each won, near the origin ("near") and moved to about 4000 px ("far").
+std::string far_facts(const std::vector<exactpixels::StabilityRow>& near,
+                      const std::vector<exactpixels::StabilityRow>& far) {
+    std::ostringstream out;
+    out << "# chapter 1, Exercise 5: the stability study at 100..1000 px (near) and "
+           "moved\n"
+           "# by 3072 px to 3082..4072 px (far); errors in machine epsilons\n";
+    for (std::size_t i = 0; i < near.size(); ++i) {
+        const std::string key = near[i].precision + "_d" + std::to_string(i / 2);
+        for (const auto& [where, r] :
+             {std::pair{"near", near[i]}, std::pair{"far", far[i]}}) {
+            const double n = r.triangles / 100.0;
+            out << key << "_split_median_" << where << ' ' << r.split_median << '\n'
+                << key << "_split_p99_" << where << ' ' << r.split_p99 << '\n'
+                << key << "_closed_median_" << where << ' ' << r.closed_median << '\n'
+                << key << "_closed_p99_" << where << ' ' << r.closed_p99 << '\n'
+                << key << "_closed_better_" << where << ' ' << r.closed_better / n << '\n'
+                << key << "_split_better_" << where << ' ' << r.split_better / n << '\n';
+        }
+    }
     return out.str();
 }
 
@@ -73,6 +100,7 @@ int main(int argc, char** argv) {
     using namespace exactpixels;
     const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
     const auto rows = gradient_stability_study(20000, 1); // 20000 triangles per row
+    const auto far_rows = gradient_stability_study(20000, 1, 3072.0);
     std::ostringstream table;
     table << ": Error of the two gradient methods, in machine epsilons of the precision, "
              "over 20000 triangles per row {#tbl:stability}\n\n"
@@ -91,6 +119,7 @@ int main(int argc, char** argv) {
         write_figure_file(folder / "ch01_stability.md", table.str());
         write_figure_file(folder / "ch01_stability.dat", data.str());
         write_figure_file(folder / "ch01_stability_facts.txt", stability_facts(rows));
+        write_figure_file(folder / "ch01_stability_far.txt", far_facts(rows, far_rows));
     } catch (const Error& error) {
         std::fprintf(stderr, "fig_ch01_stability: %s\n", error.what());
         return 1;

@@ -4,7 +4,9 @@
 // pixels per second against area, one column per variant, for ch09_speed.gp),
 // ch09_table.md (the same numbers and the ratio to llvmpipe), ch09_targets.md (each
 // target of the chapter, met or not, with the numbers that decide it) and
-// ch09_instructions.md (instructions per triangle from data/ch09_instructions.csv).
+// ch09_instructions.md (instructions per triangle from data/ch09_instructions.csv), and
+// ch09_threads.txt (facts for Exercise 4's solution: the one-core ratio of the tiled
+// renderer to llvmpipe, and what two threads gave on the machine of the committed run).
 // Usage: fig_ch09_speed FIGURE_DIR
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/lab/benchmark_csv.hpp"
@@ -158,6 +160,33 @@ std::string instruction_table(const BenchmarkRuns& r) {
     return md;
 }
 
+/// Exercise 4's facts, one "NAME VALUE" per line: at each area from 80 px up, the tiled
+/// renderer's rate over llvmpipe's with one thread each (process CPU time), in both
+/// modes; the tiled renderer's wall-clock rate with two threads over one; and the
+/// instructions per triangle of runs, masks and llvmpipe at 1000 px (callgrind).
+std::string thread_facts(const BenchmarkRuns& r, const BenchmarkRuns& instructions) {
+    std::string facts = "# chapter 9, Exercise 4: what the committed runs can say\n";
+    for (const std::string mode : {"flat", "depth"}) {
+        for (const int area : {80, 1000, 65536}) {
+            facts += fmt::format("{}_tiled_over_llvmpipe_{} {:.4f}\n", mode, area,
+                                 rate(r, mode, "tiled", area) /
+                                     rate(r, mode, "llvmpipe", area));
+        }
+        for (const char* v : {"runs", "masks", "llvmpipe"}) {
+            facts += fmt::format("{}_{}_instructions_1000 {:.1f}\n", mode, v,
+                                 instructions.value(fmt::format("{}/{}/1000", mode, v),
+                                                    "instructions_per_triangle"));
+        }
+    }
+    for (const int area : {80, 1000, 65536}) {
+        facts += fmt::format(
+            "wall_two_over_one_{} {:.4f}\n", area,
+            r.value(fmt::format("wall/tiled/{}/2/real_time", area), "tri_per_s") /
+                r.value(fmt::format("wall/tiled/{}/1/real_time", area), "tri_per_s"));
+    }
+    return facts;
+}
+
 void write_text(const std::filesystem::path& path, const std::string& text) {
     write_figure_file(path, text);
 }
@@ -174,10 +203,11 @@ int main(int argc, char** argv) {
         write_dat(r, "depth", folder / "ch09_speed_depth.dat");
         write_text(folder / "ch09_table.md", table(r));
         write_text(folder / "ch09_targets.md", targets(r));
-        write_text(folder / "ch09_instructions.md",
-                   instruction_table(read_benchmark_csv(
-                       std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
-                       "chapters/09-fast-pixels/data/ch09_instructions.csv")));
+        const BenchmarkRuns instructions =
+            read_benchmark_csv(std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
+                               "chapters/09-fast-pixels/data/ch09_instructions.csv");
+        write_text(folder / "ch09_instructions.md", instruction_table(instructions));
+        write_text(folder / "ch09_threads.txt", thread_facts(r, instructions));
     } catch (const Error& error) {
         std::fprintf(stderr, "fig_ch09_speed: %s\n", error.what());
         return 2;

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <limits>
 #include <random>
+#include <tuple>
 
 using namespace exactpixels;
 using exactpixels::testing::Rational;
@@ -328,12 +329,18 @@ TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
 TEST_CASE("the stability study's reference is exact" *
           doctest::description("points: 1; exercise: ch01-closed-form")) {
     // exact_gradient computes @eq:closed-form in 128-bit integers; check it against the
-    // library's closed form run in Rational arithmetic on the same inputs.
-    for (const double delta : {1e-2, 1e-9, 0.0}) {
-        for (const PlaneSamples<double>& s : stability_triangles(delta, 50, 7, false)) {
-            // In units of 2^-40 every input is an integer below 2^50; scaling x, y and
-            // c alike leaves dc/dx and dc/dy unchanged. Subtracting vertex 0 keeps the
-            // products below 2^101.
+    // library's closed form run in Rational arithmetic on the same inputs, also for the
+    // triangles moved to about 4000 px (Exercise 5), in double and rounded to float.
+    for (const auto& [delta, origin, as_float] :
+         {std::tuple{1e-2, 0.0, false}, std::tuple{1e-9, 0.0, false},
+          std::tuple{0.0, 0.0, false}, std::tuple{1e-2, 3072.0, false},
+          std::tuple{1e-2, 3072.0, true}, std::tuple{1e-9, 3072.0, true}}) {
+        for (const PlaneSamples<double>& s :
+             stability_triangles(delta, 50, 7, as_float, origin)) {
+            // In units of 2^-40 every input is an integer below 2^52; scaling x, y and
+            // c alike leaves dc/dx and dc/dy unchanged. Subtracting vertex 0 leaves
+            // differences below 2^50 (the triangles span at most 1000 px), so the
+            // products stay below 2^101.
             PlaneSamples<Rational> shifted{};
             for (int i = 0; i < 3; ++i) {
                 const auto units = [](double v) { return std::int64_t(v * 0x1p40); };

@@ -11,6 +11,8 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <limits>
 #include <random>
 #include <string>
@@ -169,6 +171,69 @@ TEST_CASE("covered runs by exact division are the pixel walk's runs on every set
     CHECK(mismatches(testing::sliver_fan({36.5, 36.5}, 33.0, 720), 72, 72, Fast::runs) ==
           0);
     CHECK(mismatches(hard, 640, 200, Fast::runs) == 0);
+}
+
+TEST_CASE(
+    "the double estimate of a run's end is one column off below 2^52, two up to 2^60") {
+    // Exercise 2 of chapter 9: run_of_row_fast starts each edge's end from the double
+    // estimate w * (1 / |s_x|), clamped to the row and truncated, as below. For
+    // |w| < 2^52 the start is at most one column from the exact end (computed here in
+    // 128-bit integers); above, up to the 2^60 of @eq:edge-range, an edge with s_x > 0
+    // whose quotient lies just above an integer can start two columns short, and one
+    // with s_x < 0 is never more than one column off. Both worst cases occur.
+    __extension__ typedef __int128 Int128;
+    std::mt19937_64 rng(97);
+    const auto below = [&](std::int64_t limit) {
+        return static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(limit));
+    };
+    const auto floor_div = [](Int128 a, Int128 b) { // b > 0
+        return a >= 0 ? a / b : -((-a + b - 1) / b);
+    };
+    int worst_small = 0, worst_rising = 0, worst_falling = 0;
+    long near_2_60 = 0;
+    for (int trial = 0; trial < 400000; ++trial) {
+        const std::int64_t n = 1 + below(std::int64_t{1} << 20);
+        const int bits[] = {12, 30, 40};
+        const std::int64_t s = 1 + below(std::int64_t{1} << bits[trial % 3]);
+        // A quotient in or just beyond the row, with a remainder that is 0, 1, s - 1 or
+        // anything, so that integer quotients and their neighbours occur.
+        const std::int64_t q = below(n + 5) - 2;
+        const std::int64_t r_choice[] = {0, 1, s - 1, below(s)};
+        const std::int64_t r = std::max<std::int64_t>(0, r_choice[(trial / 3) % 4]);
+        const Int128 w_wide = static_cast<Int128>(q) * s + r;
+        if (w_wide >= (Int128{1} << 60) || w_wide <= -(Int128{1} << 60)) {
+            continue;
+        }
+        near_2_60 += w_wide >= (Int128{1} << 59);
+        const bool small = w_wide < (Int128{1} << 52) && w_wide > -(Int128{1} << 52);
+        const double inv = 1.0 / static_cast<double>(s);
+        const double last = static_cast<double>(n);
+        for (const bool rising : {true, false}) {
+            // rising: step_x = s > 0 and w = -w_wide, the first k with w + k s >= 0;
+            // falling: step_x = -s and w = w_wide, one past the last k with w - k s >= 0.
+            const auto w = static_cast<std::int64_t>(rising ? -w_wide : w_wide);
+            const double estimate = static_cast<double>(w) * inv;
+            const auto start =
+                static_cast<std::int64_t>(rising ? std::clamp(-estimate, 0.0, last)
+                                                 : std::clamp(estimate + 1.0, 0.0, last));
+            const Int128 exact = rising ? -floor_div(-w_wide, s) // ceil(w_wide / s)
+                                        : floor_div(w_wide, s) + 1;
+            const auto clamped = static_cast<std::int64_t>(
+                std::clamp<Int128>(exact, 0, static_cast<Int128>(n)));
+            const auto distance = static_cast<int>(std::abs(start - clamped));
+            CAPTURE(w);
+            CAPTURE(s);
+            CAPTURE(n);
+            CAPTURE(rising);
+            REQUIRE(distance <= (small || !rising ? 1 : 2));
+            int& worst = small ? worst_small : rising ? worst_rising : worst_falling;
+            worst = std::max(worst, distance);
+        }
+    }
+    CHECK(worst_small == 1);   // below 2^52 truncation alone misses by one
+    CHECK(worst_rising == 2);  // above, the bound of two is reached
+    CHECK(worst_falling == 1); // and the other direction stays within one
+    CHECK(near_2_60 > 1000);   // edge values near the top of the range were tried
 }
 
 TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes") {

@@ -18,7 +18,7 @@ __extension__ typedef __int128 Int128;
 constexpr double input_grain = 0x1p-40; // every input is a multiple of this
 
 // v rounded to the input grain, and then to float when `as_float` (which keeps it on
-// the grain for |v| < 2^10: a float there has at most 24 significant bits, all at or
+// the grain for |v| < 2^12: a float there has at most 24 significant bits, all at or
 // above 2^-40 unless |v| < 2^-16, where it has fewer than 24 bits on the grain anyway).
 double on_grain(double v, bool as_float) {
     const double g = std::nearbyint(v / input_grain) * input_grain;
@@ -27,7 +27,7 @@ double on_grain(double v, bool as_float) {
 
 Int128 to_grain_units(double v) {
     const double units = v / input_grain;
-    assert(std::abs(v) < 0x1p10 && units == std::nearbyint(units));
+    assert(std::abs(v) < 0x1p12 && units == std::nearbyint(units));
     return static_cast<Int128>(static_cast<std::int64_t>(units));
 }
 
@@ -96,8 +96,8 @@ Gradient<long double> exact_gradient(const PlaneSamples<double>& s) {
         y[i] = to_grain_units(s.y[i]);
         c[i] = to_grain_units(s.c[i]);
     }
-    // @eq:closed-form in integers: each product is below 2^102, each difference below
-    // 2^103.
+    // @eq:closed-form in integers: coordinates below 2^52 grains, differences below
+    // 2^53, each product below 2^106, each difference of products below 2^107.
     const Int128 dx2 = x[1] - x[0], dy2 = y[1] - y[0], dc2 = c[1] - c[0];
     const Int128 dx3 = x[2] - x[0], dy3 = y[2] - y[0], dc3 = c[2] - c[0];
     const Int128 area2 = dx3 * dy2 - dx2 * dy3;
@@ -110,7 +110,9 @@ Gradient<long double> exact_gradient(const PlaneSamples<double>& s) {
 }
 
 std::vector<PlaneSamples<double>> stability_triangles(double y_delta, int count,
-                                                      std::uint64_t seed, bool as_float) {
+                                                      std::uint64_t seed, bool as_float,
+                                                      double origin) {
+    assert(origin >= 0.0 && origin <= 3072.0); // keeps every input below 2^12
     SplitMix random{seed};
     std::vector<PlaneSamples<double>> trials;
     while (static_cast<int>(trials.size()) < count) {
@@ -121,6 +123,10 @@ std::vector<PlaneSamples<double>> stability_triangles(double y_delta, int count,
         s.x = {random.uniform(10, 1000), random.uniform(10, 1000),
                random.uniform(10, 1000)};
         s.y = {y0, y0 + y_delta, y0 + h};
+        for (int i = 0; i < 3; ++i) {
+            s.x[i] += origin;
+            s.y[i] += origin;
+        }
         s.c = {random.uniform(0, 1), random.uniform(0, 1), random.uniform(0, 1)};
         // Shuffle the vertex order: the closed form starts from vertex 0.
         const int first = static_cast<int>(random.next() % 3);
@@ -147,13 +153,14 @@ std::vector<PlaneSamples<double>> stability_triangles(double y_delta, int count,
     return trials;
 }
 
-std::vector<StabilityRow> gradient_stability_study(int count, std::uint64_t seed) {
+std::vector<StabilityRow> gradient_stability_study(int count, std::uint64_t seed,
+                                                   double origin) {
     std::vector<StabilityRow> rows;
     for (const double delta : stability_y_deltas()) {
         rows.push_back(measure<float>(
-            delta, stability_triangles(delta, count, seed, true), "float"));
+            delta, stability_triangles(delta, count, seed, true, origin), "float"));
         rows.push_back(measure<double>(
-            delta, stability_triangles(delta, count, seed, false), "double"));
+            delta, stability_triangles(delta, count, seed, false, origin), "double"));
     }
     return rows;
 }

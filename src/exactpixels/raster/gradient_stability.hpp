@@ -11,9 +11,11 @@
 // the float trials also rounded to float, where a y-delta below the spacing of floats
 // near y, 2^-17 .. 2^-14 px, becomes 0 or one spacing), and the exact gradient is a ratio
 // of two 128-bit integers (@eq:closed-form with integer inputs): the reference is that
-// ratio rounded once to long double, relative error below 2^-62. The error of a computed
-// gradient g is the relative error of the vector: |g - g_exact| / |g_exact|, in units of
-// the precision's machine epsilon (float 2^-23, double 2^-52).
+// ratio rounded once to long double, relative error below 2^-62. With an `origin`
+// (chapter 1's Exercise 5) every x and y is moved by that many px before the rounding, so
+// the same triangles lie near the origin instead (inputs then below 2^12 in magnitude).
+// The error of a computed gradient g is the relative error of the vector: |g - g_exact| /
+// |g_exact|, in units of the precision's machine epsilon (float 2^-23, double 2^-52).
 #pragma once
 
 #include "exactpixels/raster/gradients.hpp"
@@ -43,18 +45,23 @@ struct StabilityRow {
 std::vector<double> stability_y_deltas();
 
 /// The exact gradient of the triangle (@eq:closed-form), rounded once to long double.
-/// Every input must be a multiple of 2^-40 with magnitude below 2^10 (asserted); zero
+/// Every input must be a multiple of 2^-40 with magnitude below 2^12 (asserted); zero
 /// area gives {0, 0}.
 Gradient<long double> exact_gradient(const PlaneSamples<double>& s);
 
 /// The trial triangles for one y-delta: `count` of them from a fixed pseudo-random
 /// sequence (`seed`), identical on every platform. Inputs obey exact_gradient's rule;
 /// with `as_float` they are also exact floats (so the y-delta itself may round to 0).
+/// `origin` (px, 0 to 3072) is added to every x and y before rounding: the same draws,
+/// moved to where floats are coarser (up to 2^-12 px apart below 4096 px).
 std::vector<PlaneSamples<double>> stability_triangles(double y_delta, int count,
-                                                      std::uint64_t seed, bool as_float);
+                                                      std::uint64_t seed, bool as_float,
+                                                      double origin = 0.0);
 
-/// Runs the whole study: for each y-delta and for float and double, `count` triangles.
-std::vector<StabilityRow> gradient_stability_study(int count, std::uint64_t seed);
+/// Runs the whole study: for each y-delta and for float and double, `count` triangles,
+/// moved by `origin` px in x and y (see stability_triangles).
+std::vector<StabilityRow> gradient_stability_study(int count, std::uint64_t seed,
+                                                   double origin = 0.0);
 
 /// The study as a Markdown table (the chapter pulls it in as a generated fragment).
 std::string stability_table_markdown(const std::vector<StabilityRow>& rows);
