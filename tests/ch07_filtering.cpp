@@ -103,7 +103,9 @@ TEST_CASE("the supersampled reference at one sample per pixel is the nearest ren
     CHECK_THROWS_AS(supersampled_reference(scene, 2), Error);
 }
 
-TEST_CASE("the renderer filters 8-bit texels as sRGB codes, in linear light") {
+// A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
+TEST_CASE("the renderer filters 8-bit texels as sRGB codes, in linear light" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     // Chapter 8's rule, in the renderer: an 8-bit texel is an sRGB code, and filtering
     // averages light. A 64 x 64 checkerboard of 1-texel squares (codes 235 and 40) on a
     // 16 x 16 orthographic square is minified 4 : 1, level 2 exactly, where every texel

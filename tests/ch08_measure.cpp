@@ -90,7 +90,9 @@ TEST_CASE(
           0.1 * e.at("trilinear"));
 }
 
-TEST_CASE("per-span derivatives stay within the derived bound on every scene") {
+// The stub of ch08-derivatives (every level 0, no error) breaks it.
+TEST_CASE("per-span derivatives stay within the derived bound on every scene" *
+          doctest::description("points: 1; exercise: ch08-derivatives")) {
     // Each pixel's per-span level differs from its exact level by at most @eq:level-bound
     // from the span's middle to the pixel (levels clamped at 0, which only shrinks the
     // difference), up to 1e-9 of rounding; the bound must be finite (g- > 0) everywhere.
@@ -137,7 +139,9 @@ TEST_CASE("per-span derivatives stay within the derived bound on every scene") {
     }
 }
 
-TEST_CASE("the elliptical weighted average is the closest filter to the reference") {
+// The stub of ch08-error (every error 0) breaks it.
+TEST_CASE("the elliptical weighted average is the closest filter to the reference" *
+          doctest::description("points: 1; exercise: ch08-error")) {
     // Heckbert's EWA weights the texels of the whole footprint by a Gaussian of the
     // pixel's second moments: on the minified pixels of the horizon and the random field
     // it is closer to the reference than every other filter, anisotropic-16 included.
