@@ -46,10 +46,9 @@ struct SceneCamera {
 
 /// One corner of a mesh triangle in world space.
 struct SceneVertex {
-    glm::dvec3 position;      ///< world units
-    TexCoord uv = {0.0, 0.0}; ///< texels (used only when the mesh has a texture)
-    Colour colour = {1.0, 1.0,
-                     1.0}; ///< RGB, sRGB code / 255 (used only with vertex colours)
+    glm::dvec3 position;             ///< world units
+    TexCoord uv = {0.0, 0.0};        ///< texels (used only when the mesh has a texture)
+    Colour colour = {1.0, 1.0, 1.0}; ///< sRGB code / 255 (used only with vertex colours)
 };
 
 /// The mapper a scene asks for: one of chapter 3's, or `auto` (choose per span).
