@@ -44,8 +44,7 @@ std::string run_name(const AccuracyScene& scene, const FilterConfig& config) {
 /// Every pixel of the scene through the configuration, into the frame.
 void filter_into(Framebuffer& frame, const FilterScene& fs, const FilterConfig& config) {
     for (const FilterPixel& p : fs.pixels) {
-        const TexelDerivatives& d =
-            config.derivatives == Derivatives::per_pixel ? p.exact : p.triangle_wide;
+        const TexelDerivatives& d = derivatives_of(p, config.derivatives);
         frame.at(p.x, p.y) =
             encode_linear_fast(sample_filtered(fs.chain, p.uv, d, config.settings));
     }

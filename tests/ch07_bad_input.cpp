@@ -3,6 +3,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
+#include "support/png_chunks.hpp"
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>
@@ -10,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -109,6 +111,12 @@ std::vector<BadScene> bad_scenes() {
         {"a PNG texture wider than allowed",
          scene_with("[textures.wide]\nkind = \"png\"\nfile = \"wide.png\"\n", ""), "6:8",
          "textures.wide.file", "larger than the 4096 allowed"},
+        {"a texture of zero size",
+         scene_with("[textures.t]\nkind = \"checkerboard\"\nsize = [0, 4]\n", ""), "6:9",
+         "textures.t.size[0]", "0 is out of range"},
+        {"a PNG texture of zero width",
+         scene_with("[textures.z]\nkind = \"png\"\nfile = \"zero.png\"\n", ""), "6:8",
+         "textures.z.file", "zero.png"},
         {"a texture file that is a FIFO",
          scene_with("[textures.pipe]\nkind = \"png\"\nfile = \"fifo.png\"\n", ""), "6:8",
          "textures.pipe.file", "not a regular file"},
@@ -133,6 +141,14 @@ fs::path scratch_folder(const std::string& name) {
     fs::create_directories(folder);
     std::ofstream(folder / "corrupt.png") << "\x89PNG\r\n\x1a\nthis is not a PNG";
     write_png(folder / "wide.png", Framebuffer(max_texture_side + 1, 1));
+    // The PNG fixture with a width of 0 in its header, its CRC made right again.
+    std::ifstream fixture(fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/png/f.png",
+                          std::ios::binary);
+    std::string bytes{std::istreambuf_iterator<char>(fixture), {}};
+    const testing::PngChunk ihdr = testing::find_chunk(bytes, "IHDR");
+    testing::write_u32(bytes, ihdr.data, 0);
+    testing::fix_crc(bytes, ihdr);
+    std::ofstream(folder / "zero.png", std::ios::binary) << bytes;
     ::mkfifo((folder / "fifo.png").c_str(), 0600); // nobody writes it: must not block
     return folder;
 }

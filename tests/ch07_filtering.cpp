@@ -102,3 +102,51 @@ TEST_CASE("the supersampled reference at one sample per pixel is the nearest ren
     scene.width = max_image_side / 2 + 1;
     CHECK_THROWS_AS(supersampled_reference(scene, 2), Error);
 }
+
+// A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
+TEST_CASE("the renderer filters 8-bit texels as sRGB codes, in linear light" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+    // Chapter 8's rule, in the renderer: an 8-bit texel is an sRGB code, and filtering
+    // averages light. A 64 x 64 checkerboard of 1-texel squares (codes 235 and 40) on a
+    // 16 x 16 orthographic square is minified 4 : 1, level 2 exactly, where every texel
+    // is the mean of a 4 x 4 block: half the light of each code. Every pixel is that
+    // mean encoded once, not the mean of the two codes (137 or 138), which is what
+    // averaging the codes as if they were light would give.
+    const std::string text = R"(
+[image]
+width = 16
+height = 16
+[camera]
+projection = "orthographic"
+view_height = 2.0
+position = [0.0, 0.0, -4.0]
+[render]
+filter = "trilinear"
+[textures.checker]
+kind = "checkerboard"
+size = [64, 64]
+square = 1
+[[mesh]]
+primitive = "triangles"
+texture = "checker"
+positions = [[-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [1.0, 1.0, 0.0],
+             [-1.0, -1.0, 0.0], [1.0, 1.0, 0.0], [-1.0, 1.0, 0.0]]
+uv = [[0.0, 64.0], [64.0, 64.0], [64.0, 0.0], [0.0, 64.0], [64.0, 0.0], [0.0, 0.0]]
+)";
+    const Scene scene = parse_scene(text, "linear_light.toml", ".");
+    const RenderResult r = render_scene(scene);
+    REQUIRE(r.report.mip_chains == 1);
+    const std::uint8_t light_mean =
+        linear16_to_srgb(0.5 * (srgb_to_linear16(235) + srgb_to_linear16(40)));
+    CHECK(light_mean > 160); // far from the codes' mean, 137.5
+    for (const Rgba8 p : r.image.pixels()) {
+        CHECK(p.r == light_mean);
+        CHECK(p.g == light_mean);
+        CHECK(p.b == light_mean);
+    }
+    // The supersampled reference averages in the same light: the nearest render at 4 x 4
+    // samples per pixel hits every texel of the block once.
+    for (const LinearTexel& t : supersampled_reference(scene, 4)) {
+        CHECK(encode_linear(t).r == light_mean);
+    }
+}

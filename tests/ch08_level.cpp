@@ -24,6 +24,18 @@ struct Lcg {
     }
 };
 
+/// A random perspective triangle on a 320 x 240 screen, depths 1 to 20, u and v in
+/// [-64, 64).
+std::array<TexturedVertex, 3> random_triangle(Lcg& random) {
+    std::array<TexturedVertex, 3> t{};
+    for (TexturedVertex& v : t) {
+        v = {{random(0, 320), random(0, 240)},
+             random(1, 20),
+             {random(-64, 64), random(-64, 64)}};
+    }
+    return t;
+}
+
 /// u and v of the exact perspective mapping at a screen point: (u/w) / (1/w).
 TexCoord exact_uv(const std::array<TexturedVertex, 3>& t, Point2 at) {
     const auto [u, v] = projected_coordinates(t, at);
@@ -55,12 +67,7 @@ TEST_CASE("the derived derivatives match finite differences of the exact mapping
     Lcg random{42};
     double worst = 0.0;
     for (int n = 0; n < 500; ++n) {
-        std::array<TexturedVertex, 3> t{};
-        for (TexturedVertex& v : t) {
-            v = {{random(0, 320), random(0, 240)},
-                 random(1, 20),
-                 {random(-64, 64), random(-64, 64)}};
-        }
+        const std::array<TexturedVertex, 3> t = random_triangle(random);
         for (int k = 0; k < 10; ++k) {
             const double a = random(0, 1), b = random(0, 1 - a);
             const Point2 at = t[0].position + a * (t[1].position - t[0].position) +
@@ -199,4 +206,47 @@ TEST_CASE(
     const TexelDerivatives d{0.7, 0.2, -0.3, 3.1};
     CHECK(sample_filtered(chain, {5.5, 9.25}, d, one) ==
           sample_filtered(chain, {5.5, 9.25}, d, tri));
+}
+
+// The stub of ch08-derivatives (no derivatives, no change) breaks it.
+TEST_CASE("the level's change between two points obeys its derived bound" *
+          doctest::description("points: 1; exercise: ch08-derivatives")) {
+    // @eq:level-bound on random perspective triangles, between random points inside
+    // them at most 40 pixels apart: |lambda(at) - lambda(from)| <= 2 |log2(q(at) /
+    // q(from))| + log2 max(g+ / g, g / g-). The bound is exact arithmetic on real
+    // numbers; the only slack is rounding, 1e-9 of a level. The test also reports how
+    // tight the bound is (the largest ratio of the change to its bound).
+    Lcg random{18};
+    int checked = 0;
+    double tightest = 0.0;
+    for (int n = 0; n < 500; ++n) {
+        const std::array<TexturedVertex, 3> t = random_triangle(random);
+        const auto inside = [&] {
+            const double a = random(0, 1), b = random(0, 1 - a);
+            return t[0].position + a * (t[1].position - t[0].position) +
+                   b * (t[2].position - t[0].position);
+        };
+        for (int k = 0; k < 10; ++k) {
+            const Point2 from = inside();
+            Point2 at = inside();
+            if (k % 2 == 0) {
+                at.y = from.y; // along a span, as the per-span approximation uses it
+            }
+            if (std::max(std::abs(at.x - from.x), std::abs(at.y - from.y)) > 40.0) {
+                continue;
+            }
+            const double bound = level_change_bound(t, from, at);
+            if (!std::isfinite(bound)) {
+                continue;
+            }
+            const double change = std::abs(isotropic_level(derivatives_at(t, at)) -
+                                           isotropic_level(derivatives_at(t, from)));
+            CHECK(change <= bound + 1e-9);
+            tightest = std::max(tightest, bound > 0.0 ? change / bound : 0.0);
+            ++checked;
+        }
+    }
+    MESSAGE("pairs checked: " << checked << ", tightest change / bound: " << tightest);
+    CHECK(checked > 2000);
+    CHECK(tightest > 0.5); // the bound is not loose by orders of magnitude
 }

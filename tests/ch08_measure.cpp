@@ -2,6 +2,7 @@
 // closer to the reference are checked here against freshly computed errors, so the text
 // cannot state an ordering that the data does not show.
 #include "exactpixels/lab/filter_measure.hpp"
+#include "exactpixels/texture/ewa.hpp"
 
 #include <doctest/doctest.h>
 
@@ -87,4 +88,86 @@ TEST_CASE(
     // cost little there (within 10% of per-pixel trilinear).
     CHECK(std::abs(e.at("trilinear per-triangle") - e.at("trilinear")) <
           0.1 * e.at("trilinear"));
+}
+
+// The stub of ch08-derivatives (every level 0, no error) breaks it.
+TEST_CASE("per-span derivatives stay within the derived bound on every scene" *
+          doctest::description("points: 1; exercise: ch08-derivatives")) {
+    // Each pixel's per-span level differs from its exact level by at most @eq:level-bound
+    // from the span's middle to the pixel (levels clamped at 0, which only shrinks the
+    // difference), up to 1e-9 of rounding; the bound must be finite (g- > 0) everywhere.
+    // Per-triangle derivatives obey the same bound from the centroid wherever it is
+    // finite (far from the centroid g- can reach 0, and then it says nothing).
+    // Per-triangle derivatives are worse than per-span ones on every scene with
+    // minified pixels, at their worst and on average.
+    for (const AccuracyScene& scene : filter_scenes()) {
+        const FilterScene fs = prepare_filter_scene(scene);
+        std::size_t bounded = 0;
+        for (const FilterPixel& p : fs.pixels) {
+            const auto& tri = scene.triangles[static_cast<std::size_t>(p.triangle)];
+            const double bound =
+                level_change_bound(tri, p.span_middle, pixel_centre(p.x, p.y));
+            REQUIRE(std::isfinite(bound));
+            const double error = std::abs(std::max(isotropic_level(p.span_wide), 0.0) -
+                                          std::max(isotropic_level(p.exact), 0.0));
+            CHECK(error <= bound + 1e-9);
+            // The same bound from the centroid, where it says anything (g- > 0).
+            const Point2 centroid =
+                (tri[0].position + tri[1].position + tri[2].position) / 3.0;
+            const double from_centroid =
+                level_change_bound(tri, centroid, pixel_centre(p.x, p.y));
+            const double triangle_error =
+                std::abs(std::max(isotropic_level(p.triangle_wide), 0.0) -
+                         std::max(isotropic_level(p.exact), 0.0));
+            CHECK(triangle_error <= from_centroid + 1e-9);
+            bounded += std::isfinite(from_centroid) ? 1 : 0;
+        }
+        MESSAGE(scene.name << ": per-triangle pixels with a finite bound: " << bounded
+                           << " of " << fs.pixels.size());
+        const LevelErrors span = level_errors(fs, Derivatives::per_span);
+        const LevelErrors tri = level_errors(fs, Derivatives::per_triangle);
+        MESSAGE(scene.name << ": span worst " << span.worst << " mean " << span.mean
+                           << " changed " << span.changed << " bound " << span.worst_bound
+                           << "; triangle worst " << tri.worst << " mean " << tri.mean
+                           << " changed " << tri.changed);
+        CHECK(span.worst <= span.worst_bound + 1e-9);
+        const std::vector<bool> minified = minified_pixels(fs);
+        if (std::count(minified.begin(), minified.end(), true) > 0) {
+            CHECK(span.worst < tri.worst);
+            CHECK(span.mean < tri.mean);
+        }
+    }
+}
+
+// The stub of ch08-error (every error 0) breaks it.
+TEST_CASE("the elliptical weighted average is the closest filter to the reference" *
+          doctest::description("points: 1; exercise: ch08-error")) {
+    // Heckbert's EWA weights the texels of the whole footprint by a Gaussian of the
+    // pixel's second moments: on the minified pixels of the horizon and the random field
+    // it is closer to the reference than every other filter, anisotropic-16 included.
+    for (const AccuracyScene& scene : {horizon_floor_scene(), random_field_scene()}) {
+        const std::map<std::string, double> e = errors_on(scene);
+        for (const auto& [name, error] : e) {
+            if (name != "ewa") {
+                CHECK_MESSAGE(e.at("ewa") < error,
+                              scene.name << ": ewa against " << name);
+            }
+        }
+    }
+}
+
+TEST_CASE("the elliptical weighted average of a constant texture is that constant") {
+    // The weights are normalised: whatever the footprint, a uniform texture comes back
+    // unchanged (to rounding), on every level the sample may read.
+    const Texture grey =
+        checkerboard_texture(16, 16, 1, rgba(90, 90, 90), rgba(90, 90, 90));
+    const MipChain chain = build_mip_chain(grey);
+    const double expected = srgb_to_linear16(90);
+    for (const TexelDerivatives d :
+         {TexelDerivatives{0.25, 0, 0, 0.25}, TexelDerivatives{3, 1, -1, 2},
+          TexelDerivatives{0.5, 0, 0, 300}, TexelDerivatives{40, 30, -3, 4}}) {
+        const LinearTexel c = sample_ewa(chain, {5.3, 7.9}, d, Wrap::repeat);
+        CHECK(c.r == doctest::Approx(expected).epsilon(1e-12));
+        CHECK(c.a == doctest::Approx(65535.0).epsilon(1e-12));
+    }
 }

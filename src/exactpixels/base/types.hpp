@@ -3,7 +3,7 @@
 // Usage:
 //   Point2 p{3.5, 0.5};        // a point on screen, in pixels (x right, y down)
 //   TexCoord t{0.25, 8.0};     // a texture coordinate, in texels
-//   Colour c{1.0, 0.5, 0.0};   // linear RGB, each channel in [0, 1]
+//   Colour c{1.0, 0.5, 0.0};   // RGB, each channel in [0, 1]: sRGB code / 255
 //
 // Conventions fixed for the whole book (chapter 0):
 //   - the origin is the top-left corner of the frame, x grows right, y grows down;
@@ -24,7 +24,8 @@ using Point2 = glm::dvec2;
 using Point2f = glm::vec2;
 /// A texture coordinate in texels (u right, v down the texture).
 using TexCoord = glm::dvec2;
-/// A linear RGB colour, each channel in [0, 1].
+/// An RGB colour, each channel in [0, 1]: an 8-bit sRGB code divided by 255 (the
+/// book's one colour rule, chapter 8: filters decode to linear light to average).
 using Colour = glm::dvec3;
 
 /// Sub-pixel bits of fixed-point screen coordinates: 1 unit = 1/256 px.

@@ -55,15 +55,40 @@ FilterScene prepare_filter_scene(const AccuracyScene& scene) {
         const auto& tri = scene.triangles[static_cast<std::size_t>(owner[k])];
         const int x = static_cast<int>(k) % scene.width,
                   y = static_cast<int>(k) / scene.width;
+        // The span: the run of this row's pixels the same triangle owns around x.
+        int first = x, last = x;
+        while (first > 0 &&
+               owner[k - static_cast<std::size_t>(x - first + 1)] == owner[k]) {
+            --first;
+        }
+        while (last + 1 < scene.width &&
+               owner[k + static_cast<std::size_t>(last + 1 - x)] == owner[k]) {
+            ++last;
+        }
         const auto [u, v] = projected_coordinates(tri, pixel_centre(x, y));
         fs.pixels.push_back({x,
                              y,
                              owner[k],
                              {u.p / u.q, v.p / v.q},
                              exact_derivatives(u, v),
-                             derivatives_per_triangle(tri)});
+                             derivatives_per_span(tri, y, first, last),
+                             derivatives_per_triangle(tri),
+                             Point2{0.5 * (first + last) + 0.5, y + 0.5}});
     }
     return fs;
+}
+
+const TexelDerivatives& derivatives_of(const FilterPixel& p, Derivatives which) {
+    switch (which) {
+    case Derivatives::per_pixel:
+        return p.exact;
+    case Derivatives::per_span:
+        return p.span_wide;
+    case Derivatives::per_triangle:
+        return p.triangle_wide;
+    }
+    assert(false && "unknown derivatives");
+    return p.exact;
 }
 
 //> filter-configs
@@ -76,9 +101,11 @@ std::vector<FilterConfig> filter_configs() {
         {"bilinear", with(Filter::bilinear)},
         {"mip-nearest", with(Filter::mip_nearest)},
         {"trilinear", with(Filter::trilinear)},
+        {"trilinear per-span", with(Filter::trilinear), Derivatives::per_span},
         {"trilinear per-triangle", with(Filter::trilinear), Derivatives::per_triangle},
         {"anisotropic-4", with(Filter::anisotropic, 4)},
         {"anisotropic-16", with(Filter::anisotropic, 16)},
+        {"ewa", with(Filter::ewa)},
     };
 }
 //< filter-configs
@@ -87,9 +114,8 @@ std::vector<LinearTexel> filter_image(const FilterScene& fs, const FilterConfig&
     std::vector<LinearTexel> image;
     image.reserve(fs.pixels.size());
     for (const FilterPixel& p : fs.pixels) {
-        const TexelDerivatives& d =
-            config.derivatives == Derivatives::per_pixel ? p.exact : p.triangle_wide;
-        image.push_back(sample_filtered(fs.chain, p.uv, d, config.settings));
+        image.push_back(sample_filtered(
+            fs.chain, p.uv, derivatives_of(p, config.derivatives), config.settings));
     }
     return image;
 }
@@ -154,14 +180,29 @@ std::vector<bool> minified_pixels(const FilterScene& fs) {
     return minified;
 }
 
-double worst_triangle_level_error(const FilterScene& fs) {
-    double worst = 0.0;
+LevelErrors level_errors(const FilterScene& fs, Derivatives which) {
+    LevelErrors e;
+    const double last = double(fs.chain.levels.size() - 1);
+    const auto mip_level = [last](double lambda) {
+        return std::floor(std::clamp(lambda, 0.0, last) + 0.5);
+    };
+    double sum = 0.0;
     for (const FilterPixel& p : fs.pixels) {
-        const double a = std::max(isotropic_level(p.exact), 0.0);
-        const double b = std::max(isotropic_level(p.triangle_wide), 0.0);
-        worst = std::max(worst, std::abs(a - b));
+        const double exact = std::max(isotropic_level(p.exact), 0.0);
+        const double approx = std::max(isotropic_level(derivatives_of(p, which)), 0.0);
+        const double error = std::abs(approx - exact);
+        e.worst = std::max(e.worst, error);
+        sum += error;
+        e.changed += mip_level(exact) != mip_level(approx) ? 1 : 0;
+        if (which == Derivatives::per_span) {
+            const auto& tri = fs.scene->triangles[static_cast<std::size_t>(p.triangle)];
+            e.worst_bound =
+                std::max(e.worst_bound,
+                         level_change_bound(tri, p.span_middle, pixel_centre(p.x, p.y)));
+        }
     }
-    return worst;
+    e.mean = fs.pixels.empty() ? 0.0 : sum / double(fs.pixels.size());
+    return e;
 }
 
 Framebuffer to_frame(const FilterScene& fs, const std::vector<LinearTexel>& image) {

@@ -10,10 +10,12 @@
 //
 // Every pixel a triangle covers (chapter 1's coverage, the last triangle wins) is
 // sampled at its centre: uv of the exact perspective mapping there and its exact
-// derivatives (level_of_detail.hpp). The reference integrates the texture (level 0,
-// nearest texel, linear light) over the pixel's square [x, x+1) x [y, y+1) with
-// reference_samples_per_side^2 stratified samples of the same triangle's mapping (its
-// plane extended where the square reaches past an edge). Scenes wrap with repeat.
+// derivatives (level_of_detail.hpp). A span is a run of consecutive pixels of one row
+// that one triangle owns; its derivatives are taken at its middle. The reference
+// integrates the texture (level 0, nearest texel, linear light) over the pixel's square
+// [x, x+1) x [y, y+1) with reference_samples_per_side^2 stratified samples of the same
+// triangle's mapping (its plane extended where the square reaches past an edge). Scenes
+// wrap with repeat.
 #pragma once
 
 #include "exactpixels/lab/accuracy_scenes.hpp"
@@ -46,7 +48,9 @@ struct FilterPixel {
     int triangle = 0;               ///< index of the covering triangle in the scene
     TexCoord uv{0.0};               ///< exact texture coordinate at the centre, texels
     TexelDerivatives exact;         ///< exact derivatives at the centre (@eq:derivatives)
+    TexelDerivatives span_wide;     ///< the span's middle's derivatives
     TexelDerivatives triangle_wide; ///< the triangle's centroid derivatives
+    Point2 span_middle{0.0};        ///< where span_wide was evaluated
 };
 
 /// A scene made ready for filtering: its covered pixels and its texture's mip chain.
@@ -59,11 +63,15 @@ struct FilterScene {
 /// The covered pixels of the scene, their coordinates and derivatives, and the chain.
 FilterScene prepare_filter_scene(const AccuracyScene& scene);
 
-/// Which derivatives a filter is given: exact per pixel, or the triangle's centroid's.
+/// Which derivatives a filter is given: exact per pixel, the span's or the triangle's.
 enum class Derivatives {
     per_pixel,   ///< exact at every pixel centre (@eq:derivatives)
+    per_span,    ///< exact at the middle of the pixel's span, used for all its pixels
     per_triangle ///< exact at the triangle's centroid, used for all its pixels
 };
+
+/// The derivatives of pixel p under the choice `which`.
+const TexelDerivatives& derivatives_of(const FilterPixel& p, Derivatives which);
 
 /// One filter configuration the chapter measures.
 struct FilterConfig {
@@ -92,9 +100,17 @@ double rms_code_error(const std::vector<LinearTexel>& image,
 /// derivatives, so that one pixel covers at least one texel along its longer side.
 std::vector<bool> minified_pixels(const FilterScene& fs);
 
-/// The largest |lambda(per triangle) - lambda(per pixel)| over the scene's pixels, both
+/// How far an approximation's level is from the exact one over a scene's pixels, both
 /// clamped at 0 (every level below 0 samples level 0).
-double worst_triangle_level_error(const FilterScene& fs);
+struct LevelErrors {
+    double worst = 0.0;       ///< max |lambda(approximation) - lambda(exact)|
+    double mean = 0.0;        ///< mean of the same over the pixels
+    long long changed = 0;    ///< pixels whose mip-nearest level (lambda rounded) differs
+    double worst_bound = 0.0; ///< per_span: the largest bound of @eq:level-bound used
+};
+
+/// The level errors of the approximation `which` against the exact derivatives.
+LevelErrors level_errors(const FilterScene& fs, Derivatives which);
 
 /// The image as a scene-sized frame (uncovered pixels black).
 Framebuffer to_frame(const FilterScene& fs, const std::vector<LinearTexel>& image);

@@ -9,9 +9,10 @@
 // same handedness as view space. The camera looks from `position` at `target`; view
 // space has the eye at the origin, x right, y up and z the depth along the view
 // direction (z > 0 in front), as chapter 3's pinhole (perspective.hpp); the depth z is
-// the w of chapter 3. Colours are linear RGB in [0, 1]; texture coordinates are in
-// texels (texel (i, j) covers [i, i+1) x [j, j+1)). Everything in a Scene has been
-// checked by the loader: sizes in range, numbers finite, no degenerate triangle.
+// the w of chapter 3. Colours are RGB in [0, 1], sRGB codes / 255 (chapter 8); texture
+// coordinates are in texels (texel (i, j) covers [i, i+1) x [j, j+1)). Everything in a
+// Scene has been checked by the loader: sizes in range, numbers finite, no degenerate
+// triangle.
 #pragma once
 
 #include "exactpixels/base/types.hpp"
@@ -47,7 +48,7 @@ struct SceneCamera {
 struct SceneVertex {
     glm::dvec3 position;             ///< world units
     TexCoord uv = {0.0, 0.0};        ///< texels (used only when the mesh has a texture)
-    Colour colour = {1.0, 1.0, 1.0}; ///< linear RGB (used only with vertex colours)
+    Colour colour = {1.0, 1.0, 1.0}; ///< sRGB code / 255 (used only with vertex colours)
 };
 
 /// The mapper a scene asks for: one of chapter 3's, or `auto` (choose per span).
@@ -117,7 +118,7 @@ struct Scene {
     std::filesystem::path file;          ///< where it was read from (for messages)
     int width = 320;                     ///< image width, pixels, [1, 8192]
     int height = 240;                    ///< image height, pixels, [1, 8192]
-    Colour background = {0.0, 0.0, 0.0}; ///< linear RGB of uncovered pixels
+    Colour background = {0.0, 0.0, 0.0}; ///< RGB (sRGB code / 255) of uncovered pixels
     SceneCamera camera = {};             ///< how the scene is seen
     RenderOptions options = {};          ///< precision, mapper, budget, rounding
     std::vector<SceneTexture> textures;  ///< named textures

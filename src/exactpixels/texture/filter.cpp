@@ -1,6 +1,7 @@
 #include "exactpixels/texture/filter.hpp"
 
 #include "exactpixels/texture/bilinear.hpp"
+#include "exactpixels/texture/ewa.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -49,6 +50,8 @@ std::string_view filter_name(Filter filter) {
         return "trilinear";
     case Filter::anisotropic:
         return "anisotropic";
+    case Filter::ewa:
+        return "ewa";
     }
     return "?";
 }
@@ -94,6 +97,8 @@ LinearTexel sample_filtered(const MipChain& chain, TexCoord uv, const TexelDeriv
         }
         return sum / double(a.probes);
     }
+    case Filter::ewa:
+        return sample_ewa(chain, uv, d, settings.wrap);
     }
     assert(false && "unknown filter");
     return LinearTexel{0.0};

@@ -14,7 +14,8 @@
 //   - mip_nearest: the nearest texel of the level nearest lambda (@eq:level);
 //   - trilinear: bilinear on the two levels around lambda, blended by its fraction;
 //   - anisotropic: N trilinear probes spread along the footprint's longer side
-//   (@eq:anisotropy).
+//   (@eq:anisotropy);
+//   - ewa: the elliptical weighted average, the reference filter (ewa.hpp).
 // Levels below 0 (magnification) use level 0; levels above the last use the last.
 #pragma once
 
@@ -33,11 +34,12 @@ enum class Filter {
     bilinear,    ///< @eq:bilinear-sample on level 0
     mip_nearest, ///< the nearest texel of the level nearest the level of detail
     trilinear,   ///< bilinear on the two levels around the level of detail, blended
-    anisotropic  ///< trilinear probes along the footprint's longer side (@eq:anisotropy)
+    anisotropic, ///< trilinear probes along the footprint's longer side (@eq:anisotropy)
+    ewa          ///< Heckbert's elliptical weighted average (ewa.hpp), the reference
 };
 
 /// The filter's name as the chapter and the scene files spell it: "nearest",
-/// "bilinear", "mip-nearest", "trilinear", "anisotropic".
+/// "bilinear", "mip-nearest", "trilinear", "anisotropic", "ewa".
 std::string_view filter_name(Filter filter);
 
 /// Everything that chooses how a pixel is filtered.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 namespace exactpixels {
 
@@ -17,6 +18,34 @@ TexelDerivatives derivatives_per_triangle(const std::array<TexturedVertex, 3>& t
         (triangle[0].position + triangle[1].position + triangle[2].position) / 3.0;
     return derivatives_at(triangle, centroid);
 }
+
+TexelDerivatives derivatives_per_span(const std::array<TexturedVertex, 3>& triangle,
+                                      int y, int x_first, int x_last) {
+    assert(x_first <= x_last);
+    return derivatives_at(triangle, Point2{0.5 * (x_first + x_last) + 0.5, y + 0.5});
+}
+
+//> level-bound
+double level_change_bound(const std::array<TexturedVertex, 3>& triangle, Point2 from,
+                          Point2 at) {
+    const auto [u, v] = projected_coordinates(triangle, from);
+    const double dx = std::abs(at.x - from.x), dy = std::abs(at.y - from.y);
+    const double q_at = u.q + u.dq.dx * (at.x - from.x) + u.dq.dy * (at.y - from.y);
+    // The numerators' change per pixel: N_y grows by k per pixel in x, N_x by -k in y.
+    const double k = std::hypot(u.dp.dy * u.dq.dx - u.dp.dx * u.dq.dy,
+                                v.dp.dy * v.dq.dx - v.dp.dx * v.dq.dy);
+    const double nx = std::hypot(numerator_x(u), numerator_x(v)),
+                 ny = std::hypot(numerator_y(u), numerator_y(v));
+    const double g = std::max(nx, ny);
+    const double g_high = std::max(nx + k * dy, ny + k * dx);
+    const double g_low = std::max(nx - k * dy, ny - k * dx);
+    if (!(g_low > 0.0) || !(q_at > 0.0)) {
+        return std::numeric_limits<double>::infinity();
+    }
+    return 2.0 * std::abs(std::log2(q_at / u.q)) +
+           std::max(std::log2(g_high / g), std::log2(g / g_low));
+}
+//< level-bound
 
 std::array<double, 2> footprint_sides(const TexelDerivatives& d) {
     return {std::hypot(d.du_dx, d.dv_dx), std::hypot(d.du_dy, d.dv_dy)};

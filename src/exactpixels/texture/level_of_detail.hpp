@@ -5,6 +5,8 @@
 //   TexelDerivatives d = derivatives_at(triangle, Point2{160.5, 120.5});
 //   double lambda = isotropic_level(d);        // log2 of the longer footprint side
 //   Anisotropy a = anisotropy(d, 8);           // probes along the long side, its level
+//   TexelDerivatives s = derivatives_per_span(triangle, 120, 40, 90); // once per span
+//   double b = level_change_bound(triangle, Point2{65.5, 120.5}, Point2{40.5, 120.5});
 //
 // Conventions (chapters 1, 3, 4 and 8). Screen positions in pixels (origin top-left, y
 // down), u and v in texels of level 0. Under perspective p = u/w, s = v/w and q = 1/w are
@@ -54,6 +56,21 @@ TexelDerivatives derivatives_at(const std::array<TexturedVertex, 3>& triangle, P
 /// The per-triangle approximation: the exact derivatives at the centroid, used for
 /// every pixel of the triangle.
 TexelDerivatives derivatives_per_triangle(const std::array<TexturedVertex, 3>& triangle);
+
+/// The per-span approximation: the exact derivatives at the centre of the span's middle
+/// pixel (or between its two middle pixels), used for every pixel of the span, which
+/// covers the pixels x_first..x_last of row y.
+TexelDerivatives derivatives_per_span(const std::array<TexturedVertex, 3>& triangle,
+                                      int y, int x_first, int x_last);
+
+/// A bound on |lambda(at) - lambda(from)| for the triangle's exact derivatives
+/// (@eq:level-bound): 2 |log2(q(at) / q(from))| + log2 max(g+ / g, g / g-), with g the
+/// longer numerator max(|N_x|, |N_y|) at `from` and g+-  = max(|N_x| +- |k| |dy|,
+/// |N_y| +- |k| |dx|), k = (p_y q_x - p_x q_y, s_y q_x - s_x q_y) the numerators'
+/// change per pixel (chapter 4). Infinity when g- <= 0 (no bound). Levels clamped at 0
+/// obey it too.
+double level_change_bound(const std::array<TexturedVertex, 3>& triangle, Point2 from,
+                          Point2 at);
 
 /// The footprint's two sides in texels: |(du/dx, dv/dx)| and |(du/dy, dv/dy)|.
 std::array<double, 2> footprint_sides(const TexelDerivatives& d);
