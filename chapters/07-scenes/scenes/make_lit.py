@@ -10,7 +10,7 @@ import math
 R, r = 1.0, 0.42  # ring and tube radii, world units
 RING, TUBE = 40, 20  # quads around the ring and around the tube
 CENTRE = (0.0, 0.62, 1.0)
-TEXELS_U, TEXELS_V = 6 * 16, 2 * 16  # the checkerboard repeats 6 x 2 times
+TEXELS_U, TEXELS_V = 16 * 8, 6 * 8  # 16 x 6 squares of 8 texels
 
 
 def point(i, j):
@@ -63,7 +63,7 @@ def fmt(v):
 print(f"""# Chapter 7's lit scene, written by make_lit.py (do not edit: run
 #   python3 make_lit.py > lit.toml). A textured torus of {len(positions) // 3} triangles
 # with smooth normals and a Blinn-Phong highlight, lit per pixel; a box lit per vertex
-# with face normals; a floor. A directional light and a point light; the torus hides
+# with face normals; a floor, whose corners turn so that its normal points up. A directional light and a point light; the torus hides
 # parts of itself, so `depth = "auto"` turns the depth stage on.
 [image]
 width = 320
@@ -99,16 +99,14 @@ intensity = 2.5
 
 [textures.checker]
 kind = "checkerboard"
-size = [32, 32]
-square = 16
+size = [16, 16]
+square = 8
 
 [[mesh]]
 name = "floor"
-primitive = "floor"
+primitive = "quad"
 colour = [0.7, 0.7, 0.7]
-y = -0.0
-x = [-3.0, 3.0]
-z = [-1.5, 4.5]
+corners = [[-3.0, 0.0, -1.5], [3.0, 0.0, -1.5], [3.0, 0.0, 4.5], [-3.0, 0.0, 4.5]]
 
 [[mesh]]
 name = "box lit per vertex"
