@@ -233,3 +233,14 @@ TEST_CASE("the lit scene's report shows the lighting stage, its modes and counts
     CHECK(text.find("lighting stage: on (2 lights; phong 2 meshes, gouraud 1 mesh)") !=
           std::string::npos);
 }
+
+TEST_CASE("a point light at the lit point brings no light and no infinity") {
+    const ViewLight light{LightType::point, {}, {1.0, 2.0, 3.0}, {1.0, 1.0, 1.0}};
+    const Incident in = incident(light, {1.0, 2.0, 3.0});
+    CHECK(in.towards == glm::dvec3{0.0, 0.0, 0.0});
+    CHECK(in.irradiance.r == 1.0 / (min_light_distance * min_light_distance));
+    const Colour c = light_colour({light}, {0.1, 0.2, 0.3}, {1.0, 1.0, 1.0},
+                                  Material{{1.0, 1.0, 1.0}, 8.0}, {1.0, 2.0, 3.0},
+                                  {0.0, 0.0, -1.0}, {0.0, 0.0, -1.0});
+    CHECK(c == Colour{0.1, 0.2, 0.3}); // the ambient term only
+}

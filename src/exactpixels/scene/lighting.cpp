@@ -83,7 +83,9 @@ Incident incident(const ViewLight& light, glm::dvec3 p) {
         return {light.towards, light.radiance};
     }
     const glm::dvec3 d = light.position - p;
-    const double d2 = glm::dot(d, d); // > 0: the loader keeps lights off every surface
+    // Nearer than min_light_distance the light counts as that far: no infinity, and a
+    // light exactly at p (d = 0, so l = 0) lights nothing there.
+    const double d2 = std::max(glm::dot(d, d), min_light_distance * min_light_distance);
     return {d / std::sqrt(d2), light.radiance / d2}; // the inverse-square law
 }
 

@@ -23,6 +23,10 @@
 
 namespace exactpixels {
 
+/// The shortest distance a point light is taken to be from a lit point, world units: a
+/// light on a surface would otherwise bring it infinite irradiance (@eq:scene-falloff).
+inline constexpr double min_light_distance = 1e-6;
+
 /// The unit normals at the three corners of one triangle.
 using CornerNormals = std::array<glm::dvec3, 3>;
 
@@ -67,7 +71,8 @@ struct Incident {
     Colour irradiance;  ///< linear RGB
 };
 
-/// The light `light` brings to the view-space point `p`.
+/// The light `light` brings to the view-space point `p` (a point light at distance d
+/// below min_light_distance counts as min_light_distance away).
 Incident incident(const ViewLight& light, glm::dvec3 p);
 
 /// The lit colour of a point (@eq:scene-lighting): diffuse times (ambient plus the sum
