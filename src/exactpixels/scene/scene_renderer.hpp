@@ -54,7 +54,8 @@ struct RenderReport {
     StageCounter auto_choice;        ///< spans whose mapper `auto` chose, and its divides
     std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
     StageCounter filter; ///< pixels filtered (any filter but nearest), 3 divides each
-    /// Lighting per pixel (Phong): the triangles, spans and pixels lit, one divide each
+    /// Lighting per pixel (Phong): the triangles, spans and pixels lit, and one divide
+    /// per pixel, 1/w (the reciprocal square roots of normalising are not counted)
     StageCounter lighting;
     long long lit_vertices = 0; ///< corners lit per vertex (Gouraud), in the geometry
     bool lighting_on = false;   ///< whether the scene has lights (the stage ran)
