@@ -191,7 +191,8 @@ TEST_CASE("face normals point out of every face of a box") {
     }
 }
 
-TEST_CASE("smooth normals of the shipped torus are within 0.5 degrees of the surface's") {
+TEST_CASE(
+    "smooth normals of the shipped torus are within 0.5 degrees of the analytic ones") {
     // lit.toml's torus: axis along y through (0, 0.62, 1), ring radius 1 (make_lit.py).
     const Scene scene = load_scene(shipped_scene_folder() / "lit.toml");
     const auto torus = std::find_if(scene.meshes.begin(), scene.meshes.end(),
@@ -243,4 +244,30 @@ TEST_CASE("a point light at the lit point brings no light and no infinity") {
                                   Material{{1.0, 1.0, 1.0}, 8.0}, {1.0, 2.0, 3.0},
                                   {0.0, 0.0, -1.0}, {0.0, 0.0, -1.0});
     CHECK(c == Colour{0.1, 0.2, 0.3}); // the ambient term only
+}
+
+TEST_CASE("normals given per vertex are the ones lit") {
+    const std::string light =
+        "[[light]]\ntype = \"directional\"\ndirection = [0.3, -0.4, 1]";
+    const Scene face = square_scene(orthographic, "", light, "colour = [0.6, 0.2, 0.8]");
+    // The face's own normal, given at each corner (any length): the same picture.
+    const Scene given =
+        square_scene(orthographic, "", light,
+                     "colour = [0.6, 0.2, 0.8]\nnormals = [[0, 0, -2], [0, 0, -2], "
+                     "[0, 0, -2], [0, 0, -2]]");
+    REQUIRE(given.meshes[0].normals == NormalSource::given);
+    CHECK(mesh_normals(given.meshes[0])[0][0] == glm::dvec3{0.0, 0.0, -1.0});
+    // Normals turned towards the light: every pixel brighter than the face's.
+    const Scene turned =
+        square_scene(orthographic, "", light,
+                     "colour = [0.6, 0.2, 0.8]\nnormals = [[-0.3, 0.4, -1], "
+                     "[-0.3, 0.4, -1], [-0.3, 0.4, -1], [-0.3, 0.4, -1]]");
+    for (const Shading shading : {Shading::gouraud, Shading::phong}) {
+        const Framebuffer a = render_scene(with_shading(face, shading)).image;
+        const Framebuffer b = render_scene(with_shading(given, shading)).image;
+        const Framebuffer c = render_scene(with_shading(turned, shading)).image;
+        CHECK(a == b);
+        CHECK(c.at(10, 10).r > a.at(10, 10).r);
+        CHECK(c.at(10, 10) == to_rgba8(Colour{0.6, 0.2, 0.8})); // n = l: head-on
+    }
 }
