@@ -5,7 +5,8 @@
 // error of Gouraud colours against perspective-correct ones (ch07_gouraud_error.md), and
 // the depth stage's resolution and cost (ch07_depth_resolution.md, ch07_depth_cost.md),
 // and the filter stage on the horizon: nearest beside auto (ch07_horizon_filters.png)
-// with every filter's error and cost (ch07_scene_filters.md).
+// with every filter's error and cost (ch07_scene_filters.md), and what lighting costs on
+// the lit scene (ch07_lighting_cost.md).
 // Usage: fig_ch07_scenes FIGURE_DIR
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
@@ -23,6 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -214,6 +216,45 @@ int main(int argc, char** argv) {
             write_png(folder / "ch07_horizon_filters.png", pair);
         }
         //< scene-filters-figure
+        //> lighting-cost-figure
+        // What lighting costs on the lit scene: without its lights, every mesh per
+        // vertex, as shipped, every mesh per pixel.
+        {
+            const Scene shipped = load_scene(shipped_scene_folder() / "lit.toml");
+            std::string cost = "| lit.toml | lighting stage | corners lit | pixels lit | "
+                               "lighting divides | lighting ms | render ms |\n"
+                               "|---|---|---:|---:|---:|---:|---:|\n";
+            const auto all = [&](std::optional<Shading> shading) {
+                Scene scene = shipped;
+                for (SceneMesh& mesh : scene.meshes) {
+                    mesh.shading = shading ? shading : mesh.shading;
+                }
+                return scene;
+            };
+            Scene unlit = shipped;
+            unlit.lights.clear();
+            for (const auto& [word, scene] :
+                 {std::pair{"no lights", unlit},
+                  std::pair{"all Gouraud", all(Shading::gouraud)},
+                  std::pair{"as shipped", shipped},
+                  std::pair{"all Phong", all(Shading::phong)}}) {
+                const RenderReport r = render_scene(scene).report;
+                double lighting_ms = 1e300;
+                for (int k = 0; k < 7; ++k) {
+                    lighting_ms = std::min(
+                        lighting_ms, 1e3 * render_scene(scene).report.lighting.seconds);
+                }
+                cost += fmt::format("| {} | {} | {} | {} | {} | {:.3f} | {:.2f} |\n",
+                                    word, r.lighting_on ? "on" : "off", r.lit_vertices,
+                                    r.lighting.pixels, r.lighting.divides, lighting_ms,
+                                    best_ms(scene, 7));
+            }
+            cost += "\n: The lit scene four ways: corners lit per vertex, pixels lit per "
+                    "pixel and their divides (counts), and the fastest of 7 renders "
+                    "(this build's quick figures, ms). {#tbl:lighting-cost}\n";
+            write_figure_file(folder / "ch07_lighting_cost.md", cost);
+        }
+        //< lighting-cost-figure
         write_figure_file(folder / "ch07_reports.md", reports);
         write_figure_file(folder / "ch07_auto_vs_exact.md", table);
         write_figure_file(folder / "ch07_auto_facts.txt",

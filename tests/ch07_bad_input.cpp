@@ -131,6 +131,66 @@ std::vector<BadScene> bad_scenes() {
          "5:10", "render.filter", "expected"},
         {"a number for the depth mode", scene_with("[render]\ndepth = 1\n", ""), "5:9",
          "render.depth", "expected true, false or \"auto\""},
+        // Lighting (@sec:scene-lighting).
+        {"an unknown light type", scene_with("[[light]]\ntype = \"spot\"\n", ""), "5:8",
+         "light[0].type", "not one of: directional"},
+        {"a light without a type", scene_with("[[light]]\nintensity = 1\n", ""), "4:1",
+         "light[0]", "'type' is missing"},
+        {"a directional light of no direction",
+         scene_with("[[light]]\ntype = \"directional\"\ndirection = [0, 0, 0]\n", ""),
+         "6:13", "light[0].direction", "has no direction"},
+        {"a position on a directional light",
+         scene_with("[[light]]\ntype = \"directional\"\ndirection = [0, 0, 1]\n"
+                    "position = [0, 0, 0]\n",
+                    ""),
+         "7:1", "light[0].position", "unknown key"},
+        {"a point light without a position",
+         scene_with("[[light]]\ntype = \"point\"\n", ""), "4:1", "light[0]",
+         "'position' is missing"},
+        {"a negative intensity",
+         scene_with("[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = -1\n",
+                    ""),
+         "7:13", "light[0].intensity", "out of range"},
+        {"an intensity beyond the limit",
+         scene_with(
+             "[[light]]\ntype = \"point\"\nposition = [0, 0, 0]\nintensity = 2e6\n", ""),
+         "7:13", "light[0].intensity", "out of range"},
+        {"a light as a table, not an array of tables",
+         scene_with("[light]\ntype = \"point\"\n", ""), "4:1", "light",
+         "expected an array"},
+        {"more lights than allowed",
+         scene_with(
+             [] {
+                 std::string lights;
+                 for (int k = 0; k <= max_scene_lights; ++k) {
+                     lights +=
+                         "[[light]]\ntype = \"directional\"\ndirection = [0, 0, 1]\n";
+                 }
+                 return lights;
+             }(),
+             ""),
+         "4:1", "light", "expected 1 to 8 elements, got 9"},
+        {"an unknown shading", scene_with("[render]\nshading = \"flat\"\n", ""), "5:11",
+         "render.shading", "not one of: gouraud"},
+        {"an ambient light above 1", scene_with("[render]\nambient = [0, 2, 0]\n", ""),
+         "5:15", "render.ambient[1]", "out of range"},
+        {"an unknown kind of normals", scene_with("", "normals = \"round\"\n"), "7:11",
+         "mesh[0].normals", "not one of: face"},
+        {"too few normals", scene_with("", "normals = [[0, 0, -1]]\n"), "7:11",
+         "mesh[0].normals", "expected 3 elements, got 1"},
+        {"a normal of length 0",
+         scene_with("", "normals = [[0, 0, -1], [0, 0, 0], [0, 0, -1]]\n"), "7:24",
+         "mesh[0].normals[1]", "has no direction"},
+        {"normals per vertex on a generated box",
+         "[[mesh]]\nprimitive = \"box\"\ncentre = [0, 0, 2]\nsize = [1, 1, 1]\n"
+         "normals = [[0, 0, 1]]\n",
+         "5:11", "mesh[0].normals", "only for"},
+        {"a mesh shading that is not one", scene_with("", "shading = \"toon\"\n"), "7:11",
+         "mesh[0].shading", "not one of: gouraud"},
+        {"a shininess of 0", scene_with("", "shininess = 0\n"), "7:13",
+         "mesh[0].shininess", "out of range"},
+        {"a specular colour above 1", scene_with("", "specular = [1, 1, 1.5]\n"), "7:19",
+         "mesh[0].specular[2]", "out of range"},
     };
 }
 

@@ -49,6 +49,7 @@ struct SceneVertex {
     glm::dvec3 position;             ///< world units
     TexCoord uv = {0.0, 0.0};        ///< texels (used only when the mesh has a texture)
     Colour colour = {1.0, 1.0, 1.0}; ///< sRGB code / 255 (used only with vertex colours)
+    glm::dvec3 normal = {0.0, 0.0, 0.0}; ///< unit (used only with given normals)
 };
 
 /// The mapper a scene asks for: one of chapter 3's, or `auto` (choose per span).
@@ -80,6 +81,12 @@ enum class SceneFilter {
     automatic    ///< per triangle: bilinear where no corner is minified, else trilinear
 };
 
+/// Where lighting is computed (@sec:scene-lighting).
+enum class Shading {
+    gouraud, ///< per vertex: the lit colour interpolated by the colour stage
+    phong    ///< per pixel: the normal interpolated, renormalised, lit at each pixel
+};
+
 /// The render options of a scene.
 struct RenderOptions {
     Precision precision = Precision::float64; ///< the mappers' inner-loop arithmetic
@@ -92,6 +99,31 @@ struct RenderOptions {
     ColourInterpolation colours = ColourInterpolation::screen;
     /// `filter = "nearest" | "bilinear" | "trilinear" | "anisotropic" | "auto"`
     SceneFilter filter = SceneFilter::nearest;
+    /// `shading = "gouraud" | "phong"`: the default of meshes without their own
+    Shading shading = Shading::phong;
+    Colour ambient = {0.0, 0.0, 0.0}; ///< light reaching every surface, linear RGB
+};
+
+/// How a light falls off.
+enum class LightType {
+    directional, ///< from far away: one direction and one strength everywhere
+    point        ///< from a point: strength over the squared distance
+};
+
+/// A light of a scene (`[[light]]`).
+struct SceneLight {
+    LightType type = LightType::directional; ///< `type`
+    glm::dvec3 direction = {0.0, 0.0, 1.0};  ///< directional: the way it travels, unit
+    glm::dvec3 position = {0.0, 0.0, 0.0};   ///< point: world units
+    Colour colour = {1.0, 1.0, 1.0};         ///< linear RGB, [0, 1]
+    double intensity = 1.0; ///< scales colour; a point light's, at distance 1
+};
+
+/// Where a mesh's normals come from (@sec:scene-normals).
+enum class NormalSource {
+    face,   ///< each triangle's own plane (flat facets)
+    smooth, ///< area-weighted average of the faces at each shared position
+    given   ///< the mesh's `normals` key, one per vertex
 };
 
 /// A named texture of a scene.
@@ -110,6 +142,10 @@ struct SceneMesh {
     bool vertex_colours = false;     ///< interpolate SceneVertex::colour
     Colour colour = {1.0, 1.0, 1.0}; ///< the flat colour (texels are multiplied by it)
     bool cull_back = false;          ///< skip triangles whose back faces the camera
+    NormalSource normals = NormalSource::face; ///< where lighting's normals come from
+    std::optional<Shading> shading;            ///< the mesh's own, else the scene's
+    Colour specular = {0.0, 0.0, 0.0};         ///< Blinn-Phong highlight colour
+    double shininess = 32.0;                   ///< Blinn-Phong exponent
     std::string origin; ///< "FILE:LINE:COLUMN: mesh[k]", where the mesh was defined
 };
 
@@ -123,6 +159,7 @@ struct Scene {
     RenderOptions options = {};          ///< precision, mapper, budget, rounding
     std::vector<SceneTexture> textures;  ///< named textures
     std::vector<SceneMesh> meshes;       ///< drawn in order (later meshes on top)
+    std::vector<SceneLight> lights;      ///< none: no lighting stage
 };
 
 } // namespace exactpixels

@@ -370,6 +370,15 @@ void read_render(const TableReader& t, RenderOptions& options) {
                                     SceneFilter::trilinear, SceneFilter::anisotropic,
                                     SceneFilter::automatic}[k];
     }
+    if (const auto* n = t.find("shading")) {
+        options.shading =
+            read_choice(c, *n, t.child("shading"), {"gouraud", "phong"}) == 0
+                ? Shading::gouraud
+                : Shading::phong;
+    }
+    if (const auto* n = t.find("ambient")) {
+        options.ambient = read_colour(c, *n, t.child("ambient"));
+    }
     if (const auto* n = t.find("depth")) { // true, false or "auto"
         if (n->is_string()) {
             read_choice(c, *n, t.child("depth"), {"auto"});
@@ -385,6 +394,48 @@ void read_render(const TableReader& t, RenderOptions& options) {
     }
     t.finish();
 }
+
+/// A direction: three numbers, not all zero, returned as a unit vector.
+glm::dvec3 read_direction(const Context& c, const toml::node& node,
+                          const std::string& path) {
+    const glm::dvec3 d = read_point(c, node, path);
+    if (!(glm::length(d) > 0.0)) {
+        c.fail(node.source(), path, "[0, 0, 0] has no direction");
+    }
+    return glm::normalize(d);
+}
+
+//> read-light
+/// One `[[light]]` table: its type decides which keys it may have.
+SceneLight read_light(const Context& c, const toml::table& table,
+                      const std::string& path) {
+    const toml::node* type = table.get("type");
+    if (type == nullptr) {
+        c.fail(table.source(), path, "the required key 'type' is missing");
+    }
+    const bool point =
+        read_choice(c, *type, path + ".type", {"directional", "point"}) == 1;
+    const TableReader t(
+        c, table, path,
+        {"type", point ? "position" : "direction", "colour", "intensity"});
+    SceneLight light;
+    light.type = point ? LightType::point : LightType::directional;
+    if (point) {
+        light.position = read_point(c, t.require("position"), t.child("position"));
+    } else {
+        light.direction = read_direction(c, t.require("direction"), t.child("direction"));
+    }
+    if (const auto* n = t.find("colour")) {
+        light.colour = read_colour(c, *n, t.child("colour"));
+    }
+    if (const auto* n = t.find("intensity")) {
+        light.intensity =
+            read_number(c, *n, t.child("intensity"), 0.0, max_light_intensity);
+    }
+    t.finish(); // a direction on a point light, or a position on a directional one
+    return light;
+}
+//< read-light
 
 //> read-texture
 Texture read_texture(const TableReader& t, long long& texture_bytes) {
@@ -501,6 +552,16 @@ void read_primitive(const TableReader& t, SceneMesh& mesh, std::size_t primitive
             v[k] = {p[k], uv.empty() ? TexCoord{} : uv[k],
                     rgb.empty() ? Colour{1.0, 1.0, 1.0} : rgb[k]};
         }
+        const toml::node* normals = t.find("normals");
+        if (normals != nullptr && normals->is_array()) { // one per vertex, any length
+            const toml::array& array =
+                read_array(c, *normals, t.child("normals"), p.size(), p.size());
+            for (std::size_t k = 0; k < p.size(); ++k) {
+                v[k].normal = read_direction(
+                    c, *array.get(k), fmt::format("{}[{}]", t.child("normals"), k));
+            }
+            mesh.normals = NormalSource::given;
+        }
         if (primitive == 1) {
             add_quad(mesh, {v[0], v[1], v[2], v[3]});
         } else {
@@ -597,8 +658,9 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
     }
     const std::size_t primitive = read_choice(
         c, *kind_node, path + ".primitive", {"triangles", "quad", "box", "floor", "fan"});
-    std::vector<std::string> allowed{"primitive", "name",   "texture",
-                                     "wrap",      "colour", "cull"};
+    std::vector<std::string> allowed{"primitive", "name",     "texture", "wrap",
+                                     "colour",    "cull",     "normals", "shading",
+                                     "specular",  "shininess"};
     allowed.insert(allowed.end(), primitive_keys[primitive].begin(),
                    primitive_keys[primitive].end());
     const TableReader t(c, table, path, allowed);
@@ -630,6 +692,26 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
     }
     if (const auto* n = t.find("cull")) {
         mesh.cull_back = read_choice(c, *n, t.child("cull"), {"none", "back"}) == 1;
+    }
+    if (const auto* n = t.find("normals"); n != nullptr && !n->is_array()) {
+        mesh.normals = read_choice(c, *n, t.child("normals"), {"face", "smooth"}) == 0
+                           ? NormalSource::face
+                           : NormalSource::smooth;
+    } else if (n != nullptr && primitive != 0 && primitive != 1) {
+        c.fail(n->source(), t.child("normals"),
+               "one normal per vertex is possible only for \"triangles\" and \"quad\" "
+               "(here: \"face\" or \"smooth\")");
+    }
+    if (const auto* n = t.find("shading")) {
+        mesh.shading = read_choice(c, *n, t.child("shading"), {"gouraud", "phong"}) == 0
+                           ? Shading::gouraud
+                           : Shading::phong;
+    }
+    if (const auto* n = t.find("specular")) {
+        mesh.specular = read_colour(c, *n, t.child("specular"));
+    }
+    if (const auto* n = t.find("shininess")) {
+        mesh.shininess = read_number(c, *n, t.child("shininess"), 1.0, max_shininess);
     }
     read_primitive(t, mesh, primitive);
     t.finish();
@@ -699,7 +781,8 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
     }
     Scene scene;
     scene.file = file;
-    const TableReader top(c, root, "", {"image", "camera", "render", "textures", "mesh"});
+    const TableReader top(c, root, "",
+                          {"image", "camera", "render", "textures", "mesh", "light"});
     const auto section = [&](const char* key) -> const toml::table* {
         const toml::node* n = top.find(key);
         if (n != nullptr && !n->is_table()) {
@@ -720,7 +803,7 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
     if (const toml::table* t = section("render")) {
         read_render(TableReader(c, *t, "render",
                                 {"precision", "mapper", "budget", "rounding", "depth",
-                                 "colours", "filter"}),
+                                 "colours", "filter", "shading", "ambient"}),
                     scene.options);
     }
     if (const toml::table* t = section("textures")) {
@@ -746,6 +829,19 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
                 texture.file = c.folder / file->as_string()->get();
             }
             scene.textures.push_back(std::move(texture));
+        }
+    }
+    if (const toml::node* lights = top.find("light")) {
+        const toml::array& list = read_array(c, *lights, "light", 1,
+                                             static_cast<std::size_t>(max_scene_lights));
+        for (std::size_t k = 0; k < list.size(); ++k) {
+            const std::string path = fmt::format("light[{}]", k);
+            const toml::node& node = *list.get(k);
+            if (!node.is_table()) {
+                c.fail(node.source(), path,
+                       fmt::format("expected a table, got {}", type_name(node)));
+            }
+            scene.lights.push_back(read_light(c, *node.as_table(), path));
         }
     }
     const toml::node* meshes = top.find("mesh");
@@ -796,7 +892,8 @@ std::filesystem::path shipped_scene_folder() {
 std::vector<std::filesystem::path> shipped_scenes() {
     const std::filesystem::path folder = shipped_scene_folder();
     return {folder / "corridor.toml", folder / "horizon.toml",    folder / "gouraud.toml",
-            folder / "sprites.toml",  folder / "near_plane.toml", folder / "boxes.toml"};
+            folder / "sprites.toml",  folder / "near_plane.toml", folder / "boxes.toml",
+            folder / "lit.toml"};
 }
 
 } // namespace exactpixels

@@ -45,6 +45,14 @@ inline constexpr int max_key_parts = 64;
 inline constexpr std::size_t max_scene_file_bytes = std::size_t{4} << 20;
 /// The most triangles a scene may hold.
 inline constexpr long long max_scene_triangles = 1 << 20;
+/// The most lights (`[[light]]`) a scene may hold: each costs every lit pixel or vertex
+/// a dot product, a square root and a power.
+inline constexpr int max_scene_lights = 8;
+/// The largest light intensity (a point light's at distance 1).
+inline constexpr double max_light_intensity = 1e6;
+/// The largest Blinn-Phong exponent: at 10^4 the highlight falls to half within 0.7
+/// degrees of its peak, narrower than a pixel in any shipped scene.
+inline constexpr double max_shininess = 1e4;
 
 /// Parses and checks a scene given as TOML text. `file` names it in messages; texture
 /// paths are resolved against `folder`. Throws Error (see above) on any bad input.

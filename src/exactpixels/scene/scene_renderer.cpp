@@ -5,6 +5,7 @@
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/raster/screen_plane.hpp"
 #include "exactpixels/scene/depth_buffer.hpp"
+#include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/scene_pipeline.hpp"
 #include "exactpixels/texture/clipping.hpp"
 #include "exactpixels/texture/filter.hpp"
@@ -25,7 +26,8 @@
 namespace exactpixels {
 
 long long RenderReport::divides() const {
-    long long total = auto_choice.divides + colour_perspective.divides + filter.divides;
+    long long total = auto_choice.divides + colour_perspective.divides + filter.divides +
+                      lighting.divides;
     for (const StageCounter& m : mappers) {
         total += m.divides;
     }
@@ -92,7 +94,28 @@ struct MeshContext {
     std::vector<char> visible; // depth stage: which pixels of the span passed the test
     MipChain* chain;           // filter stage: the texture in linear light, or nullptr
     bool* full_chain;          // filter stage: whether *chain has all its levels
+    const std::vector<ViewLight>* lights; // lighting stage per pixel, or nullptr
+    Material material;                    // the mesh's specular colour and exponent
 };
+
+/// The unit vector from a view-space point to the eye: towards the origin for a
+/// pinhole, along -z everywhere for parallel rays.
+glm::dvec3 to_eye(const Scene& scene, glm::dvec3 p) {
+    return scene.camera.projection == Projection::perspective
+               ? glm::normalize(-p)
+               : glm::dvec3{0.0, 0.0, -1.0};
+}
+
+/// The stages a mesh runs in this scene: plan_mesh's, and under Gouraud lighting the
+/// colour stage, which interpolates the lit colours (they hold the mesh's colour).
+MeshStages mesh_stages(const Scene& scene, const SceneMesh& mesh) {
+    MeshStages stages = plan_mesh(mesh);
+    if (!scene.lights.empty() && mesh_shading(scene, mesh) == Shading::gouraud) {
+        stages.colour = true;
+        stages.tint = false;
+    }
+    return stages;
+}
 
 //> choose-filter
 /// The filter a triangle gets under the scene's `filter` key. `auto` looks at the
@@ -145,6 +168,8 @@ struct ProjectedTriangle {
     std::array<TexturedVertex, 3> corners; ///< pixels, depth w, texels
     std::array<Colour, 3> colours;         ///< vertex colours (used by the colour stage)
     std::array<double, 3> nearness;        ///< 1/w (perspective) or -z (orthographic)
+    std::array<glm::dvec3, 3> points;      ///< view space (used by Phong lighting)
+    std::array<glm::dvec3, 3> normals;     ///< view space (used by Phong lighting)
 };
 
 //> draw-triangle
@@ -216,6 +241,24 @@ void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
     if (m.depth != nullptr) {
         nearness = plane_through(p, triangle.nearness);
         report.depth.triangles += 1;
+    }
+    // Lighting stage setup, per pixel only: the view-space point and normal as a/w,
+    // linear on screen, and 1/w (chapter 3's u/w over 1/w).
+    std::array<ScreenPlane, 3> point_w{}, normal_w{};
+    ScreenPlane lit_w{};
+    if (m.lights != nullptr) {
+        const std::array<double, 3> q{1.0 / tv[0].w, 1.0 / tv[1].w, 1.0 / tv[2].w};
+        for (int c = 0; c < 3; ++c) {
+            std::array<double, 3> a{}, n{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                a[k] = triangle.points[k][c] * q[k];
+                n[k] = triangle.normals[k][c] * q[k];
+            }
+            point_w[static_cast<std::size_t>(c)] = plane_through(p, a);
+            normal_w[static_cast<std::size_t>(c)] = plane_through(p, n);
+        }
+        lit_w = plane_through(p, q);
+        report.lighting.triangles += 1;
     }
     const Rgba8 flat = to_rgba8(m.mesh.colour);
     if (!m.stages.texture && !m.stages.colour) {
@@ -360,6 +403,37 @@ void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
             report.flat.pixels += count;
         }
         //< colour-stage
+        //> lighting-stage
+        if (m.lights != nullptr) { // Phong: light the pixel the stages above made
+            const Clock::time_point t0 = Clock::now();
+            long long lit = 0;
+            for (int k = 0; k < count; ++k) {
+                if (!seen(k)) {
+                    continue;
+                }
+                const double px = x + k;
+                const double w = 1.0 / lit_w.at(px, y); // the one divide per pixel
+                const glm::dvec3 point{point_w[0].at(px, y) * w, point_w[1].at(px, y) * w,
+                                       point_w[2].at(px, y) * w};
+                // n/w is n scaled by 1/w > 0: renormalising removes the scale, so the
+                // normal needs no divide of its own.
+                const glm::dvec3 normal = glm::normalize(glm::dvec3{
+                    normal_w[0].at(px, y), normal_w[1].at(px, y), normal_w[2].at(px, y)});
+                Rgba8& pixel = m.row[static_cast<std::size_t>(k)];
+                const Colour base{pixel.r / 255.0, pixel.g / 255.0, pixel.b / 255.0};
+                pixel =
+                    to_rgba8(light_colour(*m.lights, options.ambient, base, m.material,
+                                          point, normal, to_eye(m.scene, point)));
+                lit += 1;
+            }
+            report.lighting.spans += 1;
+            report.lighting.pixels += lit;
+            report.lighting.divides += lit;
+            const double spent = seconds_since(t0);
+            report.lighting.seconds += spent;
+            shading_seconds += spent;
+        }
+        //< lighting-stage
         for (int k = 0; k < count; ++k) {
             if (seen(k)) {
                 m.frame.at(s.x_begin + k, s.y) = m.row[static_cast<std::size_t>(k)];
@@ -380,24 +454,44 @@ void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
 }
 //< draw-triangle
 
-/// A triangle in view space with the colour of each corner.
+/// A triangle in view space with the colour and the normal of each corner.
 struct ClippedCorners {
     std::array<ViewVertex, 3> view;
     std::array<Colour, 3> colours;
+    std::array<glm::dvec3, 3> normals;
 };
 
-/// Chapter 6's near-plane clipping of a triangle and its vertex colours. clip_near
-/// carries the texture coordinate; colours are linear along view-space edges too, so a
-/// second and third pass with the colour channels in place of uv cut them at the same
-/// parameter (the cut depends only on the positions).
+/// Chapter 6's near-plane clipping of a triangle, its vertex colours and its normals.
+/// clip_near carries the texture coordinate; colours and normals are linear along
+/// view-space edges too, so more passes with them in place of uv, two numbers at a time,
+/// cut them at the same parameter (the cut depends only on the positions). A cut normal
+/// is shorter than 1; the lighting stage renormalises it.
 std::vector<ClippedCorners> clip_corners(const std::array<ViewVertex, 3>& view,
                                          const std::array<Colour, 3>& colours,
-                                         double near, bool with_colours) {
+                                         const std::array<glm::dvec3, 3>& normals,
+                                         double near, bool with_colours,
+                                         bool with_normals) {
     const ClippedTriangles uv = clip_near(view, near);
     std::vector<ClippedCorners> pieces(static_cast<std::size_t>(uv.count));
     for (std::size_t t = 0; t < pieces.size(); ++t) {
         pieces[t].view = uv.triangles[t];
         pieces[t].colours = colours; // unused unless with_colours
+        pieces[t].normals = normals; // unused unless with_normals
+    }
+    if (with_normals) {
+        std::array<ViewVertex, 3> xy = view, z = view;
+        for (std::size_t k = 0; k < 3; ++k) {
+            xy[k].uv = {normals[k].x, normals[k].y};
+            z[k].uv = {normals[k].z, 0.0};
+        }
+        const ClippedTriangles cxy = clip_near(xy, near), cz = clip_near(z, near);
+        for (std::size_t t = 0; t < pieces.size(); ++t) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                pieces[t].normals[k] = {cxy.triangles[t][k].uv.x,
+                                        cxy.triangles[t][k].uv.y,
+                                        cz.triangles[t][k].uv.x};
+            }
+        }
     }
     if (with_colours) {
         std::array<ViewVertex, 3> rg = view, b = view;
@@ -456,13 +550,30 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
     const CameraFrame camera = camera_frame(scene.camera);
     const bool perspective = scene.camera.projection == Projection::perspective;
     const Pinhole lens = pinhole(scene);
+    // World to view space: a translation for points, then the camera's rotation.
+    const auto to_view = [&](glm::dvec3 v, bool is_point) {
+        const glm::dvec3 d = is_point ? v - camera.eye : v;
+        return glm::dvec3{glm::dot(d, camera.right), glm::dot(d, camera.up),
+                          glm::dot(d, camera.forward)};
+    };
+    const bool lit = !scene.lights.empty(); // no light, no lighting stage
+    const std::vector<ViewLight> lights =
+        lit ? lights_in_view(scene.lights, to_view) : std::vector<ViewLight>{};
+    report.lighting_on = lit;
+    report.lights = static_cast<int>(lights.size());
     // The geometry stage, for every mesh first: the depth stage's plan needs to know
     // where on screen each mesh lands.
     std::vector<std::vector<ProjectedTriangle>> meshes(scene.meshes.size());
     std::vector<MeshFootprint> footprints(scene.meshes.size());
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& mesh = scene.meshes[i];
-        const bool with_colours = plan_mesh(mesh).colour;
+        const bool with_colours = mesh_stages(scene, mesh).colour;
+        const bool gouraud = lit && mesh_shading(scene, mesh) == Shading::gouraud;
+        const bool phong = lit && !gouraud;
+        report.gouraud_meshes += gouraud;
+        report.phong_meshes += phong;
+        const std::vector<CornerNormals> normals =
+            lit ? mesh_normals(mesh) : std::vector<CornerNormals>{};
         footprints[i].name = fmt::format("mesh[{}]", i); // as messages name it
         footprints[i].can_overlap_itself = can_overlap_itself(mesh);
         for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
@@ -479,12 +590,35 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                 colours[k] = triangle[k].colour;
                 in_front = in_front && view[k].position.z >= scene.camera.near;
             }
+            std::array<glm::dvec3, 3> view_normals{};
+            if (lit) {
+                const Clock::time_point l0 = Clock::now();
+                for (std::size_t k = 0; k < 3; ++k) {
+                    view_normals[k] = to_view(normals[index][k], false);
+                }
+                //> gouraud-vertices
+                if (gouraud) { // the lit colour replaces the corner's colour
+                    const Material material{mesh.specular, mesh.shininess};
+                    for (std::size_t k = 0; k < 3; ++k) {
+                        const Colour diffuse =
+                            mesh.vertex_colours ? colours[k] : mesh.colour;
+                        const glm::dvec3 at = view[k].position;
+                        colours[k] =
+                            light_colour(lights, scene.options.ambient, diffuse, material,
+                                         at, view_normals[k], to_eye(scene, at));
+                    }
+                    report.lit_vertices += 3;
+                }
+                //< gouraud-vertices
+                report.lighting.seconds += seconds_since(l0);
+            }
             report.geometry.triangles += 1;
             //> clip-only-when-needed
-            std::vector<ClippedCorners> pieces{{view, colours}};
+            std::vector<ClippedCorners> pieces{{view, colours, view_normals}};
             if (perspective && !in_front) { // the only triangles that pay for it
                 const Clock::time_point c0 = Clock::now();
-                pieces = clip_corners(view, colours, scene.camera.near, with_colours);
+                pieces = clip_corners(view, colours, view_normals, scene.camera.near,
+                                      with_colours, phong);
                 report.clipping.triangles += 1;
                 report.clipping.seconds += seconds_since(c0);
             }
@@ -502,6 +636,10 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                         perspective ? 1.0 / t.corners[k].w : -piece.view[k].position.z;
                 }
                 t.colours = piece.colours;
+                for (std::size_t k = 0; k < 3; ++k) {
+                    t.points[k] = piece.view[k].position;
+                }
+                t.normals = piece.normals;
                 if (mesh.cull_back && screen_area2(t.corners) >= 0.0) {
                     report.culling.triangles += 1;
                     continue;
@@ -528,7 +666,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
         const SceneMesh& mesh = scene.meshes[i];
         //> choose-colours
         bool corrected = scene.options.colours == ColourInterpolation::perspective;
-        if (plan_mesh(mesh).colour) { // the screen path's bound, against the budget
+        if (mesh_stages(scene, mesh).colour) { // the screen path's bound, vs the budget
             for (const ProjectedTriangle& t : meshes[i]) {
                 const double bound = colour_error_bound(
                     {t.corners[0].w, t.corners[1].w, t.corners[2].w}, t.colours);
@@ -541,7 +679,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
         //< choose-colours
         MeshContext m{scene,
                       mesh,
-                      plan_mesh(mesh),
+                      mesh_stages(scene, mesh),
                       mesh.texture ? &scene.textures[*mesh.texture].texture : nullptr,
                       result.image,
                       coordinates,
@@ -551,7 +689,10 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                       {},
                       {},
                       mesh.texture ? &chains[*mesh.texture] : nullptr,
-                      nullptr};
+                      nullptr,
+                      lit && mesh_shading(scene, mesh) == Shading::phong ? &lights
+                                                                         : nullptr,
+                      Material{mesh.specular, mesh.shininess}};
         bool full_chain = mesh.texture && full_chains[*mesh.texture];
         m.full_chain = &full_chain;
         try {
@@ -596,6 +737,7 @@ std::string format_report(const RenderReport& r) {
              r.mappers[k], false);
     }
     line("filter", r.filter, false);
+    line("lighting", r.lighting, false);
     if (r.filter.triangles > 0) {
         out += fmt::format("filter stage: {} bilinear, {} trilinear, {} anisotropic "
                            "triangles; {} mip chains built\n",
@@ -604,6 +746,15 @@ std::string format_report(const RenderReport& r) {
     }
     out +=
         fmt::format("depth stage: {} ({})\n", r.depth_on ? "on" : "off", r.depth_reason);
+    if (r.lighting_on) {
+        out += fmt::format("lighting stage: on ({} light{}; phong {} mesh{}, gouraud {} "
+                           "mesh{}); {} corners lit per vertex\n",
+                           r.lights, r.lights == 1 ? "" : "s", r.phong_meshes,
+                           r.phong_meshes == 1 ? "" : "es", r.gouraud_meshes,
+                           r.gouraud_meshes == 1 ? "" : "es", r.lit_vertices);
+    } else {
+        out += "lighting stage: off (no [[light]])\n";
+    }
     out += fmt::format("total: {} divides, {:.3f} ms\n", r.divides(), 1e3 * r.seconds);
     return out;
 }

@@ -14,7 +14,9 @@
 // is chapter 1's fixed-point scanline rasterizer (vertices snapped to 1/256 px, top-left
 // rule); texture coordinates come from chapter 3's span mappers with chapter 4's
 // rounding; vertex colours are interpolated linearly on screen or, as the scene asks,
-// perspective-correct (c/w over 1/w). Timings are wall clock seconds
+// perspective-correct (c/w over 1/w). A scene with lights runs a lighting stage
+// (lighting.hpp): per vertex (Gouraud, the lit colours go through the colour stage) or
+// per pixel (Phong, after the texture and colour stages). Timings are wall clock seconds
 // of a single run; counts are exact.
 #pragma once
 
@@ -52,6 +54,14 @@ struct RenderReport {
     StageCounter auto_choice;        ///< spans whose mapper `auto` chose, and its divides
     std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
     StageCounter filter; ///< pixels filtered (any filter but nearest), 3 divides each
+    /// Lighting per pixel (Phong): the triangles, spans and pixels lit, and one divide
+    /// per pixel, 1/w (the reciprocal square roots of normalising are not counted)
+    StageCounter lighting;
+    long long lit_vertices = 0; ///< corners lit per vertex (Gouraud), in the geometry
+    bool lighting_on = false;   ///< whether the scene has lights (the stage ran)
+    int lights = 0;             ///< how many
+    int phong_meshes = 0;       ///< meshes lit per pixel
+    int gouraud_meshes = 0;     ///< meshes lit per vertex
     /// Triangles per filter the filter stage ran: bilinear, trilinear, anisotropic.
     std::array<long long, 3> filter_triangles{};
     int mip_chains = 0;    ///< mip chains built (one per texture that needed one)
@@ -61,8 +71,8 @@ struct RenderReport {
         0.0; ///< largest screen-colour error bound, levels (colour meshes)
     std::string depth_reason; ///< why it ran or not (plan_depth)
 
-    /// Every divide performed: the mappers', auto's, the perspective colours' and the
-    /// filter stage's.
+    /// Every divide performed: the mappers', auto's, the perspective colours', the
+    /// filter stage's and per-pixel lighting's.
     long long divides() const;
 };
 
