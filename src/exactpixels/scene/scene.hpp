@@ -48,6 +48,8 @@ struct SceneVertex {
     glm::dvec3 position;             ///< world units
     TexCoord uv = {0.0, 0.0};        ///< texels (used only when the mesh has a texture)
     Colour colour = {1.0, 1.0, 1.0}; ///< linear RGB (used only with vertex colours)
+    /// The unit normal a model gives this corner, world space; zero when it gives none.
+    glm::dvec3 normal = {0.0, 0.0, 0.0};
 };
 
 /// The mapper a scene asks for: one of chapter 3's, or `auto` (choose per span).
@@ -122,6 +124,8 @@ struct Scene {
     RenderOptions options = {};          ///< precision, mapper, budget, rounding
     std::vector<SceneTexture> textures;  ///< named textures
     std::vector<SceneMesh> meshes;       ///< drawn in order (later meshes on top)
+    /// The OBJ and MTL files its `[[mesh]] file = ...` entries read.
+    std::vector<std::filesystem::path> models;
 };
 
 } // namespace exactpixels
