@@ -268,6 +268,8 @@ std::vector<BadModel> bad_models() {
          "newmtl a\nmap_Kd nowhere.png\n", "model.mtl:2", "nowhere.png"},
         {"a colour out of range", "mtllib model.mtl\n" + triangle, "newmtl a\nKd 2 0 0\n",
          "model.mtl:2", "2 is out of range"},
+        {"a material name after two blanks", "mtllib model.mtl\n" + triangle,
+         "newmtl  a\n", "model.mtl:1", "one blank between newmtl and the name"},
         {"a material defined twice", "mtllib model.mtl\n" + triangle,
          "newmtl a\nnewmtl a\n", "model.mtl:2", "defined twice"},
         {"a degenerate face", "v 0 0 0\nv 1 1 0\nv 2 2 0\nf 1 2 3\n", "", "model.obj:4",

@@ -126,6 +126,10 @@ void check_mtl(std::string_view text, const std::string& file,
         if (key == "newmtl") {
             expect_fields(at, words, 1, 1);
             const std::string name(words[1]);
+            if (words[1].data() != words[0].data() + 7) { // tinyobjloader would keep them
+                at.fail(fmt::format(
+                    "material '{}': one blank between newmtl and the name", name));
+            }
             if (materials.count(name) != 0) {
                 at.fail(fmt::format("material '{}' is defined twice (first at {}:{})",
                                     name, materials.at(name).place.file,
