@@ -49,7 +49,9 @@ struct SceneVertex {
     glm::dvec3 position;             ///< world units
     TexCoord uv = {0.0, 0.0};        ///< texels (used only when the mesh has a texture)
     Colour colour = {1.0, 1.0, 1.0}; ///< sRGB code / 255 (used only with vertex colours)
-    glm::dvec3 normal = {0.0, 0.0, 0.0}; ///< unit (used only with given normals)
+    /// The unit normal the scene or a model gives this corner, world space; zero when
+    /// none is given.
+    glm::dvec3 normal = {0.0, 0.0, 0.0};
 };
 
 /// The mapper a scene asks for: one of chapter 3's, or `auto` (choose per span).
@@ -160,6 +162,8 @@ struct Scene {
     std::vector<SceneTexture> textures;  ///< named textures
     std::vector<SceneMesh> meshes;       ///< drawn in order (later meshes on top)
     std::vector<SceneLight> lights;      ///< none: no lighting stage
+    /// The OBJ and MTL files its `[[mesh]] file = ...` entries read.
+    std::vector<std::filesystem::path> models;
 };
 
 } // namespace exactpixels

@@ -3,6 +3,8 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/input_file.hpp"
 #include "exactpixels/base/test_pattern.hpp"
+#include "exactpixels/scene/mesh_transform.hpp"
+#include "exactpixels/scene/obj_model.hpp"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -649,12 +651,75 @@ const std::vector<std::string> primitive_keys[5] = {
     {"centre", "radius", "segments", "rim_colours", "centre_colour", "texels_per_unit"},
 };
 
+//> read-transform
+/// The mesh's `scale`, `rotate` and `translate` (each optional): a number or three
+/// factors, each > 0; three angles in degrees; a point.
+MeshTransform read_transform(const TableReader& t) {
+    const Context& c = t.context();
+    MeshTransform transform;
+    if (const auto* n = t.find("scale")) {
+        if (n->is_array()) {
+            const toml::array& array = read_array(c, *n, t.child("scale"), 3, 3);
+            for (int k = 0; k < 3; ++k) {
+                transform.scale[k] =
+                    read_positive(c, *array.get(static_cast<std::size_t>(k)),
+                                  fmt::format("{}[{}]", t.child("scale"), k), 0.0, 1e6);
+            }
+        } else {
+            transform.scale =
+                glm::dvec3{read_positive(c, *n, t.child("scale"), 0.0, 1e6)};
+        }
+    }
+    if (const auto* n = t.find("rotate")) {
+        transform.rotate_degrees = read_vector<3>(c, *n, t.child("rotate"), -3600, 3600);
+    }
+    if (const auto* n = t.find("translate")) {
+        transform.translate = read_point(c, *n, t.child("translate"));
+    }
+    return transform;
+}
+
+/// Places the mesh by the transform, then checks what the scene asks of every mesh:
+/// coordinates within the world limit, no triangle of zero area.
+void place_and_check(const Context& c, const toml::table& table, const std::string& path,
+                     SceneMesh& mesh, const MeshTransform& transform) {
+    transform_mesh(mesh, transform);
+    for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+        const auto& tri = mesh.triangles[k];
+        for (const SceneVertex& v : tri) {
+            for (int i = 0; i < 3; ++i) {
+                if (!(std::abs(v.position[i]) <= world_limit)) {
+                    c.fail(table.source(), path,
+                           fmt::format("triangle {} reaches {} after the transform, "
+                                       "beyond the world's +-{}",
+                                       k, v.position[i], world_limit));
+                }
+            }
+        }
+        // A triangle of zero area in the world has no plane to interpolate on: reject
+        // it here rather than draw nothing later.
+        const glm::dvec3 e1 = tri[1].position - tri[0].position;
+        const glm::dvec3 e2 = tri[2].position - tri[0].position;
+        const double area2 = glm::length(glm::cross(e1, e2));
+        if (!(area2 > 1e-12 * glm::length(e1) * glm::length(e2))) {
+            c.fail(table.source(), path,
+                   fmt::format("triangle {} is degenerate (its corners are collinear or "
+                               "coincide, so it has no area)",
+                               k));
+        }
+    }
+}
+//< read-transform
+
+const std::vector<std::string> transform_keys{"translate", "rotate", "scale"};
+
 SceneMesh read_mesh(const Context& c, const toml::table& table, const std::string& path,
                     const Scene& scene) {
     // Which keys are allowed depends on the primitive: read it first.
     const toml::node* kind_node = table.get("primitive");
     if (kind_node == nullptr) {
-        c.fail(table.source(), path, "the required key 'primitive' is missing");
+        c.fail(table.source(), path,
+               "the required key 'primitive' (or 'file', for a model) is missing");
     }
     const std::size_t primitive = read_choice(
         c, *kind_node, path + ".primitive", {"triangles", "quad", "box", "floor", "fan"});
@@ -663,6 +728,7 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
                                      "specular",  "shininess"};
     allowed.insert(allowed.end(), primitive_keys[primitive].begin(),
                    primitive_keys[primitive].end());
+    allowed.insert(allowed.end(), transform_keys.begin(), transform_keys.end());
     const TableReader t(c, table, path, allowed);
     SceneMesh mesh;
     mesh.name = path;
@@ -714,23 +780,69 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
         mesh.shininess = read_number(c, *n, t.child("shininess"), 1.0, max_shininess);
     }
     read_primitive(t, mesh, primitive);
+    const MeshTransform transform = read_transform(t);
     t.finish();
-    // A triangle of zero area in the world has no plane to interpolate on: reject it
-    // here rather than draw nothing later.
-    for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
-        const auto& tri = mesh.triangles[k];
-        const glm::dvec3 e1 = tri[1].position - tri[0].position;
-        const glm::dvec3 e2 = tri[2].position - tri[0].position;
-        const double area2 = glm::length(glm::cross(e1, e2));
-        if (!(area2 > 1e-12 * glm::length(e1) * glm::length(e2))) {
-            c.fail(table.source(), path,
-                   fmt::format("triangle {} is degenerate (its corners are collinear or "
-                               "coincide, so it has no area)",
-                               k));
-        }
-    }
+    place_and_check(c, table, path, mesh, transform);
     return mesh;
 }
+
+//> read-model
+/// A `[[mesh]]` with `file = "model.obj"`: one SceneMesh per material the model's faces
+/// use, each material's texture added to the scene's textures.
+void read_model(const Context& c, const toml::table& table, const std::string& path,
+                Scene& scene, long long& texture_bytes) {
+    const TableReader t(c, table, path,
+                        {"file", "name", "wrap", "cull", "translate", "rotate", "scale"});
+    const toml::node& file = t.require("file");
+    const std::filesystem::path model_path =
+        c.folder / read_string(c, file, t.child("file"));
+    std::string name = path;
+    if (const auto* n = t.find("name")) {
+        name = read_string(c, *n, t.child("name"));
+    }
+    Wrap wrap = Wrap::repeat;
+    if (const auto* n = t.find("wrap")) {
+        wrap = read_choice(c, *n, t.child("wrap"), {"repeat", "clamp"}) == 0
+                   ? Wrap::repeat
+                   : Wrap::clamp;
+    }
+    bool cull_back = false;
+    if (const auto* n = t.find("cull")) {
+        cull_back = read_choice(c, *n, t.child("cull"), {"none", "back"}) == 1;
+    }
+    const MeshTransform transform = read_transform(t);
+    t.finish();
+    Model model;
+    try {
+        model = read_obj_model(model_path, texture_bytes);
+    } catch (const Error& error) { // names the model's file and line, and the value
+        c.fail(file.source(), t.child("file"), error.what());
+    }
+    scene.models.insert(scene.models.end(), model.files.begin(), model.files.end());
+    for (ModelPart& part : model.parts) {
+        SceneMesh mesh;
+        mesh.name = part.material.empty() ? name : name + "/" + part.material;
+        mesh.origin = fmt::format("{}:{}:{}: {}", c.file, table.source().begin.line,
+                                  table.source().begin.column, path);
+        mesh.triangles = std::move(part.triangles);
+        mesh.colour = part.colour;
+        mesh.wrap = wrap;
+        mesh.cull_back = cull_back;
+        if (part.texture) {
+            if (scene.textures.size() >= static_cast<std::size_t>(max_scene_textures)) {
+                c.fail(file.source(), t.child("file"),
+                       fmt::format("the model's textures take the scene beyond the {} "
+                                   "textures allowed",
+                                   max_scene_textures));
+            }
+            mesh.texture = scene.textures.size();
+            scene.textures.push_back(std::move(*part.texture));
+        }
+        place_and_check(c, table, path, mesh, transform);
+        scene.meshes.push_back(std::move(mesh));
+    }
+}
+//< read-model
 
 } // namespace
 
@@ -806,13 +918,13 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
                                  "colours", "filter", "shading", "ambient"}),
                     scene.options);
     }
+    long long texture_bytes = 0; // the texel memory of the textures so far
     if (const toml::table* t = section("textures")) {
         if (t->size() > static_cast<std::size_t>(max_scene_textures)) {
             c.fail(t->source(), "textures",
                    fmt::format("{} textures are more than the {} allowed", t->size(),
                                max_scene_textures));
         }
-        long long texture_bytes = 0; // the texel memory of the textures so far
         for (auto&& [key, node] : *t) {
             const std::string path = "textures." + std::string(key.str());
             if (!node.is_table()) {
@@ -857,8 +969,15 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
             c.fail(node.source(), path,
                    fmt::format("expected a table, got {}", type_name(node)));
         }
-        scene.meshes.push_back(read_mesh(c, *node.as_table(), path, scene));
-        triangles += static_cast<long long>(scene.meshes.back().triangles.size());
+        const std::size_t before = scene.meshes.size();
+        if (node.as_table()->contains("file")) {
+            read_model(c, *node.as_table(), path, scene, texture_bytes);
+        } else {
+            scene.meshes.push_back(read_mesh(c, *node.as_table(), path, scene));
+        }
+        for (std::size_t m = before; m < scene.meshes.size(); ++m) {
+            triangles += static_cast<long long>(scene.meshes[m].triangles.size());
+        }
         if (triangles > max_scene_triangles) {
             c.fail(
                 node.source(), path,
@@ -877,6 +996,7 @@ Scene load_scene(const std::filesystem::path& path) {
 
 std::vector<std::filesystem::path> scene_inputs(const Scene& scene) {
     std::vector<std::filesystem::path> files{scene.file};
+    files.insert(files.end(), scene.models.begin(), scene.models.end());
     for (const SceneTexture& texture : scene.textures) {
         if (!texture.file.empty()) {
             files.push_back(texture.file);

@@ -1,0 +1,54 @@
+#include "exactpixels/scene/mesh_transform.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace exactpixels {
+
+namespace {
+
+/// cos and sin of an angle in degrees, exact at whole quarter turns (where the library's
+/// cos(pi / 2) would be 6e-17, not 0).
+glm::dvec2 cos_sin_degrees(double degrees) {
+    const double turns = degrees / 90.0;
+    if (turns == std::floor(turns) && std::abs(turns) < 1e9) {
+        const auto quarter = static_cast<long long>(turns) % 4;
+        constexpr double table[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+        const auto k = static_cast<std::size_t>((quarter + 4) % 4);
+        return {table[k][0], table[k][1]};
+    }
+    const double radians = degrees * std::numbers::pi / 180.0;
+    return {std::cos(radians), std::sin(radians)};
+}
+
+} // namespace
+
+//> transform
+glm::dmat3 rotation_matrix(const glm::dvec3& degrees) {
+    const glm::dvec2 x = cos_sin_degrees(degrees.x), y = cos_sin_degrees(degrees.y),
+                     z = cos_sin_degrees(degrees.z);
+    // glm matrices are built column by column: each line below is one column.
+    const glm::dmat3 rx{{1, 0, 0}, {0, x[0], x[1]}, {0, -x[1], x[0]}}; // +y towards +z
+    const glm::dmat3 ry{{y[0], 0, -y[1]}, {0, 1, 0}, {y[1], 0, y[0]}}; // +z towards +x
+    const glm::dmat3 rz{{z[0], z[1], 0}, {-z[1], z[0], 0}, {0, 0, 1}}; // +x towards +y
+    return rz * ry * rx;
+}
+
+glm::dvec3 transform_point(const MeshTransform& t, const glm::dvec3& p) {
+    return t.translate + rotation_matrix(t.rotate_degrees) * (t.scale * p);
+}
+
+void transform_mesh(SceneMesh& mesh, const MeshTransform& t) {
+    const glm::dmat3 rotation = rotation_matrix(t.rotate_degrees);
+    for (auto& triangle : mesh.triangles) {
+        for (SceneVertex& v : triangle) {
+            v.position = t.translate + rotation * (t.scale * v.position);
+            if (v.normal != glm::dvec3{0.0}) { // inverse transpose of rotation * scale
+                v.normal = glm::normalize(rotation * (v.normal / t.scale));
+            }
+        }
+    }
+}
+//< transform
+
+} // namespace exactpixels

@@ -1,0 +1,39 @@
+// mesh_transform.hpp: placing a mesh in the world by scale, rotation and translation
+// (chapter 7, @sec:scene-models).
+//
+// Usage:
+//   MeshTransform t;                  // the identity
+//   t.scale = {2.0, 2.0, 2.0};        // factors along x, y, z, each > 0
+//   t.rotate_degrees = {0.0, 90.0, 0.0};
+//   t.translate = {0.0, 0.0, 5.0};    // world units
+//   transform_mesh(mesh, t);          // positions and normals, in place
+//
+// The order is fixed: scale, then rotate about x, then about y, then about z, then
+// translate: p' = translate + Rz Ry Rx (scale * p) (@eq:scene-transform). Angles are in
+// degrees; a positive angle about x turns +y towards +z, about y turns +z towards +x,
+// about z turns +x towards +y. Normals are carried by the inverse transpose of the
+// linear part, Rz Ry Rx / scale, and normalised again.
+#pragma once
+
+#include "exactpixels/scene/scene.hpp"
+
+namespace exactpixels {
+
+/// Where a mesh goes: scale, rotation and translation, applied in that order.
+struct MeshTransform {
+    glm::dvec3 scale = {1.0, 1.0, 1.0};          ///< factors along x, y, z, each > 0
+    glm::dvec3 rotate_degrees = {0.0, 0.0, 0.0}; ///< about x, then y, then z, degrees
+    glm::dvec3 translate = {0.0, 0.0, 0.0};      ///< world units, applied last
+};
+
+/// The rotation Rz Ry Rx of `degrees` (about x first), as a 3x3 matrix.
+glm::dmat3 rotation_matrix(const glm::dvec3& degrees);
+
+/// The point `p` placed by `t`: translate + Rz Ry Rx (scale * p).
+glm::dvec3 transform_point(const MeshTransform& t, const glm::dvec3& p);
+
+/// Moves every vertex of `mesh` by `t`; normals by the inverse transpose, normalised
+/// (a zero normal stays zero).
+void transform_mesh(SceneMesh& mesh, const MeshTransform& t);
+
+} // namespace exactpixels

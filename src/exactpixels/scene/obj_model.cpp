@@ -1,0 +1,490 @@
+#include "exactpixels/scene/obj_model.hpp"
+
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/input_file.hpp"
+#include "exactpixels/scene/scene_loader.hpp"
+
+#include <fmt/format.h>
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <cassert>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <set>
+#include <sstream>
+
+namespace exactpixels {
+
+namespace {
+
+/// Where a message points: a file and a line in it.
+struct Place {
+    std::string file;
+    std::size_t line = 0;
+
+    [[noreturn]] void fail(const std::string& message) const {
+        throw Error(fmt::format("{}:{}: {}", file, line, message));
+    }
+};
+
+/// The words of one line (split at spaces and tabs).
+std::vector<std::string_view> words_of(std::string_view line) {
+    std::vector<std::string_view> words;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        const auto blank = [](char ch) { return ch == ' ' || ch == '\t'; };
+        while (i < line.size() && blank(line[i])) {
+            ++i;
+        }
+        const std::size_t start = i;
+        while (i < line.size() && !blank(line[i])) {
+            ++i;
+        }
+        if (i > start) {
+            words.push_back(line.substr(start, i - start));
+        }
+    }
+    return words;
+}
+
+/// Calls `each(place, words)` for every line of `text` that is not blank or a comment.
+/// Lines end as tinyobjloader ends them, at "\n", "\r\n" or a lone "\r", so that both
+/// see the same statements; a control character (other than a tab) is an Error, since
+/// tinyobjloader would take it as the end of the line.
+template <class Each>
+void for_each_statement(std::string_view text, const std::string& file, Each each) {
+    std::size_t line = 0, start = 0;
+    while (start < text.size()) {
+        ++line;
+        std::size_t end = start;
+        while (end < text.size() && text[end] != '\n' && text[end] != '\r') {
+            const auto ch = static_cast<unsigned char>(text[end]);
+            if (ch < 0x20 && ch != '\t') {
+                Place{file, line}.fail(fmt::format("control character 0x{:02x}", ch));
+            }
+            ++end;
+        }
+        const std::vector<std::string_view> words =
+            words_of(text.substr(start, end - start));
+        if (!words.empty() && words[0][0] != '#') {
+            each(Place{file, line}, words);
+        }
+        start = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
+    }
+}
+
+//> obj-number
+/// A decimal number, the whole word and nothing else, finite, within +-limit.
+double read_number(const Place& at, std::string_view word, double limit) {
+    std::string_view digits = word;
+    if (!digits.empty() && digits[0] == '+') {
+        digits.remove_prefix(1);
+    }
+    double value = 0.0;
+    const auto [end, error] =
+        std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (digits.empty() || error != std::errc{} || end != digits.data() + digits.size()) {
+        at.fail(fmt::format("'{}' is not a number", word));
+    }
+    if (!std::isfinite(value) || std::abs(value) > limit) {
+        at.fail(
+            fmt::format("{} is out of range (allowed: -{} to {})", word, limit, limit));
+    }
+    return value;
+}
+//< obj-number
+
+/// Checks that a statement has from `lo` to `hi` words after its keyword.
+void expect_fields(const Place& at, const std::vector<std::string_view>& words,
+                   std::size_t lo, std::size_t hi) {
+    const std::size_t n = words.size() - 1;
+    if (n < lo || n > hi) {
+        at.fail(fmt::format(
+            "'{}' takes {} values, this one has {}", words[0],
+            lo == hi ? fmt::format("{}", lo) : fmt::format("{} to {}", lo, hi), n));
+    }
+}
+
+/// One MTL file's materials as the check saw them: name, line, texture.
+struct CheckedMaterial {
+    Place place;                         ///< where `newmtl` named it
+    std::optional<SceneTexture> texture; ///< its map_Kd
+};
+
+//> mtl-check
+/// Checks every statement of an MTL file and reads each map_Kd texture.
+void check_mtl(std::string_view text, const std::string& file,
+               const std::filesystem::path& folder,
+               std::map<std::string, CheckedMaterial>& materials,
+               long long& texture_bytes) {
+    CheckedMaterial* current = nullptr;
+    for_each_statement(text, file, [&](const Place& at, const auto& words) {
+        const std::string_view key = words[0];
+        if (key == "newmtl") {
+            expect_fields(at, words, 1, 1);
+            const std::string name(words[1]);
+            if (words[1].data() != words[0].data() + 7) { // tinyobjloader would keep them
+                at.fail(fmt::format(
+                    "material '{}': one blank between newmtl and the name", name));
+            }
+            if (materials.count(name) != 0) {
+                at.fail(fmt::format("material '{}' is defined twice (first at {}:{})",
+                                    name, materials.at(name).place.file,
+                                    materials.at(name).place.line));
+            }
+            if (materials.size() >= static_cast<std::size_t>(max_model_materials)) {
+                at.fail(fmt::format("material '{}' is more than the {} allowed", name,
+                                    max_model_materials));
+            }
+            current = &materials[name];
+            current->place = at;
+            return;
+        }
+        if (current == nullptr) {
+            at.fail(fmt::format("'{}' before any newmtl", key));
+        }
+        if (key == "Kd") {
+            expect_fields(at, words, 3, 3);
+            for (std::size_t k = 1; k <= 3; ++k) {
+                if (read_number(at, words[k], 1.0) < 0.0) {
+                    at.fail(
+                        fmt::format("Kd {} is out of range (allowed: 0 to 1)", words[k]));
+                }
+            }
+        } else if (key == "map_Kd") {
+            expect_fields(at, words, 1, 1);
+            if (words[1][0] == '-') {
+                at.fail(fmt::format("map_Kd option '{}' is not supported", words[1]));
+            }
+            const std::filesystem::path path = folder / std::string(words[1]);
+            try {
+                Texture texture = load_texture(path, [&](int width, int height) {
+                    if (width > max_texture_side || height > max_texture_side) {
+                        at.fail(fmt::format(
+                            "{}: {}x{} texels is larger than the {} allowed per side",
+                            path.string(), width, height, max_texture_side));
+                    }
+                    texture_bytes += 4LL * width * height;
+                    if (texture_bytes > max_scene_texture_bytes) {
+                        at.fail(fmt::format("{}: the scene's textures take more than the "
+                                            "{} bytes allowed",
+                                            path.string(), max_scene_texture_bytes));
+                    }
+                });
+                current->texture = SceneTexture{"", std::move(texture), path};
+            } catch (const Error& error) {
+                const std::string message = error.what();
+                if (message.rfind(file + ":", 0) == 0) {
+                    throw; // already names this line
+                }
+                at.fail(message);
+            }
+        } else if (key == "Ka" || key == "Ks" || key == "Ke" || key == "Tf") {
+            expect_fields(at, words, 3, 3);
+            for (std::size_t k = 1; k <= 3; ++k) {
+                (void)read_number(at, words[k], max_model_coordinate);
+            }
+        } else if (key == "Ns" || key == "Ni" || key == "d" || key == "Tr" ||
+                   key == "illum") {
+            expect_fields(at, words, 1, 1);
+            (void)read_number(at, words[1], max_model_coordinate);
+        } else {
+            at.fail(
+                fmt::format("'{}' is not supported in a material file (supported: "
+                            "newmtl, Kd, map_Kd, Ka, Ks, Ke, Tf, Ns, Ni, d, Tr, illum)",
+                            key));
+        }
+    });
+}
+//< mtl-check
+
+/// What the check of an OBJ file found: the MTL texts for tinyobjloader, each
+/// material's texture, and the line of every face in file order.
+struct CheckedObj {
+    std::map<std::string, std::string> mtl_texts;
+    std::map<std::string, CheckedMaterial> materials;
+    std::vector<std::filesystem::path> files;
+    std::vector<std::size_t> face_lines;
+};
+
+/// One face corner's index, checked against the `count` elements read so far.
+void check_index(const Place& at, std::string_view corner, std::string_view word,
+                 long long count, const char* what) {
+    long long index = 0;
+    const auto [end, error] =
+        std::from_chars(word.data(), word.data() + word.size(), index);
+    if (word.empty() || error != std::errc{} || end != word.data() + word.size()) {
+        at.fail(fmt::format("'{}' in face corner '{}' is not an index", word, corner));
+    }
+    if (index == 0) {
+        at.fail(fmt::format("index 0 in face corner '{}' (indices start at 1)", corner));
+    }
+    if (index > count) {
+        at.fail(
+            fmt::format("index {} in face corner '{}' is beyond the {} {} read so far",
+                        index, corner, count, what));
+    }
+    if (index < -count) {
+        at.fail(fmt::format("index {} in face corner '{}' reaches back beyond the {} {} "
+                            "read so far",
+                            index, corner, count, what));
+    }
+}
+
+//> obj-check
+/// Checks every statement of the OBJ text and reads its MTL files, before
+/// tinyobjloader sees it: the limits, the numbers, the indices, the materials.
+CheckedObj check_obj(std::string_view text, const std::string& file,
+                     const std::filesystem::path& folder, long long& texture_bytes) {
+    CheckedObj checked;
+    long long positions = 0, texcoords = 0, normals = 0, triangles = 0;
+    const auto count = [&](const Place& at, long long& n, const char* what) {
+        if (++n > max_model_vertices) {
+            at.fail(fmt::format("more than the {} {} allowed", max_model_vertices, what));
+        }
+    };
+    for_each_statement(text, file, [&](const Place& at, const auto& words) {
+        const std::string_view key = words[0];
+        if (key == "v") {
+            expect_fields(at, words, 3, 3);
+            count(at, positions, "positions");
+            for (std::size_t k = 1; k <= 3; ++k) {
+                (void)read_number(at, words[k], max_model_coordinate);
+            }
+        } else if (key == "vt") {
+            expect_fields(at, words, 2, 3);
+            count(at, texcoords, "texture coordinates");
+            for (std::size_t k = 1; k < words.size(); ++k) {
+                (void)read_number(at, words[k], max_model_texcoord);
+            }
+        } else if (key == "vn") {
+            expect_fields(at, words, 3, 3);
+            count(at, normals, "normals");
+            double length2 = 0.0;
+            for (std::size_t k = 1; k <= 3; ++k) {
+                const double x = read_number(at, words[k], max_model_coordinate);
+                length2 += x * x;
+            }
+            if (!(length2 > 0.0)) {
+                at.fail("a normal of length 0 has no direction");
+            }
+        } else if (key == "f") {
+            const std::size_t corners = words.size() - 1;
+            if (corners < 3 || corners > static_cast<std::size_t>(max_face_corners)) {
+                at.fail(fmt::format("a face of {} corners (allowed: 3 to {})", corners,
+                                    max_face_corners));
+            }
+            triangles += static_cast<long long>(corners) - 2;
+            if (triangles > max_model_triangles) {
+                at.fail(fmt::format("the faces make more than the {} triangles allowed",
+                                    max_model_triangles));
+            }
+            for (std::size_t k = 1; k <= corners; ++k) {
+                const std::string_view corner = words[k];
+                std::vector<std::string_view> parts;
+                std::size_t start = 0;
+                for (std::size_t slash;
+                     (slash = corner.find('/', start)) != std::string_view::npos;
+                     start = slash + 1) {
+                    parts.push_back(corner.substr(start, slash - start));
+                }
+                parts.push_back(corner.substr(start));
+                if (parts.size() > 3) {
+                    at.fail(
+                        fmt::format("face corner '{}' has more than 3 parts", corner));
+                }
+                check_index(at, corner, parts[0], positions, "positions");
+                if (parts.size() >= 2 && !(parts.size() == 3 && parts[1].empty())) {
+                    check_index(at, corner, parts[1], texcoords, "texture coordinates");
+                }
+                if (parts.size() == 3) {
+                    check_index(at, corner, parts[2], normals, "normals");
+                }
+            }
+            checked.face_lines.push_back(at.line);
+        } else if (key == "mtllib") {
+            expect_fields(at, words, 1, 1);
+            const std::string name(words[1]);
+            const std::filesystem::path path = folder / name;
+            std::string mtl;
+            try {
+                mtl = read_input_file(path, "material", max_material_file_bytes,
+                                      InputKind::regular_file);
+            } catch (const Error& error) {
+                at.fail(error.what());
+            }
+            if (checked.mtl_texts.count(name) != 0) {
+                at.fail(fmt::format("mtllib '{}' is named twice", name));
+            }
+            check_mtl(mtl, path.string(), path.parent_path(), checked.materials,
+                      texture_bytes);
+            checked.mtl_texts[name] = std::move(mtl);
+            checked.files.push_back(path);
+        } else if (key == "usemtl") {
+            expect_fields(at, words, 1, 1);
+            if (checked.materials.count(std::string(words[1])) == 0) {
+                at.fail(fmt::format("material '{}' is not defined by any mtllib above",
+                                    words[1]));
+            }
+        } else if (key == "o" || key == "g") {
+            // names: any words
+        } else if (key == "s") {
+            expect_fields(at, words, 1, 1);
+        } else {
+            at.fail(fmt::format("'{}' is not supported (supported: v, vt, vn, f, usemtl, "
+                                "mtllib, o, g, s)",
+                                key));
+        }
+    });
+    return checked;
+}
+//< obj-check
+
+/// Hands tinyobjloader the MTL texts the check has read.
+class CheckedMaterials : public tinyobj::MaterialReader {
+  public:
+    explicit CheckedMaterials(const std::map<std::string, std::string>& texts)
+        : texts_(texts) {}
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* ids, std::string* warning,
+                    std::string* error) override {
+        const auto found = texts_.find(name);
+        assert(found != texts_.end()); // the check read every mtllib
+        std::istringstream in(found->second);
+        tinyobj::LoadMtl(ids, materials, &in, warning, error);
+        return true;
+    }
+
+  private:
+    const std::map<std::string, std::string>& texts_;
+};
+
+//> fan
+/// Checks that a face is a strictly convex polygon (every corner turns the same way as
+/// the face's Newell normal, and the turns add up to one full turn), so that the fan
+/// from its first corner covers it exactly once.
+void check_convex(const Place& at, const std::vector<glm::dvec3>& p) {
+    const std::size_t n = p.size();
+    glm::dvec3 normal{0.0};
+    for (std::size_t k = 0; k < n; ++k) {
+        normal += glm::cross(p[k], p[(k + 1) % n]);
+    }
+    double turning = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+        const glm::dvec3 in = p[k] - p[(k + n - 1) % n];
+        const glm::dvec3 out = p[(k + 1) % n] - p[k];
+        const double scale = glm::length(in) * glm::length(out) * glm::length(normal);
+        if (!(glm::dot(glm::cross(in, out), normal) > 1e-9 * scale)) {
+            at.fail(n == 3 ? std::string("the face is degenerate (its corners are "
+                                         "collinear or coincide)")
+                           : fmt::format("the face is not strictly convex (corner {} of "
+                                         "{} turns the other way or not at all)",
+                                         k + 1, n));
+        }
+        turning += std::acos(std::clamp(
+            glm::dot(in, out) / (glm::length(in) * glm::length(out)), -1.0, 1.0));
+    }
+    if (std::abs(turning - 2.0 * std::numbers::pi) > 1e-6) {
+        at.fail(fmt::format("the face is not a simple polygon (its edges turn {:.4g} "
+                            "times round)",
+                            turning / (2.0 * std::numbers::pi)));
+    }
+}
+//< fan
+
+} // namespace
+
+//> parse-obj
+Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
+                      const std::filesystem::path& folder, long long& texture_bytes) {
+    const std::string name = file.string();
+    CheckedObj checked = check_obj(text, name, folder, texture_bytes);
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warning, error;
+    CheckedMaterials reader(checked.mtl_texts);
+    std::istringstream in{std::string(text)};
+    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &in, &reader,
+                          /*triangulate=*/false)) {
+        throw Error(fmt::format("{}: tinyobjloader: {}", name, error));
+    }
+    Model model;
+    model.files.push_back(file);
+    model.files.insert(model.files.end(), checked.files.begin(), checked.files.end());
+    model.normals = true;
+    std::map<int, std::size_t> part_of; // material id -> index into model.parts
+    std::size_t face = 0;               // faces in file order
+    for (const tinyobj::shape_t& shape : shapes) {
+        std::size_t offset = 0;
+        for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+            assert(face < checked.face_lines.size());
+            const Place at{name, checked.face_lines[face++]};
+            const int id = shape.mesh.material_ids[f];
+            if (part_of.count(id) == 0) {
+                part_of[id] = model.parts.size();
+                ModelPart part;
+                if (id >= 0) {
+                    const tinyobj::material_t& m =
+                        materials[static_cast<std::size_t>(id)];
+                    part.material = m.name;
+                    part.colour = {m.diffuse[0], m.diffuse[1], m.diffuse[2]};
+                    part.texture = checked.materials.at(m.name).texture;
+                    if (part.texture) {
+                        part.texture->name = name + ":" + m.name;
+                    }
+                }
+                model.parts.push_back(std::move(part));
+            }
+            ModelPart& part = model.parts[part_of[id]];
+            const glm::dvec2 texels = part.texture
+                                          ? glm::dvec2{part.texture->texture.width(),
+                                                       part.texture->texture.height()}
+                                          : glm::dvec2{0.0};
+            const std::size_t n = shape.mesh.num_face_vertices[f];
+            std::vector<SceneVertex> corners(n);
+            std::vector<glm::dvec3> positions(n);
+            for (std::size_t k = 0; k < n; ++k) {
+                const tinyobj::index_t index = shape.mesh.indices[offset + k];
+                const auto at3 = [](const std::vector<tinyobj::real_t>& v, int i) {
+                    const auto j = 3 * static_cast<std::size_t>(i);
+                    return glm::dvec3{v[j], v[j + 1], -v[j + 2]}; // z flipped
+                };
+                SceneVertex& v = corners[k];
+                v.position = positions[k] = at3(attrib.vertices, index.vertex_index);
+                if (index.texcoord_index >= 0) {
+                    const auto j = 2 * static_cast<std::size_t>(index.texcoord_index);
+                    v.uv = {attrib.texcoords[j] * texels.x,
+                            (1.0 - attrib.texcoords[j + 1]) * texels.y};
+                }
+                if (index.normal_index >= 0) {
+                    v.normal = glm::normalize(at3(attrib.normals, index.normal_index));
+                } else {
+                    model.normals = false;
+                }
+            }
+            offset += n;
+            check_convex(at, positions);
+            for (std::size_t k = 1; k + 1 < n; ++k) { // the fan from corner 0
+                part.triangles.push_back({corners[0], corners[k], corners[k + 1]});
+            }
+        }
+    }
+    assert(face == checked.face_lines.size()); // tinyobjloader kept every face
+    if (model.parts.empty()) {
+        Place{name, 1}.fail("the model has no faces (no 'f' statement): nothing to draw");
+    }
+    return model;
+}
+//< parse-obj
+
+Model read_obj_model(const std::filesystem::path& path, long long& texture_bytes) {
+    const std::string text =
+        read_input_file(path, "model", max_model_file_bytes, InputKind::regular_file);
+    return parse_obj_model(text, path, path.parent_path(), texture_bytes);
+}
+
+} // namespace exactpixels
