@@ -68,6 +68,8 @@ std::string stability_facts(const std::vector<exactpixels::StabilityRow>& rows) 
     range("p99_ratio", p99_ratio);
     out << "closed_wins_percent " << 100.0 * closed_wins / trials
         << "\nsplit_wins_percent " << 100.0 * split_wins / trials << '\n';
+    return out.str();
+}
 
 // One fact per line, "NAME VALUE": for each y-delta (named by its index, d0 = 1e-2 ..
 // d5 = 0) and precision, the medians and 99th percentiles of both methods and how often
