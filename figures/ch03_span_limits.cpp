@@ -2,7 +2,7 @@
 // texels, how large may the depth ratio r grow before the subdivided affine and the
 // subdivided quadratic mapper (pieces of N = 4, 8, 16, 32 pixels, in double) pick another
 // texel than the exact mapper, or stray by more than half a texel from it? And what does
-// @tbl:span-limit predict, applied piece by piece? Writes ch03_span_limits.txt into the
+// the table of span limits predict, applied piece by piece? Writes ch03_span_limits.txt into the
 // folder argv[1], one fact per line (MAPPER is sub or quad):
 //   MAPPER_N_texel  the largest r before some pixel's texel floor(u) differs
 //   MAPPER_N_half   the largest r before some pixel's u is more than 1/2 texel off
@@ -62,7 +62,7 @@ Outcome compare(double r, int n, bool quadratic) {
     return out;
 }
 
-/// @tbl:span-limit's rule applied to every piece the mapper places: each piece's own
+/// the span-limit table's rule applied to every piece the mapper places: each piece's own
 /// depth ratio and texel extent must keep its worst error within half a texel.
 bool predicted_within(double r, int n, bool quadratic) {
     const PerspectiveSpan<double> s = span_of(r);
