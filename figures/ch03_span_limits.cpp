@@ -2,8 +2,8 @@
 // texels, how large may the depth ratio r grow before the subdivided affine and the
 // subdivided quadratic mapper (pieces of N = 4, 8, 16, 32 pixels, in double) pick another
 // texel than the exact mapper, or stray by more than half a texel from it? And what does
-// the table of span limits predict, applied piece by piece? Writes ch03_span_limits.txt into the
-// folder argv[1], one fact per line (MAPPER is sub or quad):
+// the table of span limits predict, applied piece by piece? Writes ch03_span_limits.txt
+// into the folder argv[1], one fact per line (MAPPER is sub or quad):
 //   MAPPER_N_texel  the largest r before some pixel's texel floor(u) differs
 //   MAPPER_N_half   the largest r before some pixel's u is more than 1/2 texel off
 //   MAPPER_N_pred   the largest r for which every piece, at its own depth ratio and
