@@ -5,21 +5,13 @@ integer edges pass through one (the text and Exercise 2), and the snap (eq:snap)
 with halves up, shift-invariant, and the one double input where floor(256 x + 1/2) computed
 in floating point is wrong. Exits non-zero on any mismatch."""
 import itertools
+import pathlib
 import sys
 
 import sympy as sp
 
-failures = []
-
-
-def same(name, left, right):
-    if sp.simplify(left - right) != 0:
-        failures.append(f"{name}: {sp.simplify(left - right)} != 0")
-
-
-def holds(name, condition):
-    if not condition:
-        failures.append(name)
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "support"))
+from derivation import holds, same, finish  # noqa: E402
 
 
 # @eq:pixel-square: P_ij = [i, i+1) x [j, j+1). The squares tile the plane: a point lies in
@@ -97,6 +89,4 @@ holds("the tricky value snaps to 0 exactly",
       sp.floor(256 * sp.Rational(tricky) + sp.Rational(1, 2)) == 0)
 holds("in double floor(256 x + 0.5) gives 1 for it", int(tricky * 256 + 0.5) == 1)
 
-for failure in failures:
-    print("ch00_pixels.py: " + failure)
-sys.exit(1 if failures else 0)
+finish("ch00_pixels.py")

@@ -4,17 +4,15 @@ gradient (eq. 1.3-1.6), its denominator (eq:split-denominator), the closed form
 (eq:closed-form) as the solution of the plane through three vertices, and chapter 2's
 edge sum (eq:edge-sum), barycentric interpolation (eq:edge-barycentric), edge steps
 (eq:edge-steps) and edge gradient (eq:edge-gradient). Exits non-zero on any mismatch."""
+import pathlib
 import sys
 
 import sympy as sp
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "support"))
+from derivation import failures, same, finish  # noqa: E402
+
 x1, y1, x2, y2, x3, y3, c1, c2, c3, px, py = sp.symbols("x1 y1 x2 y2 x3 y3 c1 c2 c3 px py")
-failures = []
-
-
-def same(name, left, right):
-    if sp.simplify(left - right) != 0:
-        failures.append(f"{name}: {sp.simplify(left - right)} != 0")
 
 
 # The plane through the three vertices (eq:plane), solved directly.
@@ -61,6 +59,4 @@ seed_dx = sum(c[i] * (v[(i + 2) % 3][0] - v[(i + 1) % 3][0]) for i in range(3)) 
     * (-1 / area2) / area2
 if sp.simplify(seed_dx - plane[cx]) == 0:
     failures.append("seed 002's dp/dx would be right: the erratum is wrong")
-for failure in failures:
-    print("ch01_ch02_gradients.py: " + failure)
-sys.exit(1 if failures else 0)
+finish("ch01_ch02_gradients.py")

@@ -6,18 +6,16 @@ it peaks and how large it is (eq:affine-worst-t, eq:affine-bound), the exact mid
 differences (eq:forward-differences), chapter 4's numerator (eq:numerator,
 eq:numerator-constant, eq:step-difference) and chapter 7's two bounds behind
 eq:scene-quadratic-bound. Exits non-zero on any mismatch."""
+import pathlib
 import sys
 
 import sympy as sp
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "support"))
+from derivation import failures, same, finish  # noqa: E402
+
 t, r, n, k = sp.symbols("t r n k", positive=True)
 u0, u2, w0, w2, T = sp.symbols("u0 u2 w0 w2 T")
-failures = []
-
-
-def same(name, left, right):
-    if sp.simplify(left - right) != 0:
-        failures.append(f"{name}: {sp.simplify(left - right)} != 0")
 
 
 # A span with u0 at depth w0 and u2 at w2 = r w0: u/w and 1/w linear in t.
@@ -70,6 +68,4 @@ sv = sp.symbols("s", positive=True)
 gap = (sv * (1 - t) + t) - 2 * sp.sqrt(sv * t * (1 - t))
 same("AM-GM gap is a square", gap,
      (sp.sqrt(sv * (1 - t)) - sp.sqrt(t))**2)
-for failure in failures:
-    print("ch03_ch04_ch07_perspective.py: " + failure)
-sys.exit(1 if failures else 0)
+finish("ch03_ch04_ch07_perspective.py")

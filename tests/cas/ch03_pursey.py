@@ -6,9 +6,13 @@ s(0) = 0, s(1/2) = 1/(1 + r), s(1) = 1. Checks the slopes at both ends, when the
 is monotonic, where it turns and how far it overshoots (eq. pursey-slopes and
 pursey-overshoot), and the error formula eq. 3.11. Exits non-zero on any mismatch.
 """
+import pathlib
 import sys
 
 import sympy as sp
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "support"))
+from derivation import failures, same, finish  # noqa: E402
 
 r, t = sp.symbols("r t", positive=True)
 s = t / (r - (r - 1) * t)
@@ -17,12 +21,6 @@ q = A * t**2 + B * t
 coefficients = sp.solve([q.subs(t, sp.Rational(1, 2)) - 1 / (1 + r), q.subs(t, 1) - 1],
                         [A, B])
 q = q.subs(coefficients)
-failures = []
-
-
-def same(name, left, right):
-    if sp.simplify(left - right) != 0:
-        failures.append(f"{name}: {sp.simplify(left)} != {right}")
 
 
 slope = sp.diff(q, t)
@@ -42,6 +40,4 @@ same("figure 3.3: r = 4, 64 texels", 64 * q.subs(r, 4).subs(t, turn.subs(r, 4)),
      sp.Rational(-8, 15))
 same("overshoot tends to 1/8", sp.limit((r - 3)**2 / (8 * (r - 1) * (r + 1)), r, sp.oo),
      sp.Rational(1, 8))
-for failure in failures:
-    print("ch03_pursey.py: " + failure)
-sys.exit(1 if failures else 0)
+finish("ch03_pursey.py")

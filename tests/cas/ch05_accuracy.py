@@ -5,21 +5,13 @@ differing texels (eq:differing-share), the Pareto front's dominance (eq:pareto),
 ratio of a piece (eq:piece-ratio) with its consequences in the text, the receding quad's
 worst affine error, and Exercise 2's piece length. Exits non-zero on any mismatch."""
 import itertools
+import pathlib
 import sys
 
 import sympy as sp
 
-failures = []
-
-
-def same(name, left, right):
-    if sp.simplify(left - right) != 0:
-        failures.append(f"{name}: {sp.simplify(left - right)} != 0")
-
-
-def holds(name, condition):
-    if not condition:
-        failures.append(name)
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "support"))
+from derivation import holds, same, finish  # noqa: E402
 
 
 # @eq:texel-error: e = max(|u - u*|, |v - v*|) < 1/2 means "off by at most one texel":
@@ -102,6 +94,4 @@ same("limit on the piece length", n_limit[0], L / (r - 1) * 8 * U / (2 * U - 1)*
 same("for large U about 2L/(U(r - 1))",
      sp.limit(n_limit[0] * U * (r - 1) / L, U, sp.oo), 2)
 
-for failure in failures:
-    print("ch05_accuracy.py: " + failure)
-sys.exit(1 if failures else 0)
+finish("ch05_accuracy.py")
