@@ -1,7 +1,7 @@
 // measured_facts.cpp: the values tests record for the book, written on request.
 #include "support/measured_facts.hpp"
 
-// The assignment kits' own fixture tree (tests/fixtures/kits/tree) is a fake project
+// The assignment kits' own fixture tree (the kit test's fake project) is a project
 // without the library's base layer; there the test programs are built without --facts.
 #if __has_include("exactpixels/base/atomic_file.hpp")
 #include "exactpixels/base/atomic_file.hpp"
