@@ -114,9 +114,9 @@ int main(int argc, char** argv) try {
     const std::map<std::string, double> times =
         read_times(folder / "bench_ch08_filters.csv");
     std::string table, facts,
-        levels = "| scene | pixels | minified | span: worst | span: mean | span: "
-                 "changed | span: bound | triangle: worst | triangle: mean | triangle: "
-                 "changed |\n|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+        levels = "| scene | pixels | minified | span worst | span mean | span moved "
+                 "| span bound | tri. worst | tri. mean | tri. moved "
+                 "|\n|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const AccuracyScene& scene : filter_scenes()) {
         const FilterScene fs = prepare_filter_scene(scene);
         const std::vector<LinearTexel> reference = reference_image(fs);
@@ -180,8 +180,8 @@ int main(int argc, char** argv) try {
           levels + "\n: The level of detail from per-span and per-triangle derivatives "
                    "against the exact per-pixel level: worst and mean |level error| over "
                    "all pixels (levels below 0 count as 0), pixels whose mip-nearest "
-                   "level changes, and the largest per-span bound of @eq:level-bound "
-                   "{#tbl:levels}\n");
+                   "level changes (moved), and the largest per-span bound of "
+                   "@eq:level-bound; tri.: per triangle {#tbl:levels}\n");
     write(folder / "ch08_facts.txt",
           "# fig_ch08_table: level errors of the cheaper derivatives and the filters' "
           "errors (minified pixels), per scene\n" +
