@@ -273,3 +273,23 @@ TEST_CASE("normals given per vertex are the ones lit") {
         CHECK(c.at(10, 10) == to_rgba8(Colour{0.6, 0.2, 0.8})); // n = l: head-on
     }
 }
+
+TEST_CASE("a back-culled triangle is not lit per vertex") {
+    // A box seen from outside: the faces turned away are culled before the lighting
+    // stage, so Gouraud lights exactly the corners of the triangles that are drawn.
+    const Scene scene = parse_scene(
+        "[image]\nwidth = 64\nheight = 64\n[camera]\nposition = [2, 1.5, -3]\n"
+        "target = [0, 0, 0]\n[[light]]\ntype = \"directional\"\ndirection = [1, -1, 2]\n"
+        "[[mesh]]\nprimitive = \"box\"\ncentre = [0, 0, 0]\nsize = [1, 1, 1]\n"
+        "shading = \"gouraud\"\ncull = \"back\"\n",
+        "box.toml", ".");
+    RenderReport report;
+    const SceneGeometry geometry = run_geometry(scene, report);
+    REQUIRE(geometry.meshes.size() == 1);
+    const auto drawn = static_cast<long long>(geometry.meshes[0].size());
+    CHECK(report.geometry.triangles == 12);
+    CHECK(report.culling.triangles == 12 - drawn);
+    CHECK(drawn == 6); // three faces of a box are seen from a corner's direction
+    CHECK(report.lit_vertices == 3 * drawn);
+    CHECK(render_scene(scene).report.lit_vertices == 3 * drawn);
+}

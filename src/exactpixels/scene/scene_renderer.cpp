@@ -162,19 +162,9 @@ void prepare_chain(MeshContext& m, Filter filter) {
     }
 }
 
-/// A triangle after the geometry stage: projected, clipped, not culled, with what the
-/// stages need at its corners.
-struct ProjectedTriangle {
-    std::array<TexturedVertex, 3> corners; ///< pixels, depth w, texels
-    std::array<Colour, 3> colours;         ///< vertex colours (used by the colour stage)
-    std::array<double, 3> nearness;        ///< 1/w (perspective) or -z (orthographic)
-    std::array<glm::dvec3, 3> points;      ///< view space (used by Phong lighting)
-    std::array<glm::dvec3, 3> normals;     ///< view space (used by Phong lighting)
-};
-
 //> draw-triangle
 /// Rasterizes one projected triangle and runs the mesh's stages on its spans.
-void draw_triangle(MeshContext& m, const ProjectedTriangle& triangle) {
+void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
     const std::array<TexturedVertex, 3>& tv = triangle.corners;
     const std::array<Colour, 3>& colours = triangle.colours;
     RenderReport& report = m.report;
@@ -541,12 +531,9 @@ void check_finite(const TexturedVertex& v, Precision precision, std::size_t tria
 
 } // namespace
 
-//> render-scene
-RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
-    const Clock::time_point start = Clock::now();
-    RenderResult result{
-        Framebuffer(scene.width, scene.height, to_rgba8(scene.background)), {}};
-    RenderReport& report = result.report;
+//> geometry-stage
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
+    SceneGeometry geometry;
     const CameraFrame camera = camera_frame(scene.camera);
     const bool perspective = scene.camera.projection == Projection::perspective;
     const Pinhole lens = pinhole(scene);
@@ -557,16 +544,20 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                           glm::dot(d, camera.forward)};
     };
     const bool lit = !scene.lights.empty(); // no light, no lighting stage
-    const std::vector<ViewLight> lights =
-        lit ? lights_in_view(scene.lights, to_view) : std::vector<ViewLight>{};
+    if (lit) {
+        geometry.lights = lights_in_view(scene.lights, to_view);
+    }
+    const std::vector<ViewLight>& lights = geometry.lights;
     report.lighting_on = lit;
     report.lights = static_cast<int>(lights.size());
-    // The geometry stage, for every mesh first: the depth stage's plan needs to know
-    // where on screen each mesh lands.
-    std::vector<std::vector<ProjectedTriangle>> meshes(scene.meshes.size());
-    std::vector<MeshFootprint> footprints(scene.meshes.size());
+    // Every mesh first: the depth stage's plan needs to know where on screen each mesh
+    // lands.
+    geometry.meshes.resize(scene.meshes.size());
+    geometry.footprints.resize(scene.meshes.size());
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& mesh = scene.meshes[i];
+        std::vector<ScreenTriangle>& out = geometry.meshes[i];
+        MeshFootprint& footprint = geometry.footprints[i];
         const bool with_colours = mesh_stages(scene, mesh).colour;
         const bool gouraud = lit && mesh_shading(scene, mesh) == Shading::gouraud;
         const bool phong = lit && !gouraud;
@@ -574,8 +565,18 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
         report.phong_meshes += phong;
         const std::vector<CornerNormals> normals =
             lit ? mesh_normals(mesh) : std::vector<CornerNormals>{};
-        footprints[i].name = fmt::format("mesh[{}]", i); // as messages name it
-        footprints[i].can_overlap_itself = can_overlap_itself(mesh);
+        footprint.name = fmt::format("mesh[{}]", i); // as messages name it
+        footprint.can_overlap_itself = can_overlap_itself(mesh);
+        // Projects a view-space corner and stops a non-finite one (naming the mesh).
+        const auto project_checked = [&](const ViewVertex& v, std::size_t index) {
+            const TexturedVertex corner = project_vertex(scene, lens, v);
+            try {
+                check_finite(corner, scene.options.precision, index);
+            } catch (const Error& error) {
+                throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
+            }
+            return corner;
+        };
         for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
             const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
             const Clock::time_point t0 = Clock::now();
@@ -583,12 +584,24 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
             std::array<Colour, 3> colours{};
             bool in_front = true;
             for (std::size_t k = 0; k < 3; ++k) {
-                const glm::dvec3 d = triangle[k].position - camera.eye;
-                view[k] = {{glm::dot(d, camera.right), glm::dot(d, camera.up),
-                            glm::dot(d, camera.forward)},
-                           triangle[k].uv};
+                view[k] = {to_view(triangle[k].position, true), triangle[k].uv};
                 colours[k] = triangle[k].colour;
                 in_front = in_front && view[k].position.z >= scene.camera.near;
+            }
+            report.geometry.triangles += 1;
+            const bool needs_clip = perspective && !in_front;
+            // A whole triangle is culled before it is lit: the same projected corners
+            // decide it here and below, so the decision cannot differ.
+            if (mesh.cull_back && !needs_clip) {
+                std::array<TexturedVertex, 3> corners{};
+                for (std::size_t k = 0; k < 3; ++k) {
+                    corners[k] = project_checked(view[k], index);
+                }
+                if (screen_area2(corners) >= 0.0) {
+                    report.culling.triangles += 1;
+                    report.geometry.seconds += seconds_since(t0);
+                    continue;
+                }
             }
             std::array<glm::dvec3, 3> view_normals{};
             if (lit) {
@@ -612,10 +625,9 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                 //< gouraud-vertices
                 report.lighting.seconds += seconds_since(l0);
             }
-            report.geometry.triangles += 1;
             //> clip-only-when-needed
             std::vector<ClippedCorners> pieces{{view, colours, view_normals}};
-            if (perspective && !in_front) { // the only triangles that pay for it
+            if (needs_clip) { // the only triangles that pay for it
                 const Clock::time_point c0 = Clock::now();
                 pieces = clip_corners(view, colours, view_normals, scene.camera.near,
                                       with_colours, phong);
@@ -624,36 +636,41 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
             }
             //< clip-only-when-needed
             for (const ClippedCorners& piece : pieces) {
-                ProjectedTriangle t{};
+                ScreenTriangle t{};
                 for (std::size_t k = 0; k < 3; ++k) {
-                    t.corners[k] = project_vertex(scene, lens, piece.view[k]);
-                    try {
-                        check_finite(t.corners[k], scene.options.precision, index);
-                    } catch (const Error& error) {
-                        throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
-                    }
+                    t.corners[k] = project_checked(piece.view[k], index);
                     t.nearness[k] =
                         perspective ? 1.0 / t.corners[k].w : -piece.view[k].position.z;
-                }
-                t.colours = piece.colours;
-                for (std::size_t k = 0; k < 3; ++k) {
                     t.points[k] = piece.view[k].position;
                 }
+                t.colours = piece.colours;
                 t.normals = piece.normals;
                 if (mesh.cull_back && screen_area2(t.corners) >= 0.0) {
-                    report.culling.triangles += 1;
+                    report.culling.triangles += 1; // a clipped piece seen from behind
                     continue;
                 }
                 for (const TexturedVertex& v : t.corners) {
-                    footprints[i].box.add(v.position);
+                    footprint.box.add(v.position);
                 }
-                meshes[i].push_back(t);
+                out.push_back(t);
             }
             report.geometry.seconds += seconds_since(t0);
         }
     }
-    const DepthPlan depth_plan =
-        plan_depth(scene.options.depth, footprints, Viewport{scene.width, scene.height});
+    return geometry;
+}
+//< geometry-stage
+
+//> render-scene
+RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
+    const Clock::time_point start = Clock::now();
+    RenderResult result{
+        Framebuffer(scene.width, scene.height, to_rgba8(scene.background)), {}};
+    RenderReport& report = result.report;
+    const bool lit = !scene.lights.empty();
+    const SceneGeometry geometry = run_geometry(scene, report);
+    const DepthPlan depth_plan = plan_depth(scene.options.depth, geometry.footprints,
+                                            Viewport{scene.width, scene.height});
     report.depth_on = depth_plan.on;
     report.depth_reason = depth_plan.reason;
     std::vector<MipChain> chains(scene.textures.size()); // filled on demand
@@ -667,7 +684,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
         //> choose-colours
         bool corrected = scene.options.colours == ColourInterpolation::perspective;
         if (mesh_stages(scene, mesh).colour) { // the screen path's bound, vs the budget
-            for (const ProjectedTriangle& t : meshes[i]) {
+            for (const ScreenTriangle& t : geometry.meshes[i]) {
                 const double bound = colour_error_bound(
                     {t.corners[0].w, t.corners[1].w, t.corners[2].w}, t.colours);
                 report.colour_bound = std::max(report.colour_bound, bound);
@@ -690,13 +707,14 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                       {},
                       mesh.texture ? &chains[*mesh.texture] : nullptr,
                       nullptr,
-                      lit && mesh_shading(scene, mesh) == Shading::phong ? &lights
-                                                                         : nullptr,
+                      lit && mesh_shading(scene, mesh) == Shading::phong
+                          ? &geometry.lights
+                          : nullptr,
                       Material{mesh.specular, mesh.shininess}};
         bool full_chain = mesh.texture && full_chains[*mesh.texture];
         m.full_chain = &full_chain;
         try {
-            for (const ProjectedTriangle& t : meshes[i]) {
+            for (const ScreenTriangle& t : geometry.meshes[i]) {
                 draw_triangle(m, t);
             }
             if (mesh.texture) {

@@ -21,12 +21,15 @@
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
+#include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/scene.hpp"
+#include "exactpixels/scene/scene_pipeline.hpp"
 #include "exactpixels/texture/texel_error.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
 
 #include <array>
 #include <string>
+#include <vector>
 
 namespace exactpixels {
 
@@ -75,6 +78,30 @@ struct RenderReport {
     /// filter stage's and per-pixel lighting's.
     long long divides() const;
 };
+
+/// A triangle after the geometry stage: moved to view space, clipped, projected, not
+/// culled, with what the later stages need at its corners.
+struct ScreenTriangle {
+    std::array<TexturedVertex, 3> corners; ///< pixels (not yet snapped), depth w, texels
+    std::array<Colour, 3> colours;     ///< vertex colours; under Gouraud the lit colours
+    std::array<double, 3> nearness;    ///< 1/w (perspective) or -z (orthographic)
+    std::array<glm::dvec3, 3> points;  ///< view space (used by Phong lighting)
+    std::array<glm::dvec3, 3> normals; ///< view space (used by Phong lighting)
+};
+
+/// What the geometry stage hands the rest of the pipeline.
+struct SceneGeometry {
+    std::vector<std::vector<ScreenTriangle>> meshes; ///< per mesh, in file order
+    std::vector<MeshFootprint> footprints;           ///< per mesh, for the depth plan
+    std::vector<ViewLight> lights;                   ///< the lights in view space
+};
+
+/// The geometry stage alone, as render_scene runs it: every triangle of every mesh to
+/// view space, lit per vertex (Gouraud meshes), clipped, projected and back-face culled
+/// (a triangle wholly in front of the near plane is culled before it is lit). Counts go
+/// to `report` (geometry, clipping, culling, lit_vertices, the lighting fields). Throws
+/// Error naming the mesh when a corner projects to a value that is not finite.
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report);
 
 /// A rendered image and what it cost.
 struct RenderResult {
