@@ -6,6 +6,7 @@
 //       --benchmark_out_format=csv                 # (one line) the full run, one core
 //   build/bin/bench_ch08_filters --list            # every run's name and pixel count
 //   build/bin/bench_ch08_filters --once=horizon/trilinear   # one pass (callgrind)
+//   build/bin/bench_ch08_filters --oblique ...     # the exercise's wall60 scene only
 //
 // Each benchmark "scene/filter" samples every covered pixel of the scene once per
 // iteration, given its texture coordinate and derivatives (computed beforehand, as a
@@ -14,6 +15,10 @@
 // coverage or mapping (chapter 5 timed those). Counters: pixels and ns_per_px. The
 // errors are computed by fig_ch08_table against the reference (too slow to repeat per
 // benchmark run).
+// --oblique times chapter 8's exercise scene instead, the wall at 60 degrees
+//   (oblique_wall_scene), and adds the counter `error`: the run's RMS error in 8-bit
+//   codes on the minified pixels against the reference (rms_code_error), computed once
+//   before timing (chapters/08-filtering/oblique.sh makes the committed table of it).
 // --once filters one run's scene once inside the function ch08_filter_once, so that
 //   valgrind --tool=callgrind --toggle-collect=ch08_filter_once bench_ch08_filters
 //   --once=NAME
@@ -92,20 +97,41 @@ int main(int argc, char** argv) {
         }
         return 0;
     }
+    bool oblique = false;
+    for (int a = 1; a < argc; ++a) {
+        if (std::strcmp(argv[a], "--oblique") == 0) {
+            oblique = true;
+            std::copy(argv + a + 1, argv + argc, argv + a); // not Google Benchmark's
+            --argc;
+            break;
+        }
+    }
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
         return 1;
     }
-    const std::vector<AccuracyScene> scenes = filter_scenes();
+    const std::vector<AccuracyScene> scenes =
+        oblique ? std::vector<AccuracyScene>{oblique_wall_scene()} : filter_scenes();
     std::vector<std::unique_ptr<FilterScene>> prepared;
     const std::vector<FilterConfig> configs = filter_configs();
     for (const AccuracyScene& scene : scenes) {
         prepared.push_back(std::make_unique<FilterScene>(prepare_filter_scene(scene)));
         const FilterScene* fs = prepared.back().get();
+        std::vector<LinearTexel> reference;
+        std::vector<bool> minified;
+        if (oblique) { // deterministic: once, before any timing
+            reference = reference_image(*fs);
+            minified = minified_pixels(*fs);
+        }
+        const auto minified_count =
+            static_cast<double>(std::count(minified.begin(), minified.end(), true));
         for (const FilterConfig& config : configs) {
+            const double error =
+                oblique ? rms_code_error(filter_image(*fs, config), reference, minified)
+                        : 0.0;
             benchmark::RegisterBenchmark(
                 run_name(scene, config).c_str(),
-                [fs, &config](benchmark::State& state) {
+                [fs, &config, oblique, error, minified_count](benchmark::State& state) {
                     Framebuffer frame(fs->scene->width, fs->scene->height);
                     for (auto _ : state) {
                         filter_into(frame, *fs, config);
@@ -117,6 +143,10 @@ int main(int argc, char** argv) {
                     state.counters["pixels"] = C(pixels);
                     state.counters["ns_per_px"] =
                         C(pixels * 1e-9, C::kIsIterationInvariantRate | C::kInvert);
+                    if (oblique) {
+                        state.counters["error"] = C(error);
+                        state.counters["minified"] = C(minified_count);
+                    }
                 })
                 ->Unit(benchmark::kMicrosecond);
         }

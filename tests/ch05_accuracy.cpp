@@ -3,11 +3,13 @@
 #include "exactpixels/lab/accuracy_scenes.hpp"
 #include "exactpixels/texture/perspective_error.hpp"
 #include "exactpixels/texture/texel_error.hpp"
+#include "exactpixels/texture/texture.hpp"
 #include "support/measured_facts.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 
 using namespace exactpixels;
 using exactpixels::testing::record_fact;
@@ -105,4 +107,22 @@ TEST_CASE("the measured affine error meets chapter 3's bound on a single recedin
     record_fact("ch05_quad_affine_bound", bound);
     CHECK(e.worst <= bound);
     CHECK(e.worst >= 0.99 * bound);
+}
+
+TEST_CASE("the masked wrap equals wrap_index on every power-of-two size") {
+    // Exhaustive over a window of indices around zero and at both ends of int, for every
+    // power of two a texture side can be.
+    long long differ = 0, compared = 0;
+    for (int size = 1; size <= (1 << 16); size *= 2) {
+        for (const int start : {-70000, std::numeric_limits<int>::min(),
+                                std::numeric_limits<int>::max() - 140000}) {
+            for (int k = 0; k <= 140000; ++k) {
+                const int i = start + k;
+                differ += wrap_index_masked(i, size) != wrap_index(i, size, Wrap::repeat);
+                ++compared;
+            }
+        }
+    }
+    CHECK(compared == 17LL * 3 * 140001);
+    CHECK(differ == 0);
 }

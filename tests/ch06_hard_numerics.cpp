@@ -249,6 +249,12 @@ TEST_CASE("long spans in float: stepping drifts, re-evaluating the plane does no
         mapper_drift =
             std::max(mapper_drift, std::abs(double(u) - (double(u0) + k * double(du))));
     });
+    // The fresh variant beside it computes u0 + k du with the same two roundings.
+    int fresh_differs = 0;
+    map_span_affine_fresh(
+        AffineSpan<float>{u0, 0.0f, du, 0.0f, n},
+        [&](int k, float u, float) { fresh_differs += u != u0 + float(k) * du; });
+    CHECK(fresh_differs == 0);
     MESSAGE("float over " << n << " px: stepping drift " << drift << " texels, fresh "
                           << fresh << " texels, bound " << n * 0x1p-24 * u_max);
     record_fact("ch06_drift_stepped", drift);

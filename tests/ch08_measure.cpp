@@ -171,3 +171,31 @@ TEST_CASE("the elliptical weighted average of a constant texture is that constan
         CHECK(c.a == doctest::Approx(65535.0).epsilon(1e-12));
     }
 }
+
+TEST_CASE("the oblique wall of the exercise: every pixel minified, at most 4 probes") {
+    // What the exercise's solution relies on: the wall at 60 degrees minifies every
+    // pixel it covers, and its footprint is never more than 4 times longer than wide,
+    // so 4 probes are all the anisotropic filter uses (16 add nothing).
+    const AccuracyScene wall = oblique_wall_scene();
+    const FilterScene fs = prepare_filter_scene(wall);
+    const std::vector<bool> minified = minified_pixels(fs);
+    REQUIRE(fs.pixels.size() > 20000);
+    CHECK(std::count(minified.begin(), minified.end(), true) ==
+          static_cast<long>(fs.pixels.size()));
+    int most_probes = 0;
+    double worst_depth = 0.0, nearest_depth = 1e9;
+    for (const FilterPixel& p : fs.pixels) {
+        most_probes = std::max(most_probes, anisotropy(p.exact, 16).probes);
+    }
+    for (const auto& triangle : wall.triangles) {
+        for (const TexturedVertex& v : triangle) {
+            worst_depth = std::max(worst_depth, v.w);
+            nearest_depth = std::min(nearest_depth, v.w);
+        }
+    }
+    MESSAGE("most probes: ", most_probes, ", depth ", nearest_depth, " to ", worst_depth);
+    CHECK(most_probes <= 4);
+    CHECK(most_probes >= 2); // stretched, though: the wall is not seen head-on
+    CHECK(nearest_depth == doctest::Approx(4.0 - 3.0 * std::sin(std::acos(-1.0) / 3)));
+    CHECK(worst_depth == doctest::Approx(4.0 + 3.0 * std::sin(std::acos(-1.0) / 3)));
+}

@@ -15,6 +15,21 @@
 
 namespace exactpixels {
 
+std::string encode_png(const Framebuffer& frame) {
+    std::string bytes;
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                                   static_cast<std::size_t>(size));
+    };
+    if (frame.width() <= 0 || frame.height() <= 0 ||
+        stbi_write_png_to_func(append, &bytes, frame.width(), frame.height(), 4,
+                               frame.pixels().data(), frame.width() * 4) == 0) {
+        throw Error(fmt::format("cannot encode the {}x{} image as PNG", frame.width(),
+                                frame.height()));
+    }
+    return bytes;
+}
+
 void write_png(const std::filesystem::path& path, const Framebuffer& frame,
                std::span<const std::filesystem::path> inputs) {
     if (frame.width() <= 0 || frame.height() <= 0) {
@@ -23,14 +38,10 @@ void write_png(const std::filesystem::path& path, const Framebuffer& frame,
     }
     check_output(path, "PNG", inputs); // before the work of encoding
     std::string bytes;
-    const auto append = [](void* context, void* data, int size) {
-        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
-                                                   static_cast<std::size_t>(size));
-    };
-    if (stbi_write_png_to_func(append, &bytes, frame.width(), frame.height(), 4,
-                               frame.pixels().data(), frame.width() * 4) == 0) {
-        throw Error(fmt::format("{}: cannot encode the {}x{} image as PNG", path.string(),
-                                frame.width(), frame.height()));
+    try {
+        bytes = encode_png(frame);
+    } catch (const Error& error) {
+        throw Error(fmt::format("{}: {}", path.string(), error.what()));
     }
     write_file_atomically(path, "PNG", bytes, inputs);
 }

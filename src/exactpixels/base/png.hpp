@@ -29,6 +29,10 @@
 
 namespace exactpixels {
 
+/// The bytes of `frame` as an 8-bit RGBA PNG file (stb's encoder: filter and deflate),
+/// in memory: write_png's first half. Throws Error for an empty frame.
+std::string encode_png(const Framebuffer& frame);
+
 /// Writes `frame` as an 8-bit RGBA PNG. Throws Error (naming the path) on failure, in
 /// which case the target is left as it was and no temporary file is left behind. The
 /// target may not be one of `inputs`, nor anything but a regular file (see

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <numbers>
 
 namespace exactpixels {
 
@@ -27,6 +28,33 @@ AccuracyScene horizon_floor_scene() {
             checkerboard_texture(64, 64, 4)};
 }
 //< horizon-scene
+
+//> oblique-wall-scene
+AccuracyScene oblique_wall_scene() {
+    constexpr int width = 320, height = 240;
+    const Pinhole eye{0.625 * width, {0.5 * width, 0.5 * height}};
+    // A vertical wall through (0, 0, 4) turned 60 degrees: its normal is 60 degrees from
+    // the view axis. Along the wall, s in [-3, 3]; up it, y in [-2, 2]; 128 texels per
+    // unit of a 256 x 256 checkerboard of 2-texel squares (repeated).
+    const double turn = 60.0 * std::numbers::pi / 180.0;
+    const glm::dvec3 centre{0.0, 0.0, 4.0}, along{std::cos(turn), 0.0, std::sin(turn)};
+    constexpr double half_length = 3.0, half_height = 2.0, texels_per_unit = 128.0;
+    const auto corner = [&](double s, double y) {
+        return project(
+            eye, centre + s * along + glm::dvec3{0.0, y, 0.0},
+            {(s + half_length) * texels_per_unit, (half_height - y) * texels_per_unit});
+    };
+    const TexturedVertex a = corner(-half_length, -half_height),
+                         b = corner(half_length, -half_height),
+                         c = corner(half_length, half_height),
+                         d = corner(-half_length, half_height);
+    return {"wall60",
+            width,
+            height,
+            {{a, b, c}, {a, c, d}},
+            checkerboard_texture(256, 256, 2)};
+}
+//< oblique-wall-scene
 
 std::vector<AccuracyScene> filter_scenes() {
     std::vector<AccuracyScene> scenes = accuracy_scenes();

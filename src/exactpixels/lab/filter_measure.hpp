@@ -35,6 +35,12 @@ namespace exactpixels {
 /// 4-texel squares (repeated); near the horizon one pixel covers hundreds of texels.
 AccuracyScene horizon_floor_scene();
 
+/// Chapter 8's exercise on an oblique wall, "wall60" (not one of filter_scenes): a wall
+/// whose normal is 60 degrees from the view axis, from depth 1.4 to 6.6, 128 texels per
+/// unit of a 256 x 256 checkerboard of 2-texel squares (repeated), so that every pixel
+/// is minified and the footprint stretches along the wall.
+AccuracyScene oblique_wall_scene();
+
 /// The scenes chapter 8 measures: chapter 5's wall, floor and field, then the horizon.
 std::vector<AccuracyScene> filter_scenes();
 

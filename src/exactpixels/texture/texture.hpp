@@ -59,6 +59,14 @@ class Texture {
 /// The index in [0, size) that texel index i stands for under `wrap`. size >= 1.
 int wrap_index(int i, int size, Wrap wrap);
 
+/// wrap_index for Wrap::repeat on a power-of-two size: i mod size as a bit mask,
+/// i & (size - 1), which two's complement makes right for negative i too. A fast variant
+/// beside wrap_index (chapter 5's exercise on the cost of wrapping); the two agree for
+/// every int i and every power of two size (tests/ch05_accuracy.cpp).
+inline int wrap_index_masked(int i, int size) {
+    return i & (size - 1);
+}
+
 /// Texel (i, j) of the texture after wrapping each index: the nearest-texel fetch that
 /// every mapper ends in.
 Rgba8 fetch_texel(const Texture& texture, int i, int j, Wrap wrap);
