@@ -9,15 +9,13 @@ build=${1:?usage: png_results.sh BUILD_DIR [NOTE]}
 note=${2:-}
 csv="$build/bench/bench_ch00_png.csv"
 out=chapters/00-pixels/png_results.md
-[ -s "$csv" ] || { echo "png_results.sh: no $csv: run the full benchmark first" >&2; exit 2; }
-cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
+. bench/committed_run.sh
+require_csv "$csv" "png_results.sh"
 {
     echo "# Chapter 0: what writing a PNG costs, and where"
     echo
-    echo "Measured $(date -u -r "$csv" +%Y-%m-%d) on $(uname -m), $(nproc) cores ($cpu)," \
-         "$(c++ --version | head -n 1), Release build, pinned to one core, each benchmark" \
-         "repeated five times in random order and the median taken (bench/ch00_png.cpp" \
-         "says what each run does). Regenerate with"
+    measured_line "$csv" "bench/ch00_png.cpp says what each run does"
+    echo "Regenerate with"
     echo
     echo '```{.sh}'
     echo "cmake --build build --target bench-full-ch00_png"

@@ -10,15 +10,13 @@ build=${1:?usage: span_loops.sh BUILD_DIR [NOTE]}
 note=${2:-}
 csv="$build/bench/bench_ch05_span_loops.csv"
 out=chapters/05-accuracy-cost/span_loops_results.md
-[ -s "$csv" ] || { echo "span_loops.sh: no $csv: run the full benchmark first" >&2; exit 2; }
-cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
+. bench/committed_run.sh
+require_csv "$csv" "span_loops.sh"
 {
     echo "# Chapters 5 and 6: the mapper's inner loop, wrapped by modulo or by mask"
     echo
-    echo "Measured $(date -u -r "$csv" +%Y-%m-%d) on $(uname -m), $(nproc) cores ($cpu)," \
-         "$(c++ --version | head -n 1), Release build, pinned to one core, each benchmark" \
-         "repeated five times in random order and the median taken (bench/ch05_span_loops.cpp" \
-         "says what each run does). Regenerate with"
+    measured_line "$csv" "bench/ch05_span_loops.cpp says what each run does"
+    echo "Regenerate with"
     echo
     echo '```{.sh}'
     echo "cmake --build build --target bench-full-ch05_span_loops"

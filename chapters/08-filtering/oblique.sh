@@ -13,16 +13,13 @@ build=${1:?usage: oblique.sh BUILD_DIR [NOTE]}
 note=${2:-}
 csv="$build/bench/bench_ch08_oblique.csv"
 out=chapters/08-filtering/oblique_results.md
-[ -s "$csv" ] || { echo "oblique.sh: no $csv: run the benchmark first (see its usage)" >&2; exit 2; }
-cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
+. bench/committed_run.sh
+require_csv "$csv" "oblique.sh"
 {
     echo "# Chapter 8's exercise: the filters on a wall at 60 degrees"
     echo
-    echo "Measured $(date -u -r "$csv" +%Y-%m-%d) on $(uname -m), $(nproc) cores ($cpu)," \
-         "$(c++ --version | head -n 1), Release build, pinned to one core, each benchmark" \
-         "repeated five times in random order and the median taken" \
-         "(\`bench_ch08_filters --oblique\`; bench/ch08_filters.cpp says what a run does)." \
-         "The errors are deterministic. Regenerate with the commands at the top of" \
+    measured_line "$csv" "\`bench_ch08_filters --oblique\`; bench/ch08_filters.cpp says what a run does"
+    echo "The errors are deterministic. Regenerate with the commands at the top of" \
          "chapters/08-filtering/oblique.sh."
     echo
     [ -z "$note" ] || { echo "$note"; echo; }
