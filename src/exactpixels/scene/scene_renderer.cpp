@@ -606,7 +606,6 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
             }
             return corner;
         };
-        out.reserve(mesh.triangles.size()); // at most one piece each, unless clipped
         const Clock::time_point t0 = Clock::now(); // the whole mesh: clocks cost time
         for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
             const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
