@@ -63,9 +63,16 @@ template <class T> Gradient<T> closed_form_gradient(const PlaneSamples<T>& s) {
 /// The indices of the vertices sorted by y (ties keep their input order): the top
 /// vertex first, the bottom vertex last.
 template <class T> std::array<int, 3> sorted_by_y(const std::array<T, 3>& y) {
-    std::array<int, 3> order{0, 1, 2};
-    std::stable_sort(order.begin(), order.end(),
-                     [&](int a, int b) { return y[a] < y[b]; });
+    std::array<int, 3> order{0, 1, 2}; // three compare-and-swaps: stable, no allocation
+    const auto order_pair = [&](std::size_t a, std::size_t b) {
+        if (y[static_cast<std::size_t>(order[b])] <
+            y[static_cast<std::size_t>(order[a])]) {
+            std::swap(order[a], order[b]);
+        }
+    };
+    order_pair(0, 1); // a swap only when strictly smaller keeps ties in input order
+    order_pair(1, 2);
+    order_pair(0, 1);
     return order;
 }
 

@@ -42,6 +42,22 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+/// One triangle in this many has its stages timed span by span; reading the clock is
+/// not free (on a virtual machine it can cost more than shading a small span).
+constexpr std::size_t timed_triangle_interval = 16;
+
+/// The clock of the stages inside one triangle: it reads the time only when `on`, and
+/// otherwise gives zero durations.
+struct SampledClock {
+    bool on = true; ///< whether this triangle is one of the timed ones
+    /// The time now, or a dummy when off.
+    Clock::time_point now() const { return on ? Clock::now() : Clock::time_point{}; }
+    /// Seconds since `start`, or 0 when off.
+    double since(Clock::time_point start) const {
+        return on ? seconds_since(start) : 0.0;
+    }
+};
+
 /// The camera's axes in world space (@eq:scene-look-at).
 struct CameraFrame {
     glm::dvec3 eye, right, up, forward;
@@ -96,6 +112,8 @@ struct MeshContext {
     bool* full_chain;          // filter stage: whether *chain has all its levels
     const std::vector<ViewLight>* lights; // lighting stage per pixel, or nullptr
     Material material;                    // the mesh's specular colour and exponent
+    Rgba8 flat;                           // the mesh's colour, as written
+    SampledClock clock;                   // on for the triangles whose stages are timed
 };
 
 /// The unit vector from a view-space point to the eye: towards the origin for a
@@ -168,7 +186,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
     const std::array<TexturedVertex, 3>& tv = triangle.corners;
     const std::array<Colour, 3>& colours = triangle.colours;
     RenderReport& report = m.report;
-    const Clock::time_point start = Clock::now();
+    const Clock::time_point start = m.clock.now();
     std::array<FixedPoint2, 3> snapped{};
     std::array<Point2, 3> p{};
     for (std::size_t k = 0; k < 3; ++k) {
@@ -189,8 +207,17 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
         check_textured_triangle(tv, settings); // ranges of chapter 3's mappers
         planes = texture_planes(p, tv);
         if (options.rounding) { // chapter 4: ties go right, or down
-            perspective_rounding = choose_rounding(tv, MapperKind::exact);
-            affine_rounding = choose_rounding(tv, MapperKind::affine);
+            // Only the rounding of the mapper the spans will use: affine on every span
+            // or on none (auto never picks affine where w varies).
+            const bool affine_only =
+                options.mapper.automatic
+                    ? affine_exact
+                    : options.mapper.mapper.kind == MapperKind::affine;
+            if (affine_only) {
+                affine_rounding = choose_rounding(tv, MapperKind::affine);
+            } else {
+                perspective_rounding = choose_rounding(tv, MapperKind::exact);
+            }
         }
         report.texture.triangles += 1;
     }
@@ -250,7 +277,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
         lit_w = plane_through(p, q);
         report.lighting.triangles += 1;
     }
-    const Rgba8 flat = to_rgba8(m.mesh.colour);
+    const Rgba8 flat = m.flat;
     if (!m.stages.texture && !m.stages.colour) {
         report.flat.triangles += 1;
     }
@@ -265,7 +292,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
         report.raster.pixels += count;
         //> depth-stage
         if (m.depth != nullptr) { // test every pixel first: a hidden span is not shaded
-            const Clock::time_point t0 = Clock::now();
+            const Clock::time_point t0 = m.clock.now();
             m.visible.assign(static_cast<std::size_t>(count), 0);
             int shown = 0;
             for (int k = 0; k < count; ++k) {
@@ -278,7 +305,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
             report.depth.pixels += count;
             report.hidden.spans += shown < count;
             report.hidden.pixels += count - shown;
-            const double spent = seconds_since(t0);
+            const double spent = m.clock.since(t0);
             report.depth.seconds += spent;
             shading_seconds += spent;
             if (shown == 0) {
@@ -292,7 +319,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
         m.row.assign(static_cast<std::size_t>(count), flat);
         //> texture-stage
         if (m.stages.texture) {
-            const Clock::time_point t0 = Clock::now();
+            const Clock::time_point t0 = m.clock.now();
             const PerspectiveSpan<double> ps = perspective_span(planes, s);
             Mapper mapper = options.mapper.mapper;
             if (affine_exact &&
@@ -326,7 +353,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
                      });
             //> filter-stage
             if (filter != Filter::nearest) { // the exact coordinate and derivatives
-                const Clock::time_point f0 = Clock::now();
+                const Clock::time_point f0 = m.clock.now();
                 const FilterSettings fs{.filter = filter, .wrap = m.mesh.wrap};
                 int filtered = 0;
                 for (int k = 0; k < count; ++k) {
@@ -343,7 +370,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
                 report.filter.spans += 1;
                 report.filter.pixels += filtered;
                 report.filter.divides += 3LL * filtered; // u, v and 1/q^2
-                report.filter.seconds += seconds_since(f0);
+                report.filter.seconds += m.clock.since(f0);
             }
             //< filter-stage
             StageCounter& used = report.mappers[static_cast<std::size_t>(mapper.kind)];
@@ -353,7 +380,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
             used.spans += 1;
             used.pixels += count;
             used.divides += divides;
-            const double spent = seconds_since(t0);
+            const double spent = m.clock.since(t0);
             used.seconds += spent;
             report.texture.spans += 1;
             report.texture.pixels += count;
@@ -364,7 +391,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
         //< texture-stage
         //> colour-stage
         if (m.stages.colour) { // colours are linear on screen: one add per channel
-            const Clock::time_point t0 = Clock::now();
+            const Clock::time_point t0 = m.clock.now();
             Colour c{rgb[0].at(x, y), rgb[1].at(x, y), rgb[2].at(x, y)};
             const Colour dc{rgb[0].g.dx, rgb[1].g.dx, rgb[2].g.dx};
             double q = one_w.at(x, y); // perspective: 1/w, as chapter 3's exact mapper
@@ -381,7 +408,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
             }
             report.colour.spans += 1;
             report.colour.pixels += count;
-            const double spent = seconds_since(t0);
+            const double spent = m.clock.since(t0);
             report.colour.seconds += spent;
             shading_seconds += spent;
         } else if (m.stages.texture && m.stages.tint) {
@@ -395,7 +422,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
         //< colour-stage
         //> lighting-stage
         if (m.lights != nullptr) { // Phong: light the pixel the stages above made
-            const Clock::time_point t0 = Clock::now();
+            const Clock::time_point t0 = m.clock.now();
             long long lit = 0;
             for (int k = 0; k < count; ++k) {
                 if (!seen(k)) {
@@ -419,7 +446,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
             report.lighting.spans += 1;
             report.lighting.pixels += lit;
             report.lighting.divides += lit;
-            const double spent = seconds_since(t0);
+            const double spent = m.clock.since(t0);
             report.lighting.seconds += spent;
             shading_seconds += spent;
         }
@@ -440,7 +467,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
             }
         }
     });
-    report.raster.seconds += seconds_since(start) - shading_seconds;
+    report.raster.seconds += m.clock.since(start) - shading_seconds;
 }
 //< draw-triangle
 
@@ -566,7 +593,9 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
         const std::vector<CornerNormals> normals =
             lit ? mesh_normals(mesh) : std::vector<CornerNormals>{};
         footprint.name = fmt::format("mesh[{}]", i); // as messages name it
-        footprint.can_overlap_itself = can_overlap_itself(mesh);
+        // Only `depth = "auto"` asks (a scan of every corner per corner of one face).
+        footprint.can_overlap_itself =
+            scene.options.depth == DepthMode::automatic && can_overlap_itself(mesh);
         // Projects a view-space corner and stops a non-finite one (naming the mesh).
         const auto project_checked = [&](const ViewVertex& v, std::size_t index) {
             const TexturedVertex corner = project_vertex(scene, lens, v);
@@ -577,9 +606,9 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
             }
             return corner;
         };
+        const Clock::time_point t0 = Clock::now(); // the whole mesh: clocks cost time
         for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
             const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
-            const Clock::time_point t0 = Clock::now();
             std::array<ViewVertex, 3> view{};
             std::array<Colour, 3> colours{};
             bool in_front = true;
@@ -592,14 +621,13 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
             const bool needs_clip = perspective && !in_front;
             // A whole triangle is culled before it is lit: the same projected corners
             // decide it here and below, so the decision cannot differ.
-            if (mesh.cull_back && !needs_clip) {
-                std::array<TexturedVertex, 3> corners{};
+            std::array<TexturedVertex, 3> corners{}; // of a triangle not clipped
+            if (!needs_clip) {
                 for (std::size_t k = 0; k < 3; ++k) {
                     corners[k] = project_checked(view[k], index);
                 }
-                if (screen_area2(corners) >= 0.0) {
+                if (mesh.cull_back && screen_area2(corners) >= 0.0) {
                     report.culling.triangles += 1;
-                    report.geometry.seconds += seconds_since(t0);
                     continue;
                 }
             }
@@ -638,7 +666,9 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
             for (const ClippedCorners& piece : pieces) {
                 ScreenTriangle t{};
                 for (std::size_t k = 0; k < 3; ++k) {
-                    t.corners[k] = project_checked(piece.view[k], index);
+                    t.corners[k] = needs_clip ? project_checked(piece.view[k], index)
+                                              : corners[k]; // piece.view is view
+
                     t.nearness[k] =
                         perspective ? 1.0 / t.corners[k].w : -piece.view[k].position.z;
                     t.points[k] = piece.view[k].position;
@@ -654,12 +684,39 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
                 }
                 out.push_back(t);
             }
-            report.geometry.seconds += seconds_since(t0);
         }
+        report.geometry.seconds += seconds_since(t0);
     }
     return geometry;
 }
 //< geometry-stage
+
+namespace {
+
+/// Splits `spent`, the time of drawing one mesh, among the drawing stages in the
+/// proportions of the seconds the timed triangles added to them since `before`.
+void share_drawing_time(RenderReport& report, const RenderReport& before, double spent) {
+    double sampled = 0.0; // texture's seconds hold its mappers' and filter's: not again
+    for (const auto stage :
+         {&RenderReport::depth, &RenderReport::raster, &RenderReport::colour,
+          &RenderReport::texture, &RenderReport::lighting}) {
+        sampled += (report.*stage).seconds - (before.*stage).seconds;
+    }
+    const double scale = sampled > 0.0 ? spent / sampled : 0.0;
+    const auto rescale = [&](StageCounter& now, const StageCounter& then) {
+        now.seconds = then.seconds + scale * (now.seconds - then.seconds);
+    };
+    for (const auto stage :
+         {&RenderReport::depth, &RenderReport::raster, &RenderReport::colour,
+          &RenderReport::texture, &RenderReport::filter, &RenderReport::lighting}) {
+        rescale(report.*stage, before.*stage);
+    }
+    for (std::size_t k = 0; k < report.mappers.size(); ++k) {
+        rescale(report.mappers[k], before.mappers[k]);
+    }
+}
+
+} // namespace
 
 //> render-scene
 RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
@@ -710,13 +767,22 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                       lit && mesh_shading(scene, mesh) == Shading::phong
                           ? &geometry.lights
                           : nullptr,
-                      Material{mesh.specular, mesh.shininess}};
+                      Material{mesh.specular, mesh.shininess},
+                      to_rgba8(mesh.colour),
+                      {}};
         bool full_chain = mesh.texture && full_chains[*mesh.texture];
         m.full_chain = &full_chain;
         try {
-            for (const ScreenTriangle& t : geometry.meshes[i]) {
-                draw_triangle(m, t);
+            // Stage times: the mesh's drawing is timed whole, and split among the stages
+            // as on the timed sample of its triangles (timed_triangle_interval).
+            const RenderReport before = report;
+            const Clock::time_point t0 = Clock::now();
+            const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
+            for (std::size_t k = 0; k < triangles.size(); ++k) {
+                m.clock.on = k % timed_triangle_interval == 0;
+                draw_triangle(m, triangles[k]);
             }
+            share_drawing_time(report, before, seconds_since(t0));
             if (mesh.texture) {
                 full_chains[*mesh.texture] = full_chain;
             }

@@ -10,16 +10,6 @@
 
 namespace exactpixels {
 
-int real_texel_index(double u, std::int32_t bias) {
-    const std::int32_t offset = bias - texel_scale / 2; // b' in floor((U + b') / D)
-    if (offset >= 0) {
-        return static_cast<int>(std::floor(u + double(offset) / texel_scale));
-    }
-    // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1; bias = D/2 - 1
-    // makes this ceil(u) - 1, rule 2.
-    return static_cast<int>(std::ceil(u + double(offset + 1) / texel_scale)) - 1;
-}
-
 TexelMap::TexelMap(int width_, int height_)
     : width(width_), height(height_),
       covered(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_),

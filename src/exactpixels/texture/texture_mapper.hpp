@@ -36,6 +36,7 @@
 #include "exactpixels/texture/texture.hpp"
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -87,7 +88,15 @@ constexpr int fixed_texel_index(std::int32_t U, std::int32_t bias) {
 /// The texel index for a real coordinate u under the same bias: floor(u) for bias = D/2,
 /// ceil(u) - 1 for bias = D/2 - 1. Agrees with fixed_texel_index(u * D, bias) whenever
 /// u * D is an integer.
-int real_texel_index(double u, std::int32_t bias);
+inline int real_texel_index(double u, std::int32_t bias) {
+    const std::int32_t offset = bias - texel_scale / 2; // b' in floor((U + b') / D)
+    if (offset >= 0) {
+        return static_cast<int>(std::floor(u + double(offset) / texel_scale));
+    }
+    // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1; bias = D/2 - 1
+    // makes this ceil(u) - 1, rule 2.
+    return static_cast<int>(std::ceil(u + double(offset + 1) / texel_scale)) - 1;
+}
 
 /// The texel indices a mapper chose for each pixel of a frame (before wrapping).
 struct TexelMap {

@@ -1,0 +1,74 @@
+// Chapter 7 tests: the comparisons @sec:scene-speed states about the big torus against
+// llvmpipe, checked against the committed, dated run
+// (chapters/07-scenes/big_scene_results.md, written by big_scene.sh beside it). A new run
+// that changes a comparison makes the matching test fail, and the sentence must change
+// with it.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+/// The facts of the committed run: every Markdown table row "| name | ... | value |",
+/// named as the book's claims name it (its first cell, spaces as _), with its last cell.
+const std::map<std::string, double>& facts() {
+    static const std::map<std::string, double> table = [] {
+        std::map<std::string, double> out;
+        std::ifstream in(std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
+                         "chapters/07-scenes/big_scene_results.md");
+        REQUIRE(in);
+        std::string line;
+        while (std::getline(in, line)) {
+            if (line.rfind("| ", 0) != 0) {
+                continue;
+            }
+            std::vector<std::string> cells;
+            std::stringstream row(line.substr(1));
+            std::string cell;
+            while (std::getline(row, cell, '|')) {
+                const auto first = cell.find_first_not_of(' ');
+                const auto last = cell.find_last_not_of(' ');
+                cells.push_back(first == std::string::npos
+                                    ? ""
+                                    : cell.substr(first, last - first + 1));
+            }
+            if (cells.size() < 2) {
+                continue;
+            }
+            std::string name = cells.front();
+            for (char& c : name) {
+                c = c == ' ' ? '_' : c;
+            }
+            try {
+                out[name] = std::stod(cells.back());
+            } catch (const std::exception&) { // a header row or a text cell
+            }
+        }
+        return out;
+    }();
+    return table;
+}
+
+double fact(const std::string& name) {
+    INFO(name);
+    REQUIRE(facts().count(name) == 1);
+    return facts().at(name);
+}
+
+} // namespace
+
+TEST_CASE("claim: on the big torus llvmpipe's frame is shorter than ours, on one core") {
+    CHECK(fact("time_ratio_full") > 1.0);
+    CHECK(fact("ours_full") > fact("llvmpipe_full"));
+    CHECK(fact("instruction_ratio_full") > 1.0);
+}
+
+TEST_CASE("claim: the big torus without depth and texture costs less time and work") {
+    CHECK(fact("ours_flat") < fact("ours_full"));
+    CHECK(fact("instructions_ours_flat") < fact("instructions_ours_full"));
+}
