@@ -200,6 +200,7 @@ std::vector<Rgba8> draw_gl(const Scene& scene, const SceneGeometry& geometry,
                     stages.texture && !stages.tint ? Colour{1.0, 1.0, 1.0} : mesh.colour;
                 glColor4d(c.r, c.g, c.b, 1.0);
             }
+            //> referee-vertex
             for (std::size_t k = 0; k < 3; ++k) {
                 const Point2 p = to_pixels(snap_in_range(t.corners[k].position));
                 const double w = perspective ? t.corners[k].w : 1.0;
@@ -213,6 +214,7 @@ std::vector<Rgba8> draw_gl(const Scene& scene, const SceneGeometry& geometry,
                 // glOrtho's z row is -z: clip z = -z_ndc w gives z_ndc after the divide.
                 glVertex4d(p.x * w, p.y * w, -z_ndc * w, w);
             }
+            //< referee-vertex
         }
         glEnd();
     }
