@@ -1,5 +1,5 @@
 // Chapter 7's referee figure (@sec:scene-referee): every shipped scene compared with
-// Mesa's llvmpipe (tests/support/opengl_referee.hpp). Writes the comparison table
+// Mesa's llvmpipe (tests/referee/opengl_referee.hpp). Writes the comparison table
 // (ch07_referee.md), its totals as facts for the prose (ch07_referee_facts.txt) and, for
 // the corridor, ours | llvmpipe | the differences highlighted (ch07_referee.png).
 // Usage: fig_ch07_referee FIGURE_DIR
@@ -10,7 +10,7 @@
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "support/figure_file.hpp"
-#include "support/opengl_referee.hpp"
+#include "referee/opengl_referee.hpp"
 
 #include <fmt/format.h>
 

@@ -8,7 +8,7 @@
 #ifdef EXACTPIXELS_HAVE_OSMESA
 
 #include "exactpixels/scene/scene_loader.hpp"
-#include "support/opengl_referee.hpp"
+#include "referee/opengl_referee.hpp"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // opengl_referee.cpp: see opengl_referee.hpp.
-#include "support/opengl_referee.hpp"
+#include "referee/opengl_referee.hpp"
 
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/fixed_point.hpp"
