@@ -9,8 +9,8 @@
 
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
-#include "support/figure_file.hpp"
 #include "referee/opengl_referee.hpp"
+#include "support/figure_file.hpp"
 
 #include <fmt/format.h>
 
@@ -111,6 +111,13 @@ int main(int argc, char** argv) {
                  " levels; worst off edges: the largest channel difference, levels, "
                  "at pixels whose texture coordinate is not within 1/64 texel of a texel "
                  "edge. {#tbl:scene-referee}\n";
+        long long far_departures = 0, far_exact = 0, far_covered = 0;
+        for (const ScreenTriangle& t : far_reaching_triangles(far_count)) {
+            const CoverageComparison c = referee_coverage({t}, far_frame, far_frame);
+            far_departures += static_cast<long long>(c.differences.size());
+            far_exact += static_cast<long long>(c.ours_exact.size());
+            far_covered += c.covered;
+        }
         write_figure_file(folder / "ch07_referee.md", table);
         write_figure_file(
             folder / "ch07_referee_facts.txt",
@@ -120,9 +127,12 @@ int main(int argc, char** argv) {
                 "referee_coverage_differences {}\nreferee_depth_differences {}\n"
                 "referee_depth_gap_millionths {:.3f}\nreferee_colours_compared {}\n"
                 "referee_colour_over {}\nreferee_texel_edge {}\n"
-                "referee_worst_off_edge {}\nreferee_shipped_differ {}\n",
+                "referee_worst_off_edge {}\nreferee_shipped_differ {}\n"
+                "referee_far_triangles {}\nreferee_far_covered {}\n"
+                "referee_far_departures {}\nreferee_far_ours_exact {}\n",
                 scenes, covered, coverage, depth, worst_gap * 1e6, compared, over, edge,
-                worst_off_edge, shipped));
+                worst_off_edge, shipped, far_count, far_covered, far_departures,
+                far_exact));
     } catch (const Error& error) {
         std::fprintf(stderr, "fig_ch07_referee: %s\n", error.what());
         return 2;

@@ -21,6 +21,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
+#include <random>
 
 namespace exactpixels {
 
@@ -263,6 +264,63 @@ std::vector<std::string> referee_scene_names() {
     }
     std::sort(names.begin(), names.end());
     return names;
+}
+
+std::vector<ScreenTriangle> far_reaching_triangles(int count) {
+    std::mt19937 random(17);
+    const auto uniform = [&](double lo, double hi) {
+        return lo + (hi - lo) * static_cast<double>(random()) / 4294967296.0;
+    };
+    std::vector<ScreenTriangle> triangles;
+    for (int n = 0; n < count; ++n) {
+        const double reach = std::ldexp(1.0, 10 + n % 10); // 2^10 .. 2^19 px
+        ScreenTriangle t{};
+        t.corners[0].position = {uniform(0, far_frame), uniform(0, far_frame)};
+        t.corners[1].position = {uniform(-reach, reach), uniform(-reach, reach)};
+        t.corners[2].position = {uniform(-reach, reach), uniform(-reach, reach)};
+        for (auto& corner : t.corners) {
+            corner.w = 1.0;
+        }
+        t.nearness = {1.0, 1.0, 1.0};
+        triangles.push_back(t);
+    }
+    return triangles;
+}
+
+CoverageComparison referee_coverage(const std::vector<ScreenTriangle>& triangles,
+                                    int width, int height) {
+    std::string why;
+    if (!opengl_referee_ready(why)) {
+        throw Error(why);
+    }
+    Scene frame;
+    frame.width = width;
+    frame.height = height;
+    frame.camera.projection = Projection::orthographic; // GL gets w = 1
+    frame.meshes.resize(1);
+    SceneGeometry geometry;
+    geometry.meshes.push_back(triangles);
+    const std::vector<long long> ids = our_ids(geometry, width, height, false);
+    const std::vector<bool> exact = exact_coverage(geometry, width, height);
+    const std::vector<Rgba8> gl_ids = draw_gl(frame, geometry, {MeshLook{}}, false, true);
+    CoverageComparison c;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t at = static_cast<std::size_t>(y) * width + x;
+            const Rgba8 g = gl_ids[at];
+            const bool theirs = (g.r | g.g | g.b) != 0;
+            const bool ours = ids[at] >= 0;
+            c.covered += ours;
+            c.exact_differences += ours != exact[at];
+            if (ours != theirs) {
+                c.differences.push_back({x, y});
+                if (ours == exact[at]) {
+                    c.ours_exact.push_back({x, y});
+                }
+            }
+        }
+    }
+    return c;
 }
 
 RefereeComparison referee_scene(const Scene& scene, const std::string& name) {

@@ -24,6 +24,7 @@
 
 #include "exactpixels/base/framebuffer.hpp"
 #include "exactpixels/scene/scene.hpp"
+#include "exactpixels/scene/scene_renderer.hpp"
 
 #include <string>
 #include <vector>
@@ -90,6 +91,31 @@ struct RefereeComparison {
     Framebuffer theirs{1, 1};      ///< llvmpipe's colour pass
     Framebuffer differences{1, 1}; ///< ours in grey, differences highlighted
 };
+
+/// The coverage of bare triangles, flat and without depth: ours against llvmpipe.
+struct CoverageComparison {
+    long long covered = 0;                 ///< pixels ours covers
+    long long exact_differences = 0;       ///< ours vs the exact edge functions
+    std::vector<RefereePixel> differences; ///< covered in one, not the other
+    std::vector<RefereePixel> ours_exact;  ///< of those, where ours = exact
+};
+
+/// Draws `triangles` (corners in pixels, snapped as the renderer snaps them) into a
+/// width x height frame both ways and compares coverage. Throws Error when OSMesa
+/// cannot draw.
+CoverageComparison referee_coverage(const std::vector<ScreenTriangle>& triangles,
+                                    int width, int height);
+
+/// The frame side, pixels, of the far-reaching triangles' test.
+inline constexpr int far_frame = 64;
+
+/// How many far-reaching triangles the test and the figure draw, one frame each.
+inline constexpr int far_count = 200;
+
+/// `count` triangles for a far_frame x far_frame frame, each with one corner inside it
+/// and two up to 2^10 .. 2^19 px away (cycling), drawn from std::mt19937 seeded 17 (its
+/// raw outputs are fixed by the standard, so every platform gets the same triangles).
+std::vector<ScreenTriangle> far_reaching_triangles(int count);
 
 /// True when OSMesa makes a context; otherwise false and `why` says what failed.
 bool opengl_referee_ready(std::string& why);
