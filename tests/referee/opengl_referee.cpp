@@ -355,12 +355,8 @@ RefereeComparison referee_scene(const Scene& scene, const std::string& name) {
     std::vector<std::size_t> mesh_of; // per triangle index
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& mesh = scene.meshes[i];
-        looks[i].stages = plan_mesh(mesh);
+        looks[i].stages = mesh_stages(scene, mesh); // the renderer's own choice
         const bool lit = !scene.lights.empty();
-        if (lit && mesh_shading(scene, mesh) == Shading::gouraud) {
-            looks[i].stages.colour = true; // the lit colours, as the renderer does
-            looks[i].stages.tint = false;
-        }
         if (lit && mesh_shading(scene, mesh) == Shading::phong) {
             looks[i].comparable = false;
             c.uncompared = "per-pixel lighting";

@@ -124,17 +124,6 @@ glm::dvec3 to_eye(const Scene& scene, glm::dvec3 p) {
                : glm::dvec3{0.0, 0.0, -1.0};
 }
 
-/// The stages a mesh runs in this scene: plan_mesh's, and under Gouraud lighting the
-/// colour stage, which interpolates the lit colours (they hold the mesh's colour).
-MeshStages mesh_stages(const Scene& scene, const SceneMesh& mesh) {
-    MeshStages stages = plan_mesh(mesh);
-    if (!scene.lights.empty() && mesh_shading(scene, mesh) == Shading::gouraud) {
-        stages.colour = true;
-        stages.tint = false;
-    }
-    return stages;
-}
-
 //> choose-filter
 /// The filter a triangle gets under the scene's `filter` key. `auto` looks at the
 /// exact derivatives at the three corners (@eq:derivatives): where no corner is
@@ -557,6 +546,17 @@ void check_finite(const TexturedVertex& v, Precision precision, std::size_t tria
 }
 
 } // namespace
+
+// plan_mesh's, and under Gouraud lighting the
+// colour stage, which interpolates the lit colours (they hold the mesh's colour).
+MeshStages mesh_stages(const Scene& scene, const SceneMesh& mesh) {
+    MeshStages stages = plan_mesh(mesh);
+    if (!scene.lights.empty() && mesh_shading(scene, mesh) == Shading::gouraud) {
+        stages.colour = true;
+        stages.tint = false;
+    }
+    return stages;
+}
 
 //> geometry-stage
 SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {

@@ -82,6 +82,10 @@ struct RenderReport {
     long long divides() const;
 };
 
+/// The stages a mesh runs in this scene: plan_mesh's, and under Gouraud lighting the
+/// colour stage, which interpolates the lit colours (they hold the mesh's colour).
+MeshStages mesh_stages(const Scene& scene, const SceneMesh& mesh);
+
 /// A triangle after the geometry stage: moved to view space, clipped, projected, not
 /// culled, with what the later stages need at its corners.
 struct ScreenTriangle {
