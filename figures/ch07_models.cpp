@@ -1,9 +1,10 @@
-// Chapter 7 figures for models read from OBJ files (@sec:scene-models): the three
+// Chapter 7 figures for models read from OBJ files (@sec:scene-models): the four
 // shipped model scenes rendered (ch07_model_torus.png, ch07_model_room.png,
-// ch07_model_terrain.png), and a generated torus of 102,400 triangles written into the
-// figure folder (big_torus.obj, .mtl, .png and big_torus.toml) and rendered at
-// 1280 x 720 (ch07_big_torus.png), with the reports of all four as a Markdown fragment
-// (ch07_models.md).
+// ch07_model_terrain.png, and the lit torus ch07_model_lit_torus.png), and a generated
+// torus of 102,400 triangles written into the figure folder (big_torus.obj, .mtl, .png
+// and big_torus.toml) and rendered at 1280 x 720 (ch07_big_torus.png), with the reports
+// of all five as a Markdown fragment (ch07_models.md).
+//
 // Usage: fig_ch07_models FIGURE_DIR
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
@@ -29,7 +30,7 @@ int main(int argc, char** argv) {
         const std::filesystem::path scenes = shipped_scene_folder();
         for (const std::filesystem::path& path :
              {scenes / "torus.toml", scenes / "room.toml", scenes / "terrain.toml",
-              folder / "big_torus.toml"}) {
+              scenes / "lit_torus.toml", folder / "big_torus.toml"}) {
             const Scene scene = load_scene(path);
             const RenderResult result = render_scene(scene);
             const std::string name = path.stem().string();

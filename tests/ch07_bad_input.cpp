@@ -36,6 +36,15 @@ std::string scene_with(const std::string& extra_image, const std::string& extra_
            extra_mesh;
 }
 
+/// A scene of one model mesh from the test fixtures (`file` on line 2) with the case's
+/// bad line at line 3.
+std::string model_with(const std::string& extra_mesh,
+                       const std::string& model = "cube.obj") {
+    const fs::path path =
+        fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/models" / model;
+    return "[[mesh]]\nfile = \"" + path.string() + "\"\n" + extra_mesh;
+}
+
 /// A [textures] table of `count` textures t0, t1, ... each `{ fields }`.
 std::string many_textures(int count,
                           const std::string& fields = "kind = \"f\", cell = 1") {
@@ -191,6 +200,18 @@ std::vector<BadScene> bad_scenes() {
          "mesh[0].shininess", "out of range"},
         {"a specular colour above 1", scene_with("", "specular = [1, 1, 1.5]\n"), "7:19",
          "mesh[0].specular[2]", "out of range"},
+        // A model mesh takes the same lighting keys and refuses the same values.
+        {"an unknown kind of normals on a model", model_with("normals = \"round\"\n"),
+         "3:11", "mesh[0].normals", "not one of: face, smooth, given"},
+        {"a model shading that is not one", model_with("shading = \"toon\"\n"), "3:11",
+         "mesh[0].shading", "not one of: gouraud"},
+        {"a model's shininess of 0", model_with("shininess = 0\n"), "3:13",
+         "mesh[0].shininess", "out of range"},
+        {"a model's specular colour below 0", model_with("specular = [1, -1, 1]\n"),
+         "3:16", "mesh[0].specular[1]", "out of range"},
+        {"given normals from an OBJ without vn",
+         model_with("normals = \"given\"\n", "pentagon.obj"), "3:11", "mesh[0].normals",
+         "pentagon.obj:7 has a corner without one"},
     };
 }
 

@@ -5,6 +5,7 @@
 #include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
+#include "exactpixels/texture/srgb.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -92,6 +93,59 @@ TEST_CASE("a directional light head-on gives exactly the diffuse colour") {
     }
 }
 
+TEST_CASE("a light at 60 degrees gives exactly the encoded half of the decoded colour") {
+    // Light travelling along (sqrt 3, 0, 1) meets the square's normal (0, 0, -1) at 60
+    // degrees; with the double one unit above sqrt 3's nearest, normalising gives z = 1/2
+    // exactly, so n.l = cos 60 = 1/2 with no rounding, and every code c must come out as
+    // encode(decode(c) / 2) to the byte: the lighting adds nothing of its own to the
+    // colour rule. Every code is tried, 86 squares of three channels each.
+    for (int first = 0; first < 256; first += 3) {
+        const std::array<int, 3> c{first, std::min(first + 1, 255),
+                                   std::min(first + 2, 255)};
+        const std::string colour = fmt::format("colour = [{}, {}, {}]", c[0] / 255.0,
+                                               c[1] / 255.0, c[2] / 255.0);
+        const Scene scene = square_scene(
+            orthographic, "",
+            "[[light]]\ntype = \"directional\"\ndirection = [1.7320508075688774, 0, 1]",
+            colour);
+        REQUIRE(scene.lights[0].direction.z == 0.5); // the cosine is exact
+        for (const Shading shading : {Shading::gouraud, Shading::phong}) {
+            const RenderResult r = render_scene(with_shading(scene, shading));
+            const Rgba8 pixel = r.image.at(17, 40);
+            const std::array<int, 3> got{pixel.r, pixel.g, pixel.b};
+            for (std::size_t k = 0; k < 3; ++k) {
+                const double half = 0.5 * srgb_decode(c[k] / 255.0);
+                INFO("code ", c[k], " shading ", static_cast<int>(shading));
+                CHECK(got[k] == std::lround(255.0 * srgb_encode(half)));
+            }
+        }
+    }
+}
+
+TEST_CASE("multiplying two codes instead of their light is off by at most 8 codes") {
+    // What the colour stage does to a texel under a Gouraud-lit colour (codes times
+    // codes), against the colour rule (decode both, multiply, encode), for every pair of
+    // codes; the worst pairs are dark, where the sRGB curve is least like a power.
+    int worst = 0, worst_bright = 0;
+    for (int a = 0; a < 256; ++a) {
+        for (int b = 0; b < 256; ++b) {
+            const Colour ca{a / 255.0, 0.0, 0.0}, cb{b / 255.0, 0.0, 0.0};
+            const int in_codes = to_rgba8(ca * cb).r;
+            const int in_light =
+                to_rgba8(linear_to_colour(colour_to_linear(ca) * colour_to_linear(cb))).r;
+            const int error = std::abs(in_codes - in_light);
+            worst = std::max(worst, error);
+            if (a >= 128 && b >= 128) {
+                worst_bright = std::max(worst_bright, error);
+            }
+        }
+    }
+    INFO("worst ", worst, ", both codes 128 or more ", worst_bright);
+    CHECK(worst <= 8);
+    CHECK(worst > 0); // an approximation, not an identity
+    CHECK(worst_bright <= 4);
+}
+
 TEST_CASE("a light behind the surface leaves the ambient term only") {
     const Colour diffuse{0.6, 0.2, 0.8}, ambient{0.25, 0.5, 0.75};
     const Scene scene = square_scene(
@@ -101,8 +155,11 @@ TEST_CASE("a light behind the surface leaves the ambient term only") {
         "colour = [0.6, 0.2, 0.8]\nspecular = [1, 1, 1]\nshininess = 2");
     for (const Shading shading : {Shading::gouraud, Shading::phong}) {
         const RenderResult r = render_scene(with_shading(scene, shading));
+        // Both decoded, multiplied in linear light, encoded (@eq:scene-colour-rule).
+        const Rgba8 expected = to_rgba8(
+            linear_to_colour(colour_to_linear(diffuse) * colour_to_linear(ambient)));
         for (const Rgba8 pixel : r.image.pixels()) {
-            REQUIRE(pixel == to_rgba8(diffuse * ambient));
+            REQUIRE(pixel == expected);
         }
     }
 }
@@ -143,8 +200,10 @@ TEST_CASE("a point light falls off as its closed form at chosen pixels") {
         const glm::dvec3 p{(i + 0.5 - 32) / 32, (32 - j - 0.5) / 32, 0.0};
         const double d = glm::length(light - p);
         const double e = intensity * (-light.z) / (d * d * d); // I cos(theta) / d^2
-        INFO(i, " ", j, " ", 255 * e);
-        CHECK(std::abs(r.image.at(i, j).g - 255 * e) <= 0.5 + 1e-9);
+        // e is linear light on a white surface: the pixel is its encoding.
+        const double code = 255 * srgb_encode(e);
+        INFO(i, " ", j, " ", code);
+        CHECK(std::abs(r.image.at(i, j).g - code) <= 0.5 + 1e-9);
     }
 }
 

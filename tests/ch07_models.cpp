@@ -6,6 +6,7 @@
 #include "exactpixels/base/input_file.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/lab/model_generator.hpp"
+#include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/obj_model.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
@@ -166,6 +167,95 @@ TEST_CASE("a model mesh takes translate, rotate and scale like an inline mesh") 
     CHECK(inline_mesh.meshes[0].triangles[0][2].position == glm::dvec3{5.0, 2.0, 3.0});
 }
 
+namespace {
+
+/// Writes a one-quad model facing the viewer (+z in OBJ, -z in the scene) of diffuse
+/// colour Kd 0.6 0.2 0.8 into `folder`, each corner with the normal `vn`.
+void write_quad_model(const fs::path& folder, const std::string& vn) {
+    fs::create_directories(folder);
+    std::ofstream(folder / "quad.mtl") << "newmtl violet\nKd 0.6 0.2 0.8\n";
+    std::ofstream(folder / "quad.obj")
+        << "mtllib quad.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn " << vn
+        << "\nusemtl violet\nf 1//1 2//1 3//1 4//1\n";
+}
+
+/// A 64 x 64 orthographic scene that the quad model fills, lit by `light` (TOML lines),
+/// with `mesh_extra` lines added to the model's mesh.
+std::string quad_scene(const std::string& light, const std::string& mesh_extra) {
+    return "[image]\nwidth = 64\nheight = 64\n"
+           "[camera]\nprojection = \"orthographic\"\nview_height = 2\n" +
+           light + "\n[[mesh]]\nfile = \"quad.obj\"\n" + mesh_extra;
+}
+
+} // namespace
+
+TEST_CASE("a model mesh takes the lighting keys of an inline mesh") {
+    const Scene scene =
+        parse_scene(cube_scene("normals = \"given\"\nshading = \"gouraud\"\n"
+                               "specular = [0.25, 0.5, 1]\nshininess = 7\n"),
+                    "c.toml", models);
+    REQUIRE(scene.meshes.size() == 2);
+    for (const SceneMesh& mesh : scene.meshes) { // every material's mesh gets them
+        CHECK(mesh.normals == NormalSource::given);
+        CHECK(mesh.shading == Shading::gouraud);
+        CHECK(mesh.specular == Colour{0.25, 0.5, 1.0});
+        CHECK(mesh.shininess == 7.0);
+    }
+    const Scene plain =
+        parse_scene(cube_scene("normals = \"smooth\"\n"), "c.toml", models);
+    CHECK(plain.meshes[1].normals == NormalSource::smooth);
+    CHECK_FALSE(plain.meshes[1].shading.has_value()); // the scene's, as inline
+}
+
+TEST_CASE("given normals are the OBJ's, with z negated") {
+    // A tilted vn on a flat quad: no computed normal could be it.
+    const fs::path folder = fs::temp_directory_path() /
+                            ("exactpixels-ch07-given-" + std::to_string(::getpid()));
+    write_quad_model(folder, "0 3 4");
+    const Scene scene =
+        parse_scene(quad_scene("", "normals = \"given\"\n"), "q.toml", folder);
+    const std::vector<CornerNormals> normals = mesh_normals(scene.meshes[0]);
+    REQUIRE(normals.size() == 2);
+    for (const CornerNormals& corners : normals) {
+        for (const glm::dvec3& n : corners) {
+            CHECK(n.x == 0.0);
+            CHECK(n.y == doctest::Approx(0.6).epsilon(1e-15));
+            CHECK(n.z == doctest::Approx(-0.8).epsilon(1e-15));
+        }
+    }
+    // The cube's vn are its faces' normals: the labelled front face (vn 0 0 1) faces -z.
+    const Scene cube = parse_scene(cube_scene("normals = \"given\"\n"), "c.toml", models);
+    for (const CornerNormals& corners : mesh_normals(cube.meshes[0])) {
+        for (const glm::dvec3& n : corners) {
+            CHECK(n == glm::dvec3{0.0, 0.0, -1.0});
+        }
+    }
+    fs::remove_all(folder);
+}
+
+TEST_CASE("a model quad lit head-on gives exactly its diffuse colour") {
+    const fs::path folder = fs::temp_directory_path() /
+                            ("exactpixels-ch07-head-on-" + std::to_string(::getpid()));
+    write_quad_model(folder, "0 0 1");
+    const std::string light = "[[light]]\ntype = \"directional\"\ndirection = [0, 0, 1]";
+    const Rgba8 diffuse = to_rgba8(Colour{0.6, 0.2, 0.8}); // the MTL's Kd
+    for (const char* normals : {"face", "smooth", "given"}) {
+        for (const char* shading : {"gouraud", "phong"}) {
+            INFO(normals, " ", shading);
+            const Scene scene = parse_scene(
+                quad_scene(light, fmt::format("normals = \"{}\"\nshading = \"{}\"\n",
+                                              normals, shading)),
+                "q.toml", folder);
+            const RenderResult r = render_scene(scene);
+            CHECK(r.report.lighting_on);
+            for (const Rgba8 pixel : r.image.pixels()) {
+                REQUIRE(pixel == diffuse); // the quad covers every pixel
+            }
+        }
+    }
+    fs::remove_all(folder);
+}
+
 TEST_CASE("the committed models are what the generator makes, byte for byte") {
     const fs::path folder =
         fs::path(EXACTPIXELS_SOURCE_DIR) / "chapters/07-scenes/models";
@@ -185,7 +275,7 @@ TEST_CASE("the committed models are what the generator makes, byte for byte") {
 }
 
 TEST_CASE("the shipped model scenes load and draw every model's triangles") {
-    for (const char* name : {"torus", "room", "terrain"}) {
+    for (const char* name : {"torus", "room", "terrain", "lit_torus"}) {
         INFO(name);
         const Scene scene =
             load_scene(shipped_scene_folder() / (std::string(name) + ".toml"));
@@ -193,6 +283,15 @@ TEST_CASE("the shipped model scenes load and draw every model's triangles") {
         CHECK(result.report.raster.triangles > 0);
         CHECK(result.report.raster.pixels > scene.width * scene.height / 10);
     }
+    // The lit torus: textured, depth-tested, lit per pixel with the OBJ's own normals.
+    const Scene lit = load_scene(shipped_scene_folder() / "lit_torus.toml");
+    const RenderResult lit_result = render_scene(lit);
+    CHECK(lit.meshes[0].normals == NormalSource::given);
+    CHECK(lit.meshes[0].texture.has_value());
+    CHECK(lit_result.report.lighting_on);
+    CHECK(lit_result.report.depth_on);
+    CHECK(lit_result.report.phong_meshes == 1);
+    CHECK(lit_result.report.lighting.pixels > 0);
     long long texture_bytes = 0;
     const Model torus = read_obj_model(fs::path(EXACTPIXELS_SOURCE_DIR) /
                                            "chapters/07-scenes/models/torus.obj",

@@ -83,7 +83,7 @@ mapper = "auto"
 budget = 0.5
 depth = "auto"
 shading = "phong"
-ambient = [0.08, 0.08, 0.1]
+ambient = [0.3, 0.3, 0.35]
 
 [[light]]
 type = "directional"

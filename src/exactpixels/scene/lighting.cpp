@@ -1,5 +1,7 @@
 #include "exactpixels/scene/lighting.hpp"
 
+#include "exactpixels/texture/srgb.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -66,7 +68,7 @@ lights_in_view(const std::vector<SceneLight>& lights,
     for (const SceneLight& light : lights) {
         ViewLight v;
         v.type = light.type;
-        v.radiance = light.intensity * light.colour;
+        v.radiance = light.intensity * colour_to_linear(light.colour); // linear light
         if (light.type == LightType::directional) {
             v.towards = -to_view(light.direction, false); // it travels along direction
         } else {
@@ -92,7 +94,9 @@ Incident incident(const ViewLight& light, glm::dvec3 p) {
 Colour light_colour(const std::vector<ViewLight>& lights, const Colour& ambient,
                     const Colour& diffuse, const Material& material, glm::dvec3 p,
                     glm::dvec3 normal, glm::dvec3 to_eye) {
-    Colour lambert = ambient, highlight{0.0, 0.0, 0.0};
+    // The colours are sRGB codes / 255: light adds and scales only in linear light, so
+    // decode first and encode once, at the end (@eq:scene-colour-rule).
+    Colour lambert = colour_to_linear(ambient), highlight{0.0, 0.0, 0.0};
     for (const ViewLight& light : lights) {
         const Incident in = incident(light, p);
         const double cosine = glm::dot(normal, in.towards);
@@ -106,7 +110,8 @@ Colour light_colour(const std::vector<ViewLight>& lights, const Colour& ambient,
             highlight += std::pow(facing, material.shininess) * in.irradiance;
         }
     }
-    return diffuse * lambert + material.specular * highlight;
+    return linear_to_colour(colour_to_linear(diffuse) * lambert +
+                            colour_to_linear(material.specular) * highlight);
 }
 //< light-colour
 

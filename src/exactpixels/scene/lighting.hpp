@@ -6,8 +6,10 @@
 //   const std::vector<ViewLight> lights = lights_in_view(scene.lights, to_view);
 //   Colour c = light_colour(lights, ambient, diffuse, material, point, normal, to_eye);
 //
-// Everything is in linear light: colours are linear RGB, each channel >= 0 (a sum of
-// lights may exceed 1; the framebuffer clamps it). Lighting is computed in view space
+// Colours in and out are chapter 8's: each channel an sRGB code / 255. Inside, lighting
+// works in linear light (a sum of lights may exceed 1; the framebuffer clamps it): the
+// diffuse, specular, ambient and light colours are decoded, and the lit colour encoded
+// once, at the end (srgb.hpp's curves). Lighting is computed in view space
 // (the eye at the origin, x right, y up, z forward, as scene.hpp): positions in world
 // units, normals and directions unit vectors. A normal points out of the front of a
 // surface, the side from which its corners run counter-clockwise on screen. A light
@@ -46,7 +48,7 @@ struct ViewLight {
     LightType type = LightType::directional; ///< how it falls off
     glm::dvec3 towards = {0.0, 0.0, -1.0};   ///< directional: unit vector to the light
     glm::dvec3 position = {0.0, 0.0, 0.0};   ///< point: view space, world units
-    Colour radiance = {1.0, 1.0, 1.0};       ///< colour times intensity
+    Colour radiance = {1.0, 1.0, 1.0};       ///< linear light: colour times intensity
 };
 
 /// The scene's lights moved to view space by `to_view`, a rotation (directions) plus a
@@ -59,7 +61,7 @@ lights_in_view(const std::vector<SceneLight>& lights,
 /// What the surface does with light: its specular colour and exponent (the diffuse
 /// colour comes from the pixel or the vertex, as the shading mode says).
 struct Material {
-    Colour specular = {0.0, 0.0, 0.0}; ///< linear RGB, [0, 1]
+    Colour specular = {0.0, 0.0, 0.0}; ///< sRGB code / 255, each in [0, 1]
     double shininess = 32.0;           ///< Blinn-Phong exponent, [1, max_shininess]
 };
 
@@ -68,17 +70,20 @@ struct Material {
 /// light, @eq:scene-falloff).
 struct Incident {
     glm::dvec3 towards; ///< unit vector from the point to the light
-    Colour irradiance;  ///< linear RGB
+    Colour irradiance;  ///< linear light
 };
 
 /// The light `light` brings to the view-space point `p` (a point light at distance d
 /// below min_light_distance counts as min_light_distance away).
 Incident incident(const ViewLight& light, glm::dvec3 p);
 
-/// The lit colour of a point (@eq:scene-lighting): diffuse times (ambient plus the sum
-/// of E max(0, n.l)) plus specular times the sum of E max(0, n.h)^shininess over the
-/// lights with n.l > 0, where h is the unit half vector of l and the unit vector to the
-/// eye. `normal` and `to_eye` are unit vectors; `p` is the point in view space.
+/// The lit colour of a point (@eq:scene-lighting), in linear light: diffuse times
+/// (ambient plus the sum of E max(0, n.l)) plus specular times the sum of E
+/// max(0, n.h)^shininess over the lights with n.l > 0, where h is the unit half vector
+/// of l and the unit vector to the eye. `ambient`, `diffuse` and the specular colour are
+/// sRGB code / 255 and decoded first; the result is encoded back (unrounded, each
+/// channel >= 0: @eq:scene-colour-rule). `normal` and `to_eye` are unit vectors; `p` is
+/// the point in view space.
 Colour light_colour(const std::vector<ViewLight>& lights, const Colour& ambient,
                     const Colour& diffuse, const Material& material, glm::dvec3 p,
                     glm::dvec3 normal, glm::dvec3 to_eye);

@@ -462,8 +462,9 @@ Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
                 }
                 if (index.normal_index >= 0) {
                     v.normal = glm::normalize(at3(attrib.normals, index.normal_index));
-                } else {
+                } else if (model.normals) {
                     model.normals = false;
+                    model.line_without_normal = at.line;
                 }
             }
             offset += n;

@@ -60,7 +60,7 @@ inline constexpr double max_model_texcoord = 256.0;
 /// One material's triangles in model space (after the z flip, before any transform).
 struct ModelPart {
     std::string material;                              ///< its name, or "" for none
-    Colour colour = {1.0, 1.0, 1.0};                   ///< Kd, linear RGB
+    Colour colour = {1.0, 1.0, 1.0};                   ///< Kd, sRGB code / 255
     std::optional<SceneTexture> texture;               ///< map_Kd, read from its PNG
     std::vector<std::array<SceneVertex, 3>> triangles; ///< uv in texels of `texture`
 };
@@ -70,6 +70,9 @@ struct Model {
     std::vector<ModelPart> parts;             ///< none empty
     std::vector<std::filesystem::path> files; ///< the OBJ and MTL files read
     bool normals = false; ///< every face gave a normal for every corner
+    /// The line of the first face with a corner without a normal (`vn`), or 0 when every
+    /// corner has one: what `normals = "given"` cannot light.
+    std::size_t line_without_normal = 0;
 };
 
 /// Parses and checks the OBJ text of `file`; mtllib and map_Kd paths are resolved

@@ -103,7 +103,7 @@ struct RenderOptions {
     SceneFilter filter = SceneFilter::nearest;
     /// `shading = "gouraud" | "phong"`: the default of meshes without their own
     Shading shading = Shading::phong;
-    Colour ambient = {0.0, 0.0, 0.0}; ///< light reaching every surface, linear RGB
+    Colour ambient = {0.0, 0.0, 0.0}; ///< light reaching every surface, sRGB / 255
 };
 
 /// How a light falls off.
@@ -117,7 +117,7 @@ struct SceneLight {
     LightType type = LightType::directional; ///< `type`
     glm::dvec3 direction = {0.0, 0.0, 1.0};  ///< directional: the way it travels, unit
     glm::dvec3 position = {0.0, 0.0, 0.0};   ///< point: world units
-    Colour colour = {1.0, 1.0, 1.0};         ///< linear RGB, [0, 1]
+    Colour colour = {1.0, 1.0, 1.0};         ///< sRGB code / 255, each in [0, 1]
     double intensity = 1.0; ///< scales colour; a point light's, at distance 1
 };
 

@@ -792,7 +792,8 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
 void read_model(const Context& c, const toml::table& table, const std::string& path,
                 Scene& scene, long long& texture_bytes) {
     const TableReader t(c, table, path,
-                        {"file", "name", "wrap", "cull", "translate", "rotate", "scale"});
+                        {"file", "name", "wrap", "cull", "normals", "shading", "specular",
+                         "shininess", "translate", "rotate", "scale"});
     const toml::node& file = t.require("file");
     const std::filesystem::path model_path =
         c.folder / read_string(c, file, t.child("file"));
@@ -810,6 +811,27 @@ void read_model(const Context& c, const toml::table& table, const std::string& p
     if (const auto* n = t.find("cull")) {
         cull_back = read_choice(c, *n, t.child("cull"), {"none", "back"}) == 1;
     }
+    // The lighting keys, as an inline mesh reads them (normals "given": the OBJ's vn).
+    SceneMesh lit;
+    const toml::node* normals = t.find("normals");
+    if (normals != nullptr) {
+        const std::size_t kind =
+            read_choice(c, *normals, t.child("normals"), {"face", "smooth", "given"});
+        lit.normals = kind == 0   ? NormalSource::face
+                      : kind == 1 ? NormalSource::smooth
+                                  : NormalSource::given;
+    }
+    if (const auto* n = t.find("shading")) {
+        lit.shading = read_choice(c, *n, t.child("shading"), {"gouraud", "phong"}) == 0
+                          ? Shading::gouraud
+                          : Shading::phong;
+    }
+    if (const auto* n = t.find("specular")) {
+        lit.specular = read_colour(c, *n, t.child("specular"));
+    }
+    if (const auto* n = t.find("shininess")) {
+        lit.shininess = read_number(c, *n, t.child("shininess"), 1.0, max_shininess);
+    }
     const MeshTransform transform = read_transform(t);
     t.finish();
     Model model;
@@ -817,6 +839,12 @@ void read_model(const Context& c, const toml::table& table, const std::string& p
         model = read_obj_model(model_path, texture_bytes);
     } catch (const Error& error) { // names the model's file and line, and the value
         c.fail(file.source(), t.child("file"), error.what());
+    }
+    if (lit.normals == NormalSource::given && model.line_without_normal != 0) {
+        c.fail(normals->source(), t.child("normals"),
+               fmt::format("\"given\" needs a normal at every corner, and the face at "
+                           "{}:{} has a corner without one (no vn index)",
+                           model_path.string(), model.line_without_normal));
     }
     scene.models.insert(scene.models.end(), model.files.begin(), model.files.end());
     for (ModelPart& part : model.parts) {
@@ -828,6 +856,10 @@ void read_model(const Context& c, const toml::table& table, const std::string& p
         mesh.colour = part.colour;
         mesh.wrap = wrap;
         mesh.cull_back = cull_back;
+        mesh.normals = lit.normals;
+        mesh.shading = lit.shading;
+        mesh.specular = lit.specular;
+        mesh.shininess = lit.shininess;
         if (part.texture) {
             if (scene.textures.size() >= static_cast<std::size_t>(max_scene_textures)) {
                 c.fail(file.source(), t.child("file"),

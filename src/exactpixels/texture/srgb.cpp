@@ -6,8 +6,6 @@
 
 namespace exactpixels {
 
-namespace {
-
 //> srgb-curves
 // The sRGB transfer curves on [0, 1] (@eq:srgb-decode and 8.2): a straight segment near
 // black, a power curve above it; each is the other's inverse.
@@ -18,6 +16,17 @@ double srgb_encode(double l) {
     return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
 }
 //< srgb-curves
+
+Colour colour_to_linear(const Colour& c) {
+    return {srgb_decode(c.r), srgb_decode(c.g), srgb_decode(c.b)};
+}
+
+Colour linear_to_colour(const Colour& l) {
+    return {srgb_encode(std::max(l.r, 0.0)), srgb_encode(std::max(l.g, 0.0)),
+            srgb_encode(std::max(l.b, 0.0))};
+}
+
+namespace {
 
 std::array<double, 256> decode_table() {
     std::array<double, 256> table{};

@@ -29,6 +29,22 @@ inline constexpr double linear_full = 65535.0;
 /// A texel in linear light: r, g, b, a in units of 1/65535 (see the usage block).
 using LinearTexel = glm::dvec4;
 
+/// The sRGB decoding curve (@eq:srgb-decode): the linear light, a fraction of full
+/// light in [0, 1], of the code fraction s = code / 255 in [0, 1].
+double srgb_decode(double s);
+
+/// The sRGB encoding curve, the inverse of srgb_decode: the code fraction (code / 255,
+/// not rounded) of the linear light l in [0, 1]; above 1 the curve goes on rising.
+double srgb_encode(double l);
+
+/// A Colour (each channel an sRGB code / 255, chapter 8's rule) in linear light: each
+/// channel through srgb_decode.
+Colour colour_to_linear(const Colour& c);
+
+/// Linear light (each channel >= 0; below 0 counts as 0) back to a Colour: each channel
+/// through srgb_encode, unrounded (to_rgba8 rounds it to the nearest code).
+Colour linear_to_colour(const Colour& l);
+
 /// The linear light of an 8-bit sRGB code, rounded to a whole unit of 1/65535
 /// (@eq:srgb-decode).
 double srgb_to_linear16(std::uint8_t code);
