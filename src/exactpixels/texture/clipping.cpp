@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -77,6 +78,75 @@ ClippedTriangles clip_near(const std::array<ViewVertex, 3>& v, double near) {
     return out;
 }
 //< clip-near
+
+double plane_value(const ViewPlane& plane, glm::dvec3 p) {
+    return plane.normal.x * p.x + plane.normal.y * p.y + plane.normal.z * p.z +
+           plane.offset;
+}
+
+ViewPlane near_plane(double near) {
+    return {{0.0, 0.0, 1.0}, -near};
+}
+
+//> plane-crossing
+ViewVertex plane_crossing(const ViewVertex& inside, const ViewVertex& outside,
+                          const ViewPlane& plane) {
+    const double in = plane_value(plane, inside.position);
+    const double out = plane_value(plane, outside.position);
+    assert(in >= 0.0 && out < 0.0);
+    // @eq:clip-t for any plane: t = in / (in - out), the denominator written as the plane
+    // normal times the edge, which for the near plane is clip_near's a.z - b.z bit for
+    // bit. Should rounding make it <= 0 or t leave [0, 1] (an edge almost in the plane),
+    // in - out (exactly > 0) and the clamp keep the new corner on the edge.
+    double denominator = glm::dot(plane.normal, inside.position - outside.position);
+    if (!(denominator > 0.0)) {
+        denominator = in - out;
+    }
+    const double t = std::clamp(in / denominator, 0.0, 1.0);
+    ViewVertex p{inside.position + t * (outside.position - inside.position),
+                 inside.uv + t * (outside.uv - inside.uv)};
+    if (plane.normal.x == 0.0 && plane.normal.y == 0.0) { // near or far: z exactly
+        p.position.z = -plane.offset / plane.normal.z;
+    }
+    return p;
+}
+//< plane-crossing
+
+//> clip-polygon
+ClippedPolygon clip_polygon(const ClippedPolygon& polygon, const ViewPlane& plane) {
+    assert(polygon.count < max_clipped_corners);
+    ClippedPolygon out{};
+    for (int k = 0; k < polygon.count; ++k) {
+        const ViewVertex& a = polygon.corners[static_cast<std::size_t>(k)];
+        const ViewVertex& b =
+            polygon.corners[static_cast<std::size_t>((k + 1) % polygon.count)];
+        const bool a_in = plane_value(plane, a.position) >= 0.0;
+        const bool b_in = plane_value(plane, b.position) >= 0.0;
+        if (a_in) {
+            out.corners[static_cast<std::size_t>(out.count++)] = a;
+        }
+        if (a_in != b_in) { // always interpolate inside -> outside, as clip_near does
+            out.corners[static_cast<std::size_t>(out.count++)] =
+                a_in ? plane_crossing(a, b, plane) : plane_crossing(b, a, plane);
+        }
+    }
+    return out;
+}
+//< clip-polygon
+
+ClippedPolygon clip_triangle(const std::array<ViewVertex, 3>& v,
+                             const std::vector<ViewPlane>& planes) {
+    check_clip_input(v, 1.0);
+    assert(planes.size() <= static_cast<std::size_t>(max_clip_planes));
+    ClippedPolygon polygon{3, {v[0], v[1], v[2]}};
+    for (const ViewPlane& plane : planes) {
+        polygon = clip_polygon(polygon, plane);
+        if (polygon.count < 3) {
+            return {};
+        }
+    }
+    return polygon;
+}
 
 ProjectedTriangles clip_and_project(const Pinhole& camera,
                                     const std::array<ViewVertex, 3>& v, double near) {
