@@ -3,6 +3,7 @@
 // triangles wholly outside are rejected, a triangle reaching 1e7 px off screen draws the
 // pixels an exact reference gives, and the far plane cuts a floor at the derived row.
 #include "ch02_grid.hpp"
+#include "exactpixels/base/error.hpp"
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
@@ -78,8 +79,22 @@ TEST_CASE("clip_polygon at the near plane is clip_near, bit for bit") {
     CHECK(cut > 100); // the trials cut many triangles into two
 }
 
-TEST_CASE("at every plane, a mesh's shared edges are cut at one point: no pixel twice, "
-          "no gap") {
+TEST_CASE("clip_triangle refuses non-finite corners and more planes than it can hold") {
+    const std::array<ViewVertex, 3> t{{{{0.0, 0.0, 1.0}, {0.0, 0.0}},
+                                       {{1.0, 0.0, 1.0}, {0.0, 0.0}},
+                                       {{0.0, 1.0, 1.0}, {0.0, 0.0}}}};
+    CHECK(clip_triangle(t, std::vector<ViewPlane>(6, near_plane(0.5))).count == 3);
+    CHECK_THROWS_WITH_AS(clip_triangle(t, std::vector<ViewPlane>(7, near_plane(0.5))),
+                         "clip_triangle: 7 planes (at most 6)", Error);
+    std::array<ViewVertex, 3> bad = t;
+    bad[1].position.y = std::nan("");
+    CHECK_THROWS_WITH_AS(clip_triangle(bad, {near_plane(0.5)}),
+                         "clip_triangle: vertex 1 has a coordinate nan (position and uv "
+                         "must be finite)",
+                         Error);
+}
+
+TEST_CASE("at every plane, shared edges are cut at one point: no pixel twice, no gap") {
     // A floor y = -1 from z = 0.3 to z = 8 in view space, 16 x 16 cells split along
     // alternating diagonals, interior corners jittered within the floor.
     const Pinhole camera{.focal = 100.0, .centre = {160.0, 120.0}};
@@ -203,8 +218,7 @@ TEST_CASE("at every plane, a mesh's shared edges are cut at one point: no pixel 
     }
 }
 
-TEST_CASE(
-    "a triangle reaching 1e7 px off screen draws the pixels of the exact triangle") {
+TEST_CASE("a triangle reaching 1e7 px off screen draws the exact triangle's pixels") {
     // Camera at the origin looking along +z: view space is world space. At depth 1 a
     // point (x, y) lands on (32 + f x, 24 - f y), f = 24: the first corner is ~1e7 px to
     // the left, 10 times beyond the fixed-point range, so the triangle must be cut at the

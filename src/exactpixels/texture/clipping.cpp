@@ -11,18 +11,19 @@
 namespace exactpixels {
 
 namespace {
-void check_clip_input(const std::array<ViewVertex, 3>& v, double near) {
+void check_clip_input(const std::array<ViewVertex, 3>& v, double near,
+                      const char* who = "clip_near") {
     if (!std::isfinite(near) || !(near > 0.0)) {
-        throw Error(fmt::format("clip_near: near = {} (must be finite and > 0)", near));
+        throw Error(fmt::format("{}: near = {} (must be finite and > 0)", who, near));
     }
     for (int k = 0; k < 3; ++k) {
         const ViewVertex& p = v[static_cast<std::size_t>(k)];
         for (const double c :
              {p.position.x, p.position.y, p.position.z, p.uv.x, p.uv.y}) {
             if (!std::isfinite(c)) {
-                throw Error(fmt::format("clip_near: vertex {} has a coordinate {} "
+                throw Error(fmt::format("{}: vertex {} has a coordinate {} "
                                         "(position and uv must be finite)",
-                                        k, c));
+                                        who, k, c));
             }
         }
     }
@@ -136,8 +137,11 @@ ClippedPolygon clip_polygon(const ClippedPolygon& polygon, const ViewPlane& plan
 
 ClippedPolygon clip_triangle(const std::array<ViewVertex, 3>& v,
                              const std::vector<ViewPlane>& planes) {
-    check_clip_input(v, 1.0);
-    assert(planes.size() <= static_cast<std::size_t>(max_clip_planes));
+    check_clip_input(v, 1.0, "clip_triangle");
+    if (planes.size() > static_cast<std::size_t>(max_clip_planes)) { // would overflow
+        throw Error(fmt::format("clip_triangle: {} planes (at most {})", planes.size(),
+                                max_clip_planes));
+    }
     ClippedPolygon polygon{3, {v[0], v[1], v[2]}};
     for (const ViewPlane& plane : planes) {
         polygon = clip_polygon(polygon, plane);

@@ -98,7 +98,8 @@ struct ClippedPolygon {
 ClippedPolygon clip_polygon(const ClippedPolygon& polygon, const ViewPlane& plane);
 
 /// The part of the triangle inside every plane, in order, as a polygon of the same
-/// winding; at most max_clip_planes planes. Throws Error for a non-finite coordinate.
+/// winding. Throws Error for a non-finite coordinate or more than max_clip_planes
+/// planes (the polygon could outgrow ClippedPolygon).
 ClippedPolygon clip_triangle(const std::array<ViewVertex, 3>& v,
                              const std::vector<ViewPlane>& planes);
 
