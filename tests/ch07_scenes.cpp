@@ -157,6 +157,29 @@ TEST_CASE("geometry in front of the near plane does no clipping work") {
     const RenderResult near = render_scene(shipped("near_plane"));
     CHECK(near.report.clipping.triangles > 0);
     CHECK(near.report.clipping.triangles < near.report.geometry.triangles);
+    // A far plane behind every corner, and corners off screen but inside the guard band
+    // (@sec:scene-clipping): still no triangle is cut.
+    Scene corridor = shipped("corridor");
+    corridor.camera.far = 1e5;
+    const RenderResult far = render_scene(corridor);
+    CHECK(far.report.clipping.triangles == 0);
+    CHECK(far.image == render_scene(shipped("corridor")).image);
+    Scene wide = shipped("horizon"); // a narrow view: corners land far off screen
+    wide.camera.fov_degrees = 5.0;
+    const RenderResult narrow = render_scene(wide);
+    CHECK(narrow.report.clipping.triangles == 0);
+    RenderReport report;
+    double farthest = 0.0; // the farthest corner from the screen, px
+    for (const auto& mesh : run_geometry(wide, report).meshes) {
+        for (const ScreenTriangle& t : mesh) {
+            for (const TexturedVertex& v : t.corners) {
+                farthest = std::max({farthest, -v.position.x, v.position.x - wide.width,
+                                     -v.position.y, v.position.y - wide.height});
+            }
+        }
+    }
+    CHECK(farthest > 1000.0);
+    CHECK(farthest < guard_band_px);
 }
 
 TEST_CASE("auto scenes stay within their error budget against the exact reference" *

@@ -21,6 +21,7 @@
 
 #include <array>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,6 +43,9 @@ struct SceneCamera {
     glm::dvec3 target = {0.0, 0.0, 0.0};    ///< the point seen at the image centre
     glm::dvec3 up = {0.0, 1.0, 0.0};        ///< which way is up on screen
     double near = 0.1; ///< perspective: the near plane's depth, world units, > 0
+    /// perspective: the far plane's depth, world units, > near; infinity (the default,
+    /// `far` absent) is no far plane
+    double far = std::numeric_limits<double>::infinity();
 };
 
 /// One corner of a mesh triangle in world space.

@@ -297,6 +297,14 @@ void read_camera(const TableReader& t, SceneCamera& camera) {
     if (const auto* n = t.find("near")) {
         camera.near = read_number(c, *n, t.child("near"), min_camera_near, world_limit);
     }
+    if (const auto* n = t.find("far")) { // finite (read_number), and beyond near
+        camera.far = read_number(c, *n, t.child("far"), min_camera_near, world_limit);
+        if (!(camera.far > camera.near)) {
+            c.fail(n->source(), t.child("far"),
+                   fmt::format("{} must be greater than near ({})", camera.far,
+                               camera.near));
+        }
+    }
     if (const auto* n = t.find("position")) {
         camera.position = read_point(c, *n, t.child("position"));
     }
@@ -940,8 +948,8 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
     }
     if (const toml::table* t = section("camera")) {
         read_camera(TableReader(c, *t, "camera",
-                                {"projection", "fov", "view_height", "near", "position",
-                                 "target", "up"}),
+                                {"projection", "fov", "view_height", "near", "far",
+                                 "position", "target", "up"}),
                     scene.camera);
     }
     if (const toml::table* t = section("render")) {

@@ -9,7 +9,8 @@
 // A stage runs only when the mesh calls for it (chapter 7, @sec:only-what-is-needed):
 // no texture, no texture coordinates and no sampling; no vertex colours, no colour
 // interpolation; depth w constant over a triangle, the affine mapper, which is exact
-// there and divides nothing; every corner in front of the near plane, no clipping.
+// there and divides nothing; every corner inside the view volume and the guard band,
+// no clipping.
 // Spans are chapter 3's PerspectiveSpan: u/w, v/w and 1/w at the first pixel centre and
 // their change per pixel; errors are in texels of texture coordinate.
 #pragma once

@@ -467,20 +467,33 @@ struct ClippedCorners {
     std::array<glm::dvec3, 3> normals;
 };
 
-/// Chapter 6's near-plane clipping of a triangle, its vertex colours and its normals.
-/// clip_near carries the texture coordinate; colours and normals are linear along
-/// view-space edges too, so more passes with them in place of uv, two numbers at a time,
-/// cut them at the same parameter (the cut depends only on the positions). A cut normal
-/// is shorter than 1; the lighting stage renormalises it.
+/// The triangles of a clipped polygon, a fan from its first corner (as clip_near's).
+std::vector<std::array<ViewVertex, 3>> fan(const ClippedPolygon& polygon) {
+    std::vector<std::array<ViewVertex, 3>> out;
+    for (int k = 1; k + 1 < polygon.count; ++k) {
+        out.push_back({polygon.corners[0], polygon.corners[static_cast<std::size_t>(k)],
+                       polygon.corners[static_cast<std::size_t>(k + 1)]});
+    }
+    return out;
+}
+
+/// Chapter 6's clipping, at every plane of `planes`, of a triangle, its vertex colours
+/// and its normals. clip_triangle carries the texture coordinate; colours and normals
+/// are linear along view-space edges too, so more passes with them in place of uv, two
+/// numbers at a time, cut them at the same parameters (the cuts depend only on the
+/// positions). A cut normal is shorter than 1; the lighting stage renormalises it.
 std::vector<ClippedCorners> clip_corners(const std::array<ViewVertex, 3>& view,
                                          const std::array<Colour, 3>& colours,
                                          const std::array<glm::dvec3, 3>& normals,
-                                         double near, bool with_colours,
-                                         bool with_normals) {
-    const ClippedTriangles uv = clip_near(view, near);
-    std::vector<ClippedCorners> pieces(static_cast<std::size_t>(uv.count));
+                                         const std::vector<ViewPlane>& planes,
+                                         bool with_colours, bool with_normals) {
+    const auto clip = [&](const std::array<ViewVertex, 3>& v) {
+        return fan(clip_triangle(v, planes));
+    };
+    const std::vector<std::array<ViewVertex, 3>> uv = clip(view);
+    std::vector<ClippedCorners> pieces(uv.size());
     for (std::size_t t = 0; t < pieces.size(); ++t) {
-        pieces[t].view = uv.triangles[t];
+        pieces[t].view = uv[t];
         pieces[t].colours = colours; // unused unless with_colours
         pieces[t].normals = normals; // unused unless with_normals
     }
@@ -490,12 +503,10 @@ std::vector<ClippedCorners> clip_corners(const std::array<ViewVertex, 3>& view,
             xy[k].uv = {normals[k].x, normals[k].y};
             z[k].uv = {normals[k].z, 0.0};
         }
-        const ClippedTriangles cxy = clip_near(xy, near), cz = clip_near(z, near);
+        const auto cxy = clip(xy), cz = clip(z);
         for (std::size_t t = 0; t < pieces.size(); ++t) {
             for (std::size_t k = 0; k < 3; ++k) {
-                pieces[t].normals[k] = {cxy.triangles[t][k].uv.x,
-                                        cxy.triangles[t][k].uv.y,
-                                        cz.triangles[t][k].uv.x};
+                pieces[t].normals[k] = {cxy[t][k].uv.x, cxy[t][k].uv.y, cz[t][k].uv.x};
             }
         }
     }
@@ -505,18 +516,80 @@ std::vector<ClippedCorners> clip_corners(const std::array<ViewVertex, 3>& view,
             rg[k].uv = {colours[k].r, colours[k].g};
             b[k].uv = {colours[k].b, 0.0};
         }
-        const ClippedTriangles crg = clip_near(rg, near), cb = clip_near(b, near);
+        const auto crg = clip(rg), cb = clip(b);
         for (std::size_t t = 0; t < pieces.size(); ++t) {
             for (std::size_t k = 0; k < 3; ++k) {
-                assert(crg.triangles[t][k].position == pieces[t].view[k].position);
-                pieces[t].colours[k] = {crg.triangles[t][k].uv.x,
-                                        crg.triangles[t][k].uv.y,
-                                        cb.triangles[t][k].uv.x};
+                assert(crg[t][k].position == pieces[t].view[k].position);
+                pieces[t].colours[k] = {crg[t][k].uv.x, crg[t][k].uv.y, cb[t][k].uv.x};
             }
         }
     }
     return pieces;
 }
+
+//> view-volume
+/// The planes of view space that bound what a camera draws (@eq:scene-guard-band).
+struct ViewVolume {
+    /// The screen's four edges, then near and far: a triangle wholly outside any one
+    /// covers no pixel.
+    std::vector<ViewPlane> reject;
+    /// Near, far, then the guard band's four planes: the planes a triangle is cut at.
+    std::vector<ViewPlane> clip;
+};
+
+/// The view volume of the scene's camera. A screen line x = s is the view-space plane
+/// (cx - s) z + f x = 0 under perspective (multiplied by z > 0, which keeps the sign),
+/// (cx - s) + k x = 0 orthographic; y = s likewise with y pointing up in view space.
+/// An orthographic camera has no near or far plane (it never had).
+ViewVolume view_volume(const Scene& scene, const Pinhole& lens) {
+    const bool perspective = scene.camera.projection == Projection::perspective;
+    const double scale =
+        perspective ? lens.focal : scene.height / scene.camera.view_height;
+    const auto plane = [&](glm::dvec2 axis, double offset) { // offset times z or 1
+        return perspective ? ViewPlane{{scale * axis.x, scale * axis.y, offset}, 0.0}
+                           : ViewPlane{{scale * axis.x, scale * axis.y, 0.0}, offset};
+    };
+    const double cx = lens.centre.x, cy = lens.centre.y;
+    const auto x_at_least = [&](double s) { return plane({1.0, 0.0}, cx - s); };
+    const auto x_at_most = [&](double s) { return plane({-1.0, 0.0}, s - cx); };
+    const auto y_at_least = [&](double s) { return plane({0.0, -1.0}, cy - s); };
+    const auto y_at_most = [&](double s) { return plane({0.0, 1.0}, s - cy); };
+    ViewVolume volume;
+    volume.reject = {x_at_least(0.0), x_at_most(scene.width), y_at_least(0.0),
+                     y_at_most(scene.height)};
+    if (perspective) {
+        volume.clip.push_back(near_plane(scene.camera.near)); // first: then z > 0
+        if (std::isfinite(scene.camera.far)) {
+            volume.clip.push_back({{0.0, 0.0, -1.0}, scene.camera.far});
+        }
+        volume.reject.insert(volume.reject.end(), volume.clip.begin(), volume.clip.end());
+    }
+    const double band = guard_band_px;
+    for (const ViewPlane& p :
+         {x_at_least(-band), x_at_most(band), y_at_least(-band), y_at_most(band)}) {
+        volume.clip.push_back(p);
+    }
+    return volume;
+}
+
+/// Whether all three corners lie outside one plane (each plane_value < 0).
+bool outside_one(const std::vector<ViewPlane>& planes,
+                 const std::array<ViewVertex, 3>& v) {
+    return std::any_of(planes.begin(), planes.end(), [&](const ViewPlane& p) {
+        return plane_value(p, v[0].position) < 0.0 &&
+               plane_value(p, v[1].position) < 0.0 && plane_value(p, v[2].position) < 0.0;
+    });
+}
+
+/// Whether some corner lies outside some plane.
+bool any_outside(const std::vector<ViewPlane>& planes,
+                 const std::array<ViewVertex, 3>& v) {
+    return std::any_of(planes.begin(), planes.end(), [&](const ViewPlane& p) {
+        return plane_value(p, v[0].position) < 0.0 ||
+               plane_value(p, v[1].position) < 0.0 || plane_value(p, v[2].position) < 0.0;
+    });
+}
+//< view-volume
 
 /// Twice the signed screen area of the triangle; negative when it faces the camera
 /// (its corners run counter-clockwise as seen from its front).
@@ -564,6 +637,7 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
     const CameraFrame camera = camera_frame(scene.camera);
     const bool perspective = scene.camera.projection == Projection::perspective;
     const Pinhole lens = pinhole(scene);
+    const ViewVolume volume = view_volume(scene, lens);
     // World to view space: a translation for points, then the camera's rotation.
     const auto to_view = [&](glm::dvec3 v, bool is_point) {
         const glm::dvec3 d = is_point ? v - camera.eye : v;
@@ -611,14 +685,17 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
             const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
             std::array<ViewVertex, 3> view{};
             std::array<Colour, 3> colours{};
-            bool in_front = true;
             for (std::size_t k = 0; k < 3; ++k) {
                 view[k] = {to_view(triangle[k].position, true), triangle[k].uv};
                 colours[k] = triangle[k].colour;
-                in_front = in_front && view[k].position.z >= scene.camera.near;
             }
             report.geometry.triangles += 1;
-            const bool needs_clip = perspective && !in_front;
+            if (outside_one(volume.reject, view)) { // covers no pixel: not even projected
+                report.rejected.triangles += 1;
+                report.geometry.seconds += seconds_since(t0);
+                continue;
+            }
+            const bool needs_clip = any_outside(volume.clip, view);
             // A whole triangle is culled before it is lit: the same projected corners
             // decide it here and below, so the decision cannot differ.
             std::array<TexturedVertex, 3> corners{}; // of a triangle not clipped
@@ -657,7 +734,7 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
             std::vector<ClippedCorners> pieces{{view, colours, view_normals}};
             if (needs_clip) { // the only triangles that pay for it
                 const Clock::time_point c0 = Clock::now();
-                pieces = clip_corners(view, colours, view_normals, scene.camera.near,
+                pieces = clip_corners(view, colours, view_normals, volume.clip,
                                       with_colours, phong);
                 report.clipping.triangles += 1;
                 report.clipping.seconds += seconds_since(c0);
@@ -806,6 +883,7 @@ std::string format_report(const RenderReport& r) {
         }
     };
     line("geometry", r.geometry, true);
+    line("rejected", r.rejected, false);
     line("clipping", r.clipping, true);
     line("culling", r.culling, false);
     line("depth", r.depth, false);

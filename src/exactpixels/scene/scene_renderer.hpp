@@ -36,6 +36,15 @@
 
 namespace exactpixels {
 
+//> guard-band
+/// Half the side of the guard band, px: a triangle whose corners all lie within
+/// [-guard_band_px, guard_band_px] on both screen axes is drawn uncut; one reaching past
+/// it is clipped in view space at the band's four planes. Half of chapter 2's exact
+/// fixed-point range (max_fixed_coordinate_px = 2^20), so that a corner computed on a
+/// band plane, off by rounding, is still far inside that range (@eq:scene-guard-band).
+inline constexpr double guard_band_px = 524288.0; // 2^19
+//< guard-band
+
 /// What one stage did over a whole render.
 struct StageCounter {
     long long triangles = 0; ///< triangles the stage ran on
@@ -48,13 +57,18 @@ struct StageCounter {
 /// What ran while rendering a scene: one counter per stage and per mapper.
 struct RenderReport {
     StageCounter geometry; ///< triangles moved to view space and projected
-    StageCounter clipping; ///< triangles that crossed the near plane
-    StageCounter culling;  ///< triangles skipped because their back faces the camera
-    StageCounter depth;    ///< depth stage: the triangles, spans and pixels it tested
-    StageCounter hidden;   ///< pixels that failed the depth test (spans with any)
-    StageCounter raster;   ///< coverage: the triangles, spans and pixels drawn
-    StageCounter flat;     ///< pixels written with the mesh's flat colour
-    StageCounter colour;   ///< vertex colours interpolated and applied
+    /// triangles wholly outside one plane of the view volume (a screen edge, near or
+    /// far), dropped before they are projected or lit
+    StageCounter rejected;
+    /// triangles cut in view space because a corner lies nearer than the near plane,
+    /// beyond the far plane or past the guard band (guard_band_px)
+    StageCounter clipping;
+    StageCounter culling; ///< triangles skipped because their back faces the camera
+    StageCounter depth;   ///< depth stage: the triangles, spans and pixels it tested
+    StageCounter hidden;  ///< pixels that failed the depth test (spans with any)
+    StageCounter raster;  ///< coverage: the triangles, spans and pixels drawn
+    StageCounter flat;    ///< pixels written with the mesh's flat colour
+    StageCounter colour;  ///< vertex colours interpolated and applied
     StageCounter colour_perspective; ///< of those, perspective-correct (c/w over 1/w)
     StageCounter texture;            ///< texture coordinates computed and texels sampled
     StageCounter auto_choice;        ///< spans whose mapper `auto` chose, and its divides
@@ -104,9 +118,11 @@ struct SceneGeometry {
 };
 
 /// The geometry stage alone, as render_scene runs it: every triangle of every mesh to
-/// view space, lit per vertex (Gouraud meshes), clipped, projected and back-face culled
-/// (a triangle wholly in front of the near plane is culled before it is lit). Counts go
-/// to `report` (geometry, clipping, culling, lit_vertices, the lighting fields). Throws
+/// view space, rejected when wholly outside one plane of the view volume, lit per vertex
+/// (Gouraud meshes), clipped at the near and far planes and the guard band, projected and
+/// back-face culled (a triangle that needs no clipping is culled before it is lit).
+/// Counts go to `report` (geometry, rejected, clipping, culling, lit_vertices, the
+/// lighting fields). Throws
 /// Error naming the mesh when a corner projects to a value that is not finite.
 SceneGeometry run_geometry(const Scene& scene, RenderReport& report);
 

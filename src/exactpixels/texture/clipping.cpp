@@ -4,24 +4,26 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
 namespace exactpixels {
 
 namespace {
-void check_clip_input(const std::array<ViewVertex, 3>& v, double near) {
+void check_clip_input(const std::array<ViewVertex, 3>& v, double near,
+                      const char* who = "clip_near") {
     if (!std::isfinite(near) || !(near > 0.0)) {
-        throw Error(fmt::format("clip_near: near = {} (must be finite and > 0)", near));
+        throw Error(fmt::format("{}: near = {} (must be finite and > 0)", who, near));
     }
     for (int k = 0; k < 3; ++k) {
         const ViewVertex& p = v[static_cast<std::size_t>(k)];
         for (const double c :
              {p.position.x, p.position.y, p.position.z, p.uv.x, p.uv.y}) {
             if (!std::isfinite(c)) {
-                throw Error(fmt::format("clip_near: vertex {} has a coordinate {} "
+                throw Error(fmt::format("{}: vertex {} has a coordinate {} "
                                         "(position and uv must be finite)",
-                                        k, c));
+                                        who, k, c));
             }
         }
     }
@@ -77,6 +79,78 @@ ClippedTriangles clip_near(const std::array<ViewVertex, 3>& v, double near) {
     return out;
 }
 //< clip-near
+
+double plane_value(const ViewPlane& plane, glm::dvec3 p) {
+    return plane.normal.x * p.x + plane.normal.y * p.y + plane.normal.z * p.z +
+           plane.offset;
+}
+
+ViewPlane near_plane(double near) {
+    return {{0.0, 0.0, 1.0}, -near};
+}
+
+//> plane-crossing
+ViewVertex plane_crossing(const ViewVertex& inside, const ViewVertex& outside,
+                          const ViewPlane& plane) {
+    const double in = plane_value(plane, inside.position);
+    const double out = plane_value(plane, outside.position);
+    assert(in >= 0.0 && out < 0.0);
+    // @eq:clip-t for any plane: t = in / (in - out), the denominator written as the plane
+    // normal times the edge, which for the near plane is clip_near's a.z - b.z bit for
+    // bit. Should rounding make it <= 0 or t leave [0, 1] (an edge almost in the plane),
+    // in - out (exactly > 0) and the clamp keep the new corner on the edge.
+    double denominator = glm::dot(plane.normal, inside.position - outside.position);
+    if (!(denominator > 0.0)) {
+        denominator = in - out;
+    }
+    const double t = std::clamp(in / denominator, 0.0, 1.0);
+    ViewVertex p{inside.position + t * (outside.position - inside.position),
+                 inside.uv + t * (outside.uv - inside.uv)};
+    if (plane.normal.x == 0.0 && plane.normal.y == 0.0) { // near or far: z exactly
+        p.position.z = -plane.offset / plane.normal.z;
+    }
+    return p;
+}
+//< plane-crossing
+
+//> clip-polygon
+ClippedPolygon clip_polygon(const ClippedPolygon& polygon, const ViewPlane& plane) {
+    assert(polygon.count < max_clipped_corners);
+    ClippedPolygon out{};
+    for (int k = 0; k < polygon.count; ++k) {
+        const ViewVertex& a = polygon.corners[static_cast<std::size_t>(k)];
+        const ViewVertex& b =
+            polygon.corners[static_cast<std::size_t>((k + 1) % polygon.count)];
+        const bool a_in = plane_value(plane, a.position) >= 0.0;
+        const bool b_in = plane_value(plane, b.position) >= 0.0;
+        if (a_in) {
+            out.corners[static_cast<std::size_t>(out.count++)] = a;
+        }
+        if (a_in != b_in) { // always interpolate inside -> outside, as clip_near does
+            out.corners[static_cast<std::size_t>(out.count++)] =
+                a_in ? plane_crossing(a, b, plane) : plane_crossing(b, a, plane);
+        }
+    }
+    return out;
+}
+//< clip-polygon
+
+ClippedPolygon clip_triangle(const std::array<ViewVertex, 3>& v,
+                             const std::vector<ViewPlane>& planes) {
+    check_clip_input(v, 1.0, "clip_triangle");
+    if (planes.size() > static_cast<std::size_t>(max_clip_planes)) { // would overflow
+        throw Error(fmt::format("clip_triangle: {} planes (at most {})", planes.size(),
+                                max_clip_planes));
+    }
+    ClippedPolygon polygon{3, {v[0], v[1], v[2]}};
+    for (const ViewPlane& plane : planes) {
+        polygon = clip_polygon(polygon, plane);
+        if (polygon.count < 3) {
+            return {};
+        }
+    }
+    return polygon;
+}
 
 ProjectedTriangles clip_and_project(const Pinhole& camera,
                                     const std::array<ViewVertex, 3>& v, double near) {

@@ -20,6 +20,13 @@
 // coordinate are interpolated with the same t, which is right because both are linear
 // along a view-space edge. The winding of the input is kept. Non-finite coordinates
 // and a near that is not finite and > 0 throw Error naming the value.
+//
+// clip_polygon generalises clip_near to any plane a x + b y + c z + d >= 0 (ViewPlane):
+// the near plane is {0, 0, 1, -near}, the far plane {0, 0, -1, far}, and the guard-band
+// planes of chapter 7 pass through the eye. It too always interpolates from the inside
+// corner to the outside one, so an edge shared by two triangles is cut at the same point
+// whichever way each walks it, plane after plane (@sec:scene-clipping). A plane whose
+// normal is (0, 0, +-1) puts the new corner's z on the plane exactly, as clip_near does.
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
@@ -31,6 +38,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <vector>
 
 namespace exactpixels {
 
@@ -54,6 +62,46 @@ ViewVertex near_crossing(const ViewVertex& inside, const ViewVertex& outside,
 /// The part of the triangle with z >= near, as 0 to 2 triangles of the same winding.
 /// Throws Error for a non-finite coordinate or a near that is not finite and > 0.
 ClippedTriangles clip_near(const std::array<ViewVertex, 3>& v, double near);
+
+/// A plane of view space, a x + b y + c z + d = 0; its inside is where the sum is >= 0.
+struct ViewPlane {
+    glm::dvec3 normal; ///< (a, b, c), not necessarily of length 1
+    double offset;     ///< d
+};
+
+/// a x + b y + c z + d at p: >= 0 inside the plane, < 0 outside.
+double plane_value(const ViewPlane& plane, glm::dvec3 p);
+
+/// The near plane z = near as a ViewPlane: {0, 0, 1, -near}.
+ViewPlane near_plane(double near);
+
+/// The point where the edge from `inside` (plane_value >= 0) to `outside` (< 0) meets the
+/// plane, uv interpolated with the same parameter; for the near plane it equals
+/// near_crossing bit for bit.
+ViewVertex plane_crossing(const ViewVertex& inside, const ViewVertex& outside,
+                          const ViewPlane& plane);
+
+/// The most corners a triangle keeps after clipping at max_clip_planes planes: each
+/// plane adds at most one corner to a convex polygon.
+inline constexpr int max_clip_planes = 6;
+/// 3 + max_clip_planes.
+inline constexpr int max_clipped_corners = 3 + max_clip_planes;
+
+/// A convex polygon in view space, what is left of a triangle after clipping.
+struct ClippedPolygon {
+    int count = 0;                                         ///< corners used
+    std::array<ViewVertex, max_clipped_corners> corners{}; ///< the first `count`
+};
+
+/// The part of `polygon` inside `plane` (the Sutherland-Hodgman step of chapter 6's
+/// clip_near, for any plane). Requires polygon.count < max_clipped_corners.
+ClippedPolygon clip_polygon(const ClippedPolygon& polygon, const ViewPlane& plane);
+
+/// The part of the triangle inside every plane, in order, as a polygon of the same
+/// winding. Throws Error for a non-finite coordinate or more than max_clip_planes
+/// planes (the polygon could outgrow ClippedPolygon).
+ClippedPolygon clip_triangle(const std::array<ViewVertex, 3>& v,
+                             const std::vector<ViewPlane>& planes);
 
 /// The triangles of clip_near(v, near) projected by the camera (perspective.hpp): the
 /// TexturedVertex triangles chapter 3's mappers draw, every w >= near.
