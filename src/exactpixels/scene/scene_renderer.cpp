@@ -620,8 +620,8 @@ void check_finite(const TexturedVertex& v, Precision precision, std::size_t tria
 
 } // namespace
 
-// plan_mesh's, and under Gouraud lighting the
-// colour stage, which interpolates the lit colours (they hold the mesh's colour).
+// plan_mesh's stages, and under Gouraud lighting the colour stage, which interpolates
+// the lit colours (they hold the mesh's colour).
 MeshStages mesh_stages(const Scene& scene, const SceneMesh& mesh) {
     MeshStages stages = plan_mesh(mesh);
     if (!scene.lights.empty() && mesh_shading(scene, mesh) == Shading::gouraud) {

@@ -80,11 +80,6 @@ ClippedTriangles clip_near(const std::array<ViewVertex, 3>& v, double near) {
 }
 //< clip-near
 
-double plane_value(const ViewPlane& plane, glm::dvec3 p) {
-    return plane.normal.x * p.x + plane.normal.y * p.y + plane.normal.z * p.z +
-           plane.offset;
-}
-
 ViewPlane near_plane(double near) {
     return {{0.0, 0.0, 1.0}, -near};
 }

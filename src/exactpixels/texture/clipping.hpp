@@ -70,7 +70,11 @@ struct ViewPlane {
 };
 
 /// a x + b y + c z + d at p: >= 0 inside the plane, < 0 outside.
-double plane_value(const ViewPlane& plane, glm::dvec3 p);
+/// (Inline: the geometry stage tests every corner of every triangle against six planes.)
+inline double plane_value(const ViewPlane& plane, glm::dvec3 p) {
+    return plane.normal.x * p.x + plane.normal.y * p.y + plane.normal.z * p.z +
+           plane.offset;
+}
 
 /// The near plane z = near as a ViewPlane: {0, 0, 1, -near}.
 ViewPlane near_plane(double near);
