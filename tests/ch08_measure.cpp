@@ -172,7 +172,9 @@ TEST_CASE("the elliptical weighted average of a constant texture is that constan
     }
 }
 
-TEST_CASE("the oblique wall of the exercise: every pixel minified, at most 4 probes") {
+// The stub of ch08-derivatives (no footprint) minifies nothing, so this grades it too.
+TEST_CASE("the oblique wall of the exercise: every pixel minified, at most 4 probes" *
+          doctest::description("points: 1; exercise: ch08-derivatives")) {
     // What the exercise's solution relies on: the wall at 60 degrees minifies every
     // pixel it covers, and its footprint is never more than 4 times longer than wide,
     // so 4 probes are all the anisotropic filter uses (16 add nothing).
