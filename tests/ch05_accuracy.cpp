@@ -1,5 +1,7 @@
 // Chapter 5 tests: the error measure of the benchmark, its scenes, and its agreement
 // with chapter 3's closed-form bound for the affine mapper.
+#include "exactpixels/base/floor_to_int.hpp"
+#include "exactpixels/base/split_mix.hpp"
 #include "exactpixels/lab/accuracy_scenes.hpp"
 #include "exactpixels/texture/perspective_error.hpp"
 #include "exactpixels/texture/texel_error.hpp"
@@ -10,6 +12,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 using namespace exactpixels;
 using exactpixels::testing::record_fact;
@@ -125,4 +128,65 @@ TEST_CASE("the masked wrap equals wrap_index on every power-of-two size") {
     }
     CHECK(compared == 17LL * 3 * 140001);
     CHECK(differ == 0);
+}
+
+namespace {
+
+/// real_texel_index as chapter 4 states it, with the maths library's floor and ceil.
+int texel_index_by_library(double u, std::int32_t bias) {
+    const std::int32_t offset = bias - texel_scale / 2;
+    return offset >= 0
+               ? static_cast<int>(std::floor(u + double(offset) / texel_scale))
+               : static_cast<int>(std::ceil(u + double(offset + 1) / texel_scale)) - 1;
+}
+
+} // namespace
+
+TEST_CASE("floor_to_int, ceil_to_int and the texel index equal the maths library's") {
+    // Edge cases: integers, halves, the doubles next to them, both signs, the range's
+    // ends.
+    std::vector<double> xs{0.0,
+                           -0.0,
+                           0.5,
+                           -0.5,
+                           1.0,
+                           -1.0,
+                           2.5,
+                           -2.5,
+                           max_floor_to_int_magnitude,
+                           -max_floor_to_int_magnitude,
+                           0x1p30 - 0.5,
+                           -0x1p30 + 0.5,
+                           1e-300,
+                           -1e-300};
+    for (const double x : std::vector<double>(xs)) {
+        xs.push_back(std::nextafter(x, 1e300));
+        xs.push_back(std::nextafter(x, -1e300));
+    }
+    SplitMix random(5);
+    for (int k = 0; k < 200000; ++k) { // random magnitudes from 2^-20 to 2^30
+        const double x =
+            std::ldexp(random.uniform(-1.0, 1.0), int(random.uniform(-20, 31)));
+        xs.push_back(x);
+        xs.push_back(std::round(x)); // whole numbers, where floor and ceil meet
+    }
+    long long floor_differs = 0, ceil_differs = 0, index_differs = 0, indices = 0;
+    for (const double x : xs) {
+        if (std::abs(x) <= max_floor_to_int_magnitude) {
+            floor_differs += floor_to_int(x) != static_cast<int>(std::floor(x));
+            ceil_differs += ceil_to_int(x) != static_cast<int>(std::ceil(x));
+        }
+        if (std::abs(x) < 0x1p31 - 2) { // the index fits in an int
+            for (const std::int32_t bias : {texel_scale / 2, texel_scale / 2 - 1}) {
+                index_differs +=
+                    real_texel_index(x, bias) != texel_index_by_library(x, bias);
+                ++indices;
+            }
+        }
+    }
+    CHECK(xs.size() > 400000);
+    CHECK(indices == 2 * static_cast<long long>(xs.size()) - 8); // all but +-max, outward
+    CHECK(floor_differs == 0);
+    CHECK(ceil_differs == 0);
+    CHECK(index_differs == 0);
 }

@@ -27,6 +27,7 @@
 // floor((U + bias - 2^15) / 2^16) with the bias of TexelRounding.
 #pragma once
 
+#include "exactpixels/base/floor_to_int.hpp"
 #include "exactpixels/base/framebuffer.hpp"
 #include "exactpixels/base/types.hpp"
 #include "exactpixels/raster/screen_plane.hpp"
@@ -87,15 +88,20 @@ constexpr int fixed_texel_index(std::int32_t U, std::int32_t bias) {
 
 /// The texel index for a real coordinate u under the same bias: floor(u) for bias = D/2,
 /// ceil(u) - 1 for bias = D/2 - 1. Agrees with fixed_texel_index(u * D, bias) whenever
-/// u * D is an integer.
+/// u * D is an integer. Every real mapper calls it for every pixel, twice: within
+/// |u| < 2^30 it rounds with floor_to_int and ceil_to_int (base/floor_to_int.hpp), which
+/// are exact and need no call into the maths library; beyond, std::floor and std::ceil.
 inline int real_texel_index(double u, std::int32_t bias) {
     const std::int32_t offset = bias - texel_scale / 2; // b' in floor((U + b') / D)
+    const bool small = std::abs(u) < 0x1p30;            // false for NaN too
     if (offset >= 0) {
-        return static_cast<int>(std::floor(u + double(offset) / texel_scale));
+        const double x = u + double(offset) / texel_scale;
+        return small ? floor_to_int(x) : static_cast<int>(std::floor(x));
     }
     // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1; bias = D/2 - 1
     // makes this ceil(u) - 1, rule 2.
-    return static_cast<int>(std::ceil(u + double(offset + 1) / texel_scale)) - 1;
+    const double x = u + double(offset + 1) / texel_scale;
+    return (small ? ceil_to_int(x) : static_cast<int>(std::ceil(x))) - 1;
 }
 
 /// The texel indices a mapper chose for each pixel of a frame (before wrapping).

@@ -1,0 +1,34 @@
+// floor_to_int.hpp: floor(x) and ceil(x) of a double as an int, without a library call.
+//
+// Usage:
+//   floor_to_int(-2.5) == -3;  floor_to_int(2.0) == 2;  ceil_to_int(-2.5) == -2
+//
+// std::floor and std::ceil are one instruction (roundsd) only with SSE4.1, which the
+// x86-64 baseline this book builds for does not assume: there each is a call into the
+// maths library, paid per pixel by every mapper that turns a real coordinate into a
+// texel index. Converting to int truncates towards zero, exactly, in one instruction;
+// where the truncation went the wrong way (up for a negative non-integer x when flooring)
+// one comparison, exact too, steps it back. So both functions equal the library's for
+// every x with |x| < 2^31 - 1, which is the precondition (the caller checks the range:
+// beyond it the int conversion is undefined). tests/ch05_accuracy.cpp compares them
+// with std::floor and std::ceil at the edge cases and on random values.
+#pragma once
+
+namespace exactpixels {
+
+/// The largest |x| floor_to_int and ceil_to_int accept (their result fits in an int).
+inline constexpr double max_floor_to_int_magnitude = 2147483646.0;
+
+/// floor(x) as an int, for |x| <= max_floor_to_int_magnitude.
+inline int floor_to_int(double x) {
+    const int t = static_cast<int>(x); // towards zero: floor(x) or floor(x) + 1
+    return t - (x < double(t));
+}
+
+/// ceil(x) as an int, for |x| <= max_floor_to_int_magnitude.
+inline int ceil_to_int(double x) {
+    const int t = static_cast<int>(x); // towards zero: ceil(x) or ceil(x) - 1
+    return t + (x > double(t));
+}
+
+} // namespace exactpixels
