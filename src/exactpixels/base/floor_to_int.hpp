@@ -19,6 +19,7 @@ namespace exactpixels {
 /// The largest |x| floor_to_int and ceil_to_int accept (their result fits in an int).
 inline constexpr double max_floor_to_int_magnitude = 2147483646.0;
 
+//> floor-to-int
 /// floor(x) as an int, for |x| <= max_floor_to_int_magnitude.
 inline int floor_to_int(double x) {
     const int t = static_cast<int>(x); // towards zero: floor(x) or floor(x) + 1
@@ -30,5 +31,6 @@ inline int ceil_to_int(double x) {
     const int t = static_cast<int>(x); // towards zero: ceil(x) or ceil(x) - 1
     return t + (x > double(t));
 }
+//< floor-to-int
 
 } // namespace exactpixels
