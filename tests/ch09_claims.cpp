@@ -57,13 +57,14 @@ TEST_CASE("claim: on 3 and 15 px the pixel walk and 8x8 blocks beat llvmpipe 5x"
     }
 }
 
-TEST_CASE("claim: flat, the walk leads llvmpipe 5x at 80 px and the runs 3x at 1000 px") {
+TEST_CASE(
+    "claim: flat, the walk leads llvmpipe 5x at 80 px and the runs 2.5x at 1000 px") {
     CHECK(rate("flat", "walk", 80) >= 5.0 * rate("flat", "llvmpipe", 80));
-    CHECK(rate("flat", "runs", 1000) >= 3.0 * rate("flat", "llvmpipe", 1000));
+    CHECK(rate("flat", "runs", 1000) >= 2.5 * rate("flat", "llvmpipe", 1000));
 }
 
-TEST_CASE("claim: with a depth test at 65536 px llvmpipe beats walk, runs and masks") {
-    for (const char* v : {"walk", "runs", "masks"}) {
+TEST_CASE("claim: with a depth test at 65536 px llvmpipe beats the walk and the masks") {
+    for (const char* v : {"walk", "masks"}) {
         INFO(v);
         CHECK(rate("depth", "llvmpipe", 65536) > rate("depth", v, 65536));
     }
@@ -81,12 +82,12 @@ TEST_CASE("claim: runs reach between 30 and 40 % of a plain fill at 65536 px") {
     CHECK(share < 0.40);
 }
 
-TEST_CASE("claim: flat 8x8 blocks beat the walk at 65536 px, not at 80 or 1000 px") {
-    for (const int area : {80, 1000}) {
+TEST_CASE("claim: flat 8x8 blocks beat the walk at 1000 px and up, not at 80 px") {
+    CHECK(rate("flat", "blocks", 80) < rate("flat", "walk", 80));
+    for (const int area : {1000, 65536}) {
         INFO(area << " px");
-        CHECK(rate("flat", "blocks", area) < rate("flat", "walk", area));
+        CHECK(rate("flat", "blocks", area) > rate("flat", "walk", area));
     }
-    CHECK(rate("flat", "blocks", 65536) > rate("flat", "walk", 65536));
 }
 
 TEST_CASE("claim: flat 8x8 blocks reach under a fifth of a plain fill at 65536 px") {
