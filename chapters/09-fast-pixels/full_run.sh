@@ -25,9 +25,7 @@ LP_NUM_THREADS=1 "$bench" --benchmark_repetitions=3 \
     echo "# software: $(c++ --version | head -n 1), $(dpkg-query -W -f 'Mesa ${Version}' libosmesa6 2>/dev/null || echo 'Mesa') llvmpipe via OSMesa, Release build, commit $(git rev-parse --short HEAD)"
     echo "# command: chapters/09-fast-pixels/full_run.sh build"
     echo "# rates are per second of process CPU time (all threads) except wall/tiled/* (wall clock)"
-    # The header row, then the median rows renamed to their run's name.
-    awk -F, '/^name,/ { print; next }
-             $1 ~ /_median"$/ { sub(/_median"$/, "\"", $1); print }' OFS=, "$scratch/run.csv"
+    bench/median_csv.sh "$scratch/run.csv"
 } > "$out.tmp"
 grep -q '^"flat/walk/3/1/process_time"' "$out.tmp" || {
     echo "full_run.sh: the run wrote no medians (see $bench --help)" >&2
