@@ -1,7 +1,7 @@
 #!/bin/sh
 # Chapter 5's committed, dated full run: bench_ch05_mappers pinned to one core, every
 # benchmark three times in random order (a slow spell of a shared machine then falls on
-# every mapper alike), the fastest of each kept (bench/fastest_csv.sh), and fig_ch05_table's
+# every mapper alike), the fastest of each kept (bench/repeated_csv.sh), and fig_ch05_table's
 # tables assembled into chapters/05-accuracy-cost/bench_results.md with the date, the
 # machine and a "met" column for the speed targets. The chapter's claims read that file.
 # Usage (from the repository root, after building bench_ch05_mappers and fig_ch05_table):
@@ -23,7 +23,7 @@ if [ -z "${RUN_CSV:-}" ]; then
     $pin "$build/bin/bench_ch05_mappers" $options --benchmark_out="$RUN_CSV" \
         --benchmark_out_format=csv >/dev/null 2>&1
 fi
-bench/fastest_csv.sh "$RUN_CSV" > "$scratch/bench_ch05_mappers.csv"
+bench/repeated_csv.sh fastest "$RUN_CSV" > "$scratch/bench_ch05_mappers.csv"
 "$build/bin/fig_ch05_table" "$scratch" >/dev/null
 {
     echo "# Chapter 5: full benchmark run"

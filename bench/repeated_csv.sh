@@ -1,0 +1,42 @@
+#!/bin/sh
+# A repeated Google Benchmark run as if it were one run: the CSV header row and one row
+# per benchmark under the benchmark's own name, for readers that take one row per run
+# (read_benchmark_csv, fig_ch05_table, fig_ch09_speed). Which row:
+#   fastest  the repetition with the least cpu_time (least real_time for a run named
+#            .../real_time). For single-threaded work on a shared machine a slow spell
+#            only ever slows a repetition down, so the fastest is the least disturbed.
+#   median   Google Benchmark's _median row (needs --benchmark_repetitions >= 2). For
+#            runs whose time a busy neighbour can also shorten (llvmpipe's waiting
+#            thread, two threads on two cores), where the fastest is not the truest.
+# Usage: bench/repeated_csv.sh fastest|median RUN.csv > ONE_ROW_EACH.csv
+# Exits 2 when RUN.csv holds no benchmark repeated at least twice (no _median row).
+set -eu
+mode=${1:?usage: repeated_csv.sh fastest|median RUN.csv}
+csv=${2:?usage: repeated_csv.sh fastest|median RUN.csv}
+[ -s "$csv" ] || { echo "repeated_csv.sh: no $csv" >&2; exit 2; }
+case "$mode" in
+fastest | median) ;;
+*) echo "repeated_csv.sh: mode $mode is neither fastest nor median" >&2; exit 2 ;;
+esac
+awk -F, -v mode="$mode" 'BEGIN { OFS = "," }
+    /^name,/ { header = $0; next }
+    !header { next }
+    mode == "median" && $1 ~ /_median"?$/ {
+        sub(/_median/, "", $1)
+        if (!($1 in row)) order[++n] = $1
+        row[$1] = $0; seen[$1] = 2; next
+    }
+    mode == "median" || $1 ~ /_(mean|median|stddev|cv)"?$/ { next }
+    {
+        time = ($1 ~ /real_time"?$/) ? $3 : $4
+        if (!($1 in row)) order[++n] = $1
+        if (!($1 in best) || time + 0 < best[$1]) { best[$1] = time + 0; row[$1] = $0 }
+        ++seen[$1]
+    }
+    END {
+        repeated = 0
+        for (k = 1; k <= n; ++k) repeated += seen[order[k]] >= 2
+        if (!repeated) { print "repeated_csv.sh: no benchmark repeated in the run" > "/dev/stderr"; exit 2 }
+        print header
+        for (k = 1; k <= n; ++k) print row[order[k]]
+    }' "$csv"
