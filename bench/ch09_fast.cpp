@@ -31,8 +31,28 @@
 // valgrind --tool=callgrind --toggle-collect=ch09_draw_once counts; `--list` prints the
 // names. Run it with LP_NUM_THREADS=0 so that llvmpipe rasterizes in the counted thread.
 // `--compare=AREA` checks that both sides draw the same pixels (see compare()).
+//
+// Textured (issue 19's third target), only with `--textured`, so that the default run
+// (data/ch09_fast.csv) is unchanged: names textured/VARIANT/AREA/1, VARIANT one of
+//          teaching  draw_textured_triangle per triangle (chapter 3's exact mapper in
+//                    double, nearest texel), the teaching path
+//          runs      draw_textured_runs (textured_runs.hpp): covered runs, one divide
+//                    per pixel, the same pixels (tested)
+//          llvmpipe  the same triangles with clip-space w = the vertex's depth (so GL
+//                    interpolates perspective-correctly), GL_NEAREST, GL_REPEAT,
+//                    GL_REPLACE
+// The set is the flat set's triangles, each vertex with a depth w in {1, 9/8, ..., 4}
+// (few bits, so x w is an exact float) and uv = 0.75 (x, y) + (17, 5) texels on a
+// 256 x 256 RGBA8 texture whose texel (i, j) is (i, j, i ^ j), repeated.
+// `--compare-textured=AREA` prints one CSV row: pixels drawn, pixels whose coverage
+// differs between llvmpipe and the teaching path, pixels covered by both whose texel
+// differs, how many of those are a neighbouring texel, and pixels where the runs differ
+// from the teaching path. `--once=textured/VARIANT/AREA` works as above (--list leaves
+// the textured runs out: callgrind.sh counts the default run only).
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/tiled_rasterizer.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
+#include "exactpixels/texture/textured_runs.hpp"
 #include "triangle_sets.hpp"
 
 #include <GL/osmesa.h>
@@ -45,6 +65,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -72,6 +93,50 @@ const std::vector<FlatTriangle>& triangles(int area) {
         }
     }
     return it->second;
+}
+
+/// One area's triangles textured: the same snapped corners, each with a depth w of few
+/// bits, w = m / 8 for m in 8 .. 32, and uv = 0.75 (x, y) + (17, 5) texels.
+const std::vector<std::array<TexturedVertex, 3>>& textured_triangles(int area) {
+    static std::map<int, std::vector<std::array<TexturedVertex, 3>>> cache;
+    auto [it, inserted] = cache.try_emplace(area);
+    if (inserted) {
+        std::mt19937_64 rng(static_cast<std::uint64_t>(area) + 19);
+        for (const FlatTriangle& t : triangles(area)) {
+            std::array<TexturedVertex, 3> tri{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                const Point2 p = to_pixels(t.v[k]);
+                const double w = static_cast<double>(8 + rng() % 25) / 8.0;
+                tri[k] = {p, w, {0.75 * p.x + 17.0, 0.75 * p.y + 5.0}};
+            }
+            it->second.push_back(tri);
+        }
+    }
+    return it->second;
+}
+
+constexpr int texture_side = 256;
+
+/// The 256 x 256 texture: texel (i, j) is (i, j, i ^ j), every one its own colour.
+const Texture& texture() {
+    static const Texture t = [] {
+        std::vector<Rgba8> texels;
+        for (int j = 0; j < texture_side; ++j) {
+            for (int i = 0; i < texture_side; ++i) {
+                texels.push_back(rgba(static_cast<std::uint8_t>(i),
+                                      static_cast<std::uint8_t>(j),
+                                      static_cast<std::uint8_t>(i ^ j)));
+            }
+        }
+        return Texture(texture_side, texture_side, std::move(texels));
+    }();
+    return t;
+}
+
+/// The teaching path's frame (draw_textured_triangle draws into a Framebuffer).
+Framebuffer& teaching_frame() {
+    static Framebuffer f(frame_side, frame_side, rgba(0, 0, 0, 0));
+    return f;
 }
 
 /// The frame every project variant draws into, with its depth buffer.
@@ -181,12 +246,41 @@ void project(benchmark::State& state, Variant variant, bool with_depth) {
     report(state, area);
 }
 
+enum class TexturedVariant { teaching, runs };
+
+/// Draws the textured set of `area` once with `variant`.
+void draw_textured_set(TexturedVariant variant, int area) {
+    const auto& tris = textured_triangles(area);
+    switch (variant) {
+    case TexturedVariant::teaching: {
+        MapperSettings settings; // exact, double, rule 1, repeat
+        for (const auto& t : tris) {
+            draw_textured_triangle(teaching_frame(), t, texture(), settings);
+        }
+        break;
+    }
+    case TexturedVariant::runs:
+        draw_textured_runs(frame().target(false), tris, texture(), Wrap::repeat);
+        break;
+    }
+}
+
+void project_textured(benchmark::State& state, TexturedVariant variant) {
+    const int area = static_cast<int>(state.range(0));
+    for (auto _ : state) {
+        draw_textured_set(variant, area);
+        benchmark::ClobberMemory();
+    }
+    report(state, area);
+}
+
 /// llvmpipe through OSMesa: one context for the whole run, made on first use.
 struct Peer {
     OSMesaContext context = nullptr;
     std::vector<std::uint8_t> pixels =
         std::vector<std::uint8_t>(std::size_t{frame_side} * frame_side * 4, 0);
     std::string problem; ///< why there is no context, if there is none
+    GLuint texture = 0;  ///< texture() as a GL texture, made on first textured use
 };
 
 Peer& peer() {
@@ -252,6 +346,9 @@ const PeerArrays& peer_arrays(int area) {
 /// count for glDrawArrays.
 GLsizei prepare_peer(int area, bool with_depth) {
     const PeerArrays& a = peer_arrays(area);
+    glDisable(GL_TEXTURE_2D); // as a textured run may have left it
+    glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+    glEnableClientState(GL_COLOR_ARRAY);
     if (with_depth) {
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
@@ -262,6 +359,81 @@ GLsizei prepare_peer(int area, bool with_depth) {
     glVertexPointer(3, GL_FLOAT, 0, a.xyz.data());
     glColorPointer(4, GL_UNSIGNED_BYTE, 0, a.rgba.data());
     return static_cast<GLsizei>(a.xyz.size() / 3);
+}
+
+/// The textured set's arrays: clip-space (x w, y w, 0, w) through the same orthographic
+/// projection (its last row is (0, 0, 0, 1), so the divide by w gives back (x, y)), and
+/// texture coordinates (u, v) / 256, both exact in float.
+struct TexturedArrays {
+    std::vector<float> xyzw; ///< 4 floats per vertex
+    std::vector<float> st;   ///< 2 floats per vertex
+};
+
+const TexturedArrays& textured_arrays(int area) {
+    static std::map<int, TexturedArrays> cache;
+    auto [it, inserted] = cache.try_emplace(area);
+    if (inserted) {
+        for (const auto& tri : textured_triangles(area)) {
+            for (const TexturedVertex& v : tri) {
+                const double w = v.w;
+                it->second.xyzw.insert(it->second.xyzw.end(),
+                                       {static_cast<float>(v.position.x * w),
+                                        static_cast<float>(v.position.y * w), 0.0f,
+                                        static_cast<float>(w)});
+                it->second.st.insert(it->second.st.end(),
+                                     {static_cast<float>(v.uv.x / texture_side),
+                                      static_cast<float>(v.uv.y / texture_side)});
+            }
+        }
+    }
+    return it->second;
+}
+
+/// Sets llvmpipe up to draw the textured set of `area`; returns the vertex count.
+GLsizei prepare_textured_peer(int area) {
+    Peer& p = peer();
+    if (p.texture == 0) {
+        glGenTextures(1, &p.texture);
+        glBindTexture(GL_TEXTURE_2D, p.texture);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texture_side, texture_side, 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, texture().texels().data());
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_REPLACE);
+        glHint(GL_PERSPECTIVE_CORRECTION_HINT, GL_NICEST);
+    }
+    const TexturedArrays& a = textured_arrays(area);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, p.texture);
+    glDisableClientState(GL_COLOR_ARRAY);
+    glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+    glVertexPointer(4, GL_FLOAT, 0, a.xyzw.data());
+    glTexCoordPointer(2, GL_FLOAT, 0, a.st.data());
+    return static_cast<GLsizei>(a.xyzw.size() / 4);
+}
+
+void llvmpipe_textured(benchmark::State& state) {
+    const int area = static_cast<int>(state.range(0));
+    Peer& p = peer();
+    if (p.context == nullptr) {
+        state.SkipWithError(p.problem.c_str());
+        return;
+    }
+    const GLsizei vertices = prepare_textured_peer(area);
+    glDrawArrays(GL_TRIANGLES, 0, vertices); // compiles llvmpipe's code for this state
+    glFinish();
+    for (auto _ : state) {
+        glDrawArrays(GL_TRIANGLES, 0, vertices);
+        glFinish();
+    }
+    if (glGetError() != GL_NO_ERROR) {
+        state.SkipWithError("OpenGL reported an error");
+    }
+    report(state, area);
 }
 
 void llvmpipe(benchmark::State& state, bool with_depth) {
@@ -319,6 +491,49 @@ int compare(int area) {
     return 0;
 }
 
+/// --compare-textured=AREA: draws the textured set of AREA into cleared frames (alpha 0;
+/// every texel has alpha 255) with the teaching path, the runs and llvmpipe, and prints
+/// one CSV row: textured/AREA, pixels the teaching path drew, pixels whose coverage
+/// differs in llvmpipe's frame, pixels both drew with another texel, how many of those
+/// are a neighbouring texel (i and j each within one, modulo 256), and pixels where the
+/// runs' frame differs from the teaching path's.
+int compare_textured(int area) {
+    if (std::find(std::begin(areas), std::end(areas), area) == std::end(areas) ||
+        peer().context == nullptr) {
+        std::fprintf(stderr, "bench_ch09_fast: cannot compare area %d\n", area);
+        return 2;
+    }
+    teaching_frame() = Framebuffer(frame_side, frame_side, rgba(0, 0, 0, 0));
+    std::fill(frame().colour.begin(), frame().colour.end(), rgba(0, 0, 0, 0));
+    draw_textured_set(TexturedVariant::teaching, area);
+    draw_textured_set(TexturedVariant::runs, area);
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT);
+    glDrawArrays(GL_TRIANGLES, 0, prepare_textured_peer(area));
+    glFinish();
+    glClearColor(0, 0, 0, 1);
+    const auto& gl = peer().pixels;
+    const auto& ours = teaching_frame().pixels();
+    std::int64_t drawn = 0, coverage = 0, texel = 0, neighbour = 0, runs = 0;
+    const auto near = [](int a, int b) { return ((a - b + 1) & 255) <= 2; };
+    for (std::size_t i = 0; i < ours.size(); ++i) {
+        const Rgba8 o = ours[i];
+        const bool we = o.a == 255, they = gl[4 * i + 3] == 255;
+        drawn += we;
+        runs += frame().colour[i] != o;
+        coverage += we != they;
+        if (we && they && (o.r != gl[4 * i] || o.g != gl[4 * i + 1])) {
+            ++texel;
+            neighbour += near(o.r, gl[4 * i]) && near(o.g, gl[4 * i + 1]);
+        }
+    }
+    std::printf("textured/%d,%lld,%lld,%lld,%lld,%lld\n", area,
+                static_cast<long long>(drawn), static_cast<long long>(coverage),
+                static_cast<long long>(texel), static_cast<long long>(neighbour),
+                static_cast<long long>(runs));
+    return 0;
+}
+
 /// --once=MODE/VARIANT/AREA: draws the set once, then once more inside ch09_draw_once.
 /// Returns the exit code (2 for a name it does not know).
 int draw_once(const std::string& name) {
@@ -337,7 +552,21 @@ int draw_once(const std::string& name) {
         {"runs", Variant::runs},   {"masks", Variant::masks},
         {"tiled", Variant::tiled}, {"plain", Variant::plain}};
     std::function<void()> draw;
-    if (variant == "llvmpipe") {
+    if (mode == "textured") {
+        if (variant == "llvmpipe" && peer().context != nullptr) {
+            const GLsizei vertices = prepare_textured_peer(area);
+            draw = [vertices] {
+                glDrawArrays(GL_TRIANGLES, 0, vertices);
+                glFinish();
+            };
+        } else if (variant == "teaching" || variant == "runs") {
+            draw = [=] {
+                draw_textured_set(variant == "runs" ? TexturedVariant::runs
+                                                    : TexturedVariant::teaching,
+                                  area);
+            };
+        }
+    } else if (variant == "llvmpipe") {
         if (peer().context == nullptr) {
             std::fprintf(stderr, "bench_ch09_fast: %s\n", peer().problem.c_str());
             return 2;
@@ -350,7 +579,7 @@ int draw_once(const std::string& name) {
     } else if (variants.count(variant) != 0) {
         draw = [=, v = variants.at(variant)] { draw_set(v, with_depth, area, 1); };
     }
-    if (!draw || (mode != "flat" && mode != "depth") ||
+    if (!draw || (mode != "flat" && mode != "depth" && mode != "textured") ||
         std::find(std::begin(areas), std::end(areas), area) == std::end(areas)) {
         std::fprintf(stderr, "bench_ch09_fast: unknown run %s\n", name.c_str());
         return 2;
@@ -403,11 +632,43 @@ void register_all() {
     }
 }
 
+/// The textured benchmarks (--textured), one core each, process CPU time.
+void register_textured() {
+    for (const auto& [name, variant] : {std::pair{"teaching", TexturedVariant::teaching},
+                                        std::pair{"runs", TexturedVariant::runs}}) {
+        for (const int area : areas) {
+            benchmark::RegisterBenchmark((std::string("textured/") + name).c_str(),
+                                         [variant = variant](benchmark::State& s) {
+                                             project_textured(s, variant);
+                                         })
+                ->Args({area, 1})
+                ->MeasureProcessCPUTime();
+        }
+    }
+    const char* lp = std::getenv("LP_NUM_THREADS");
+    const int peer_threads = lp != nullptr ? std::atoi(lp) : 1;
+    for (const int area : areas) {
+        benchmark::RegisterBenchmark("textured/llvmpipe", llvmpipe_textured)
+            ->Args({area, peer_threads})
+            ->MeasureProcessCPUTime();
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
+    bool textured = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
+        if (arg == "--textured") { // taken out of argv before Google Benchmark reads it
+            textured = true;
+            for (int j = i; j + 1 < argc; ++j) {
+                argv[j] = argv[j + 1];
+            }
+            --argc;
+            --i;
+            continue;
+        }
         if (arg == "--list") { // the runs --once accepts, with their triangle count
             for (const char* mode : {"flat", "depth"}) {
                 for (const char* v :
@@ -418,6 +679,9 @@ int main(int argc, char** argv) {
                 }
             }
             return 0;
+        }
+        if (arg.rfind("--compare-textured=", 0) == 0) {
+            return compare_textured(std::atoi(arg.c_str() + 19));
         }
         if (arg.rfind("--compare=", 0) == 0) {
             return compare(std::atoi(arg.c_str() + 10));
@@ -430,7 +694,11 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
         return 1;
     }
-    register_all();
+    if (textured) {
+        register_textured();
+    } else {
+        register_all();
+    }
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
 }

@@ -1,0 +1,68 @@
+#!/bin/sh
+# Chapter 9's textured run: perspective-correct nearest texturing, the teaching path and
+# the textured runs against llvmpipe (bench_ch09_fast --textured), as its own committed,
+# dated file, so that the default run (data/ch09_fast.csv) is regenerated independently.
+# Usage (from the repository root, after building bench_ch09_fast in BUILD_DIR, a
+# Release build, on a machine as quiet as can be had):
+#   chapters/09-fast-pixels/textured_run.sh BUILD_DIR
+# Writes data/ch09_textured.csv (the full run at Google Benchmark's default measuring
+# time, llvmpipe with LP_NUM_THREADS=1, rates per second of process CPU time) with a
+# '#' header naming the date, machine, load, software and command, and
+# data/ch09_textured_compare.csv (bench_ch09_fast --compare-textured=AREA for every area:
+# pixels drawn, coverage and texel differences against llvmpipe, and the runs against the
+# teaching path), and data/ch09_textured_instructions.csv (instructions per triangle of
+# one drawing, counted by callgrind as callgrind.sh counts the default run: the teaching
+# path, the runs and llvmpipe at 3 and 1000 px). Takes five to ten minutes.
+set -eu
+build=${1:?usage: textured_run.sh BUILD_DIR}
+data=chapters/09-fast-pixels/data
+bench="$build/bin/bench_ch09_fast"
+[ -x "$bench" ] || { echo "textured_run.sh: no $bench: build bench_ch09_fast first" >&2; exit 2; }
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)
+mhz=$(sed -n 's/^cpu MHz[[:space:]]*: \([0-9]*\).*/\1/p' /proc/cpuinfo | head -n 1)
+mesa=$(dpkg-query -W -f='${Version}' libgl1-mesa-dri 2>/dev/null || echo unknown)
+type=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/null || true)
+commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
+start=$(date -u +'%Y-%m-%d %H:%M')
+load_start=$(cut -d ' ' -f 1-3 /proc/loadavg)
+LP_NUM_THREADS=1 "$bench" --textured --benchmark_out="$scratch/run.csv" \
+    --benchmark_out_format=csv >"$scratch/log"
+end=$(date -u +%H:%M)
+load_end=$(cut -d ' ' -f 1-3 /proc/loadavg)
+{
+    echo "# bench_ch09_fast --textured full run (default measuring time), measured $start-$end UTC"
+    echo "# machine: $cpu, $(nproc) cores at $mhz MHz, load average (1, 5, 15 min) $load_start at the start, $load_end at the end"
+    echo "# software: $(c++ --version | head -n 1), Mesa $mesa llvmpipe via OSMesa, ${type:-unknown} build, commit $commit"
+    echo "# command: LP_NUM_THREADS=1 build/bin/bench_ch09_fast --textured --benchmark_out=ch09_textured.csv --benchmark_out_format=csv (chapters/09-fast-pixels/textured_run.sh)"
+    echo "# rates are per second of process CPU time (all threads, llvmpipe's rasterizer thread too)"
+    cat "$scratch/run.csv"
+} >"$data/ch09_textured.csv.tmp"
+mv "$data/ch09_textured.csv.tmp" "$data/ch09_textured.csv"
+{
+    echo "# bench_ch09_fast --compare-textured=AREA for every area, $(date -u +%Y-%m-%d), Mesa $mesa: pixels the teaching path"
+    echo "# draws (textured set, 1024 triangles in order), pixels whose coverage differs in llvmpipe's frame, pixels both draw"
+    echo "# with another texel, how many of those are a neighbouring texel, pixels where the runs differ from the teaching path"
+    echo "name,pixels_drawn,coverage_differ,texel_differ,neighbour_texel,runs_differ"
+    for area in 3 15 80 1000 65536; do
+        LP_NUM_THREADS=1 "$bench" --compare-textured="$area"
+    done
+} >"$data/ch09_textured_compare.csv.tmp"
+mv "$data/ch09_textured_compare.csv.tmp" "$data/ch09_textured_compare.csv"
+{
+    echo "# Chapter 9, textured: instructions per triangle (callgrind), measured $(date -u +%Y-%m-%d)"
+    echo "# with $(valgrind --version) on $(uname -m), compiler $(c++ --version | head -n 1),"
+    echo "# Mesa $mesa. Regenerate with chapters/09-fast-pixels/textured_run.sh build (Release build)."
+    echo "name,instructions,triangles,instructions_per_triangle"
+    for name in textured/teaching/3 textured/runs/3 textured/llvmpipe/3 \
+        textured/teaching/1000 textured/runs/1000 textured/llvmpipe/1000; do
+        LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch09_draw_once \
+            --smc-check=all-non-file --callgrind-out-file="$scratch/callgrind.out" \
+            "$bench" --once="$name" >/dev/null 2>"$scratch/log"
+        ir=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$scratch/log")
+        echo "$name,$ir,1024,$(awk "BEGIN { printf \"%.1f\", $ir / 1024 }")"
+    done
+} >"$data/ch09_textured_instructions.csv.tmp"
+mv "$data/ch09_textured_instructions.csv.tmp" "$data/ch09_textured_instructions.csv"
+echo "wrote $data/ch09_textured.csv, ch09_textured_compare.csv, ch09_textured_instructions.csv"
