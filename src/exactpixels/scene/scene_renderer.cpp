@@ -195,14 +195,13 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
     TexelRounding perspective_rounding{}, affine_rounding{};
     if (m.stages.texture) {
         check_textured_triangle(tv, settings); // ranges of chapter 3's mappers
-        planes = texture_planes(p, tv);
+        // The spans use affine on every span or on none (auto never picks affine where
+        // w varies): its planes and rounding only where it runs.
+        const bool affine_only = options.mapper.automatic
+                                     ? affine_exact
+                                     : options.mapper.mapper.kind == MapperKind::affine;
+        planes = texture_planes(p, tv, affine_only);
         if (options.rounding) { // chapter 4: ties go right, or down
-            // Only the rounding of the mapper the spans will use: affine on every span
-            // or on none (auto never picks affine where w varies).
-            const bool affine_only =
-                options.mapper.automatic
-                    ? affine_exact
-                    : options.mapper.mapper.kind == MapperKind::affine;
             if (affine_only) {
                 affine_rounding = choose_rounding(tv, MapperKind::affine);
             } else {
@@ -325,7 +324,10 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
             const TexelRounding r = mapper.kind == MapperKind::affine
                                         ? affine_rounding
                                         : perspective_rounding;
-            map_span(mapper, options.precision, r, ps, affine_span(planes, s),
+            const AffineSpan<double> as = mapper.kind == MapperKind::affine
+                                              ? affine_span(planes, s)
+                                              : AffineSpan<double>{};
+            map_span(mapper, options.precision, r, ps, as,
                      [&](int k, int i, int j, double uu, double vv) {
                          m.row[static_cast<std::size_t>(k)] =
                              m.masked_fetch ? fetch_texel_masked(*m.texture, i, j)
