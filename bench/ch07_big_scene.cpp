@@ -33,7 +33,10 @@
 // valgrind --tool=callgrind --toggle-collect=ch07_frame_once counts. Run it with
 // LP_NUM_THREADS=0 so that llvmpipe rasterizes in the counted thread.
 // `--report` prints format_report of one render of each EFFECTS; `--png=FILE` writes our
-// render of the full scene.
+// render of the full scene. `--fast=NAMES` (before --once, --report or --png) makes our
+// side use only the named fast paths (FastPaths, scene_renderer.hpp), a comma-separated
+// list of screen_accept and masked_fetch, or `none` for the plain path: the instruction
+// count of each fast path is the difference it makes.
 #define GL_GLEXT_PROTOTYPES 1
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/png.hpp"
@@ -61,6 +64,30 @@ using namespace exactpixels;
 namespace {
 
 const char* const effects_names[] = {"full", "no_depth", "no_texture", "flat"};
+
+/// The fast paths our side uses: all unless --fast says otherwise.
+FastPaths fast_paths{};
+
+/// Reads --fast=NAMES into fast_paths; false for a name it does not know.
+bool read_fast_paths(const std::string& names) {
+    fast_paths = plain_paths;
+    std::size_t at = 0;
+    while (at <= names.size()) {
+        const std::size_t comma = std::min(names.find(',', at), names.size());
+        const std::string name = names.substr(at, comma - at);
+        if (name == "screen_accept") {
+            fast_paths.screen_accept = true;
+        } else if (name == "masked_fetch") {
+            fast_paths.masked_fetch = true;
+        } else if (name != "none") {
+            std::fprintf(stderr, "bench_ch07_big_scene: unknown fast path %s\n",
+                         name.c_str());
+            return false;
+        }
+        at = comma + 1;
+    }
+    return true;
+}
 
 /// The big torus scene as written by the generator and read back through the OBJ
 /// reader, with the effects `effects` asks for.
@@ -107,7 +134,7 @@ void report(benchmark::State& state, std::size_t triangles) {
 void ours(benchmark::State& state, const std::string& effects) {
     const Scene scene = big_scene(effects);
     for (auto _ : state) {
-        const RenderResult result = render_scene(scene);
+        const RenderResult result = render_scene(scene, nullptr, fast_paths);
         benchmark::DoNotOptimize(result.image.pixels().data());
     }
     report(state, model_triangles(scene));
@@ -296,7 +323,7 @@ int frame_once(const std::string& name) {
         draw = [vertices] { peer_frame(vertices); };
     } else if (side == "ours") {
         draw = [scene = big_scene(effects)] {
-            const RenderResult result = render_scene(scene);
+            const RenderResult result = render_scene(scene, nullptr, fast_paths);
             benchmark::DoNotOptimize(result.image.pixels().data());
         };
     } else {
@@ -313,8 +340,8 @@ int frame_once(const std::string& name) {
 int print_reports() {
     for (const char* effects : effects_names) {
         const Scene scene = big_scene(effects);
-        render_scene(scene);
-        const RenderResult result = render_scene(scene);
+        render_scene(scene, nullptr, fast_paths);
+        const RenderResult result = render_scene(scene, nullptr, fast_paths);
         std::printf("## %s\n\n%s\n", effects, format_report(result.report).c_str());
     }
     return 0;
@@ -325,6 +352,15 @@ int print_reports() {
 int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
+        if (arg.rfind("--fast=", 0) == 0) { // ours only; not for Google Benchmark
+            if (!read_fast_paths(arg.substr(7))) {
+                return 2;
+            }
+            std::copy(argv + i + 1, argv + argc, argv + i);
+            argc -= 1;
+            i -= 1;
+            continue;
+        }
         if (arg.rfind("--once=", 0) == 0) {
             return frame_once(arg.substr(7));
         }
@@ -332,7 +368,8 @@ int main(int argc, char** argv) {
             return print_reports();
         }
         if (arg.rfind("--png=", 0) == 0) {
-            write_png(arg.substr(6), render_scene(big_scene("full")).image);
+            write_png(arg.substr(6),
+                      render_scene(big_scene("full"), nullptr, fast_paths).image);
             return 0;
         }
     }

@@ -2,7 +2,7 @@
 // llvmpipe, checked against the committed, dated run
 // (chapters/07-scenes/big_scene_results.md, written by big_scene.sh beside it). A new run
 // that changes a comparison makes the matching test fail, and the sentence must change
-// with it.
+// with it. The instruction counts of the fast paths (FastPaths) are checked the same way.
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -71,4 +71,13 @@ TEST_CASE("claim: on the big torus llvmpipe's frame is shorter than ours, on one
 TEST_CASE("claim: the big torus without depth and texture costs less time and work") {
     CHECK(fact("ours_flat") < fact("ours_full"));
     CHECK(fact("instructions_ours_flat") < fact("instructions_ours_full"));
+}
+
+TEST_CASE(
+    "claim: on the big torus each fast path saves instructions, and both save more") {
+    const double plain = fact("instructions_ours_full_plain");
+    CHECK(fact("instructions_ours_full_screen_accept") < plain);
+    CHECK(fact("instructions_ours_full_masked_fetch") < plain);
+    CHECK(fact("instructions_ours_full") < fact("instructions_ours_full_screen_accept"));
+    CHECK(fact("instructions_ours_full") < fact("instructions_ours_full_masked_fetch"));
 }

@@ -8,6 +8,8 @@
 # Instruction counts: for each run NAME it runs
 #   LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch07_frame_once \
 #       bench_ch07_big_scene --once=NAME
+# (and for our full scene also with --fast=none, --fast=screen_accept and
+# --fast=masked_fetch before --once: the plain path and each fast path alone)
 # which counts one frame after an uncounted first one (llvmpipe compiles its code then;
 # LP_NUM_THREADS=0 makes it rasterize in the counted thread). Writes Markdown tables whose
 # rows are facts for the chapter's claims (default:
@@ -28,10 +30,11 @@ ms() {
         "$scratch/times.csv"
 }
 ratio() { awk "BEGIN { printf \"%.2f\", $1 / $2 }"; }
+# Instructions of one frame of run $1, with only the fast paths $2 when given.
 instructions() {
     LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch07_frame_once \
         --smc-check=all-non-file --callgrind-out-file="$scratch/callgrind.out" \
-        "$bench" --once="$1" >/dev/null 2>"$scratch/log"
+        "$bench" ${2:+--fast="$2"} --once="$1" >/dev/null 2>"$scratch/log"
     sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$scratch/log"
 }
 {
@@ -70,12 +73,24 @@ instructions() {
     ours_full=$(instructions ours/full)
     lp_full=$(instructions llvmpipe/full)
     ours_flat=$(instructions ours/flat)
+    ours_plain=$(instructions ours/full none)
+    ours_accept=$(instructions ours/full screen_accept)
+    ours_masked=$(instructions ours/full masked_fetch)
     echo "| run | instructions |"
     echo "|:--|--:|"
     echo "| instructions ours full | $ours_full |"
     echo "| instructions llvmpipe full | $lp_full |"
     echo "| instructions ours flat | $ours_flat |"
     echo "| instruction ratio full | $(ratio "$ours_full" "$lp_full") |"
+    echo
+    echo "Ours on the full scene with only some fast paths (FastPaths): none (the plain" \
+         "path), each one alone; all of them is \"ours full\" above:"
+    echo
+    echo "| run | instructions |"
+    echo "|:--|--:|"
+    echo "| instructions ours full plain | $ours_plain |"
+    echo "| instructions ours full screen_accept | $ours_accept |"
+    echo "| instructions ours full masked_fetch | $ours_masked |"
     echo
     echo "The same in millions:"
     echo
@@ -84,6 +99,11 @@ instructions() {
     echo "| instructions ours full millions | $(ratio "$ours_full" 1000000) |"
     echo "| instructions llvmpipe full millions | $(ratio "$lp_full" 1000000) |"
     echo "| instructions ours flat millions | $(ratio "$ours_flat" 1000000) |"
+    echo "| instructions ours full plain millions | $(ratio "$ours_plain" 1000000) |"
+    echo "| instructions ours full screen_accept millions |" \
+         "$(ratio "$ours_accept" 1000000) |"
+    echo "| instructions ours full masked_fetch millions |" \
+         "$(ratio "$ours_masked" 1000000) |"
     "$bench" --report >"$scratch/report.txt"
     # The full scene's raster line: stage, triangles, spans, pixels, divides, ms.
     drawn=$(awk '/^## full/ { f = 1 } f && $1 == "raster" { print $2; exit }' \

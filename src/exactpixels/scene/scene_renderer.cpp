@@ -114,6 +114,7 @@ struct MeshContext {
     Material material;                    // the mesh's specular colour and exponent
     Rgba8 flat;                           // the mesh's colour, as written
     SampledClock clock;                   // on for the triangles whose stages are timed
+    bool masked_fetch = false; // FastPaths::masked_fetch, and the texture allows it
 };
 
 /// The unit vector from a view-space point to the eye: towards the origin for a
@@ -194,14 +195,13 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
     TexelRounding perspective_rounding{}, affine_rounding{};
     if (m.stages.texture) {
         check_textured_triangle(tv, settings); // ranges of chapter 3's mappers
-        planes = texture_planes(p, tv);
+        // The spans use affine on every span or on none (auto never picks affine where
+        // w varies): its planes and rounding only where it runs.
+        const bool affine_only = options.mapper.automatic
+                                     ? affine_exact
+                                     : options.mapper.mapper.kind == MapperKind::affine;
+        planes = texture_planes(p, tv, affine_only);
         if (options.rounding) { // chapter 4: ties go right, or down
-            // Only the rounding of the mapper the spans will use: affine on every span
-            // or on none (auto never picks affine where w varies).
-            const bool affine_only =
-                options.mapper.automatic
-                    ? affine_exact
-                    : options.mapper.mapper.kind == MapperKind::affine;
             if (affine_only) {
                 affine_rounding = choose_rounding(tv, MapperKind::affine);
             } else {
@@ -324,10 +324,14 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
             const TexelRounding r = mapper.kind == MapperKind::affine
                                         ? affine_rounding
                                         : perspective_rounding;
-            map_span(mapper, options.precision, r, ps, affine_span(planes, s),
+            const AffineSpan<double> as = mapper.kind == MapperKind::affine
+                                              ? affine_span(planes, s)
+                                              : AffineSpan<double>{};
+            map_span(mapper, options.precision, r, ps, as,
                      [&](int k, int i, int j, double uu, double vv) {
                          m.row[static_cast<std::size_t>(k)] =
-                             fetch_texel(*m.texture, i, j, m.mesh.wrap);
+                             m.masked_fetch ? fetch_texel_masked(*m.texture, i, j)
+                                            : fetch_texel(*m.texture, i, j, m.mesh.wrap);
                          if (m.coordinates != nullptr && seen(k)) {
                              const std::size_t at =
                                  static_cast<std::size_t>(s.y) *
@@ -591,6 +595,54 @@ bool any_outside(const std::vector<ViewPlane>& planes,
 }
 //< view-volume
 
+//> screen-accept
+/// How far inside the screen's edges and the guard band's the fast test wants projected
+/// corners, px: one sub-pixel step. A corner's plane value for the screen line x = s is
+/// z (px - s) (z = 1 orthographic); computed in double, it and px are off by a few
+/// units of 2^-53 times numbers below 2^21 px, some 2^-30 px, so a corner this far
+/// inside a line on screen is inside its plane too (@eq:scene-screen-accept).
+constexpr double screen_accept_margin_px = 1.0 / 256.0;
+
+/// The fast variant of the view-volume tests (FastPaths::screen_accept) for the common
+/// triangle. True when every corner lies between the near and far planes (compared as
+/// the planes compare: z >= near, z <= far) and projects at least
+/// screen_accept_margin_px inside the guard band, and the projected corners' box
+/// overlaps the screen by that margin on each side: then no plane of volume.clip has a
+/// corner outside and no plane of volume.reject has all three outside, as any_outside
+/// and outside_one would find (tests/ch07_fast_paths.cpp). Writes the projected corners
+/// (project_vertex's values, not yet checked for finite 1/w and uv/w) when it says yes;
+/// false means undecided, and the plain tests run. NaN and infinities fail a compare.
+bool screen_accept(const Scene& scene, const Pinhole& lens,
+                   const std::array<ViewVertex, 3>& view,
+                   std::array<TexturedVertex, 3>& corners) {
+    const bool perspective = scene.camera.projection == Projection::perspective;
+    for (const ViewVertex& v : view) {
+        const double z = v.position.z;
+        if (perspective && !(z >= scene.camera.near && z <= scene.camera.far)) {
+            return false; // before project_vertex, which refuses z <= 0
+        }
+        if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) ||
+            !std::isfinite(z)) {
+            return false; // project_vertex refuses these too
+        }
+    }
+    const double margin = screen_accept_margin_px;
+    const double band = guard_band_px - margin;
+    Point2 lo{band, band}, hi{-band, -band};
+    for (std::size_t k = 0; k < 3; ++k) {
+        corners[k] = project_vertex(scene, lens, view[k]);
+        const Point2 p = corners[k].position;
+        if (!(std::abs(p.x) <= band && std::abs(p.y) <= band)) {
+            return false;
+        }
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+    }
+    return hi.x >= margin && lo.x <= scene.width - margin && hi.y >= margin &&
+           lo.y <= scene.height - margin;
+}
+//< screen-accept
+
 /// Twice the signed screen area of the triangle; negative when it faces the camera
 /// (its corners run counter-clockwise as seen from its front).
 double screen_area2(const std::array<TexturedVertex, 3>& t) {
@@ -632,7 +684,7 @@ MeshStages mesh_stages(const Scene& scene, const SceneMesh& mesh) {
 }
 
 //> geometry-stage
-SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths fast) {
     SceneGeometry geometry;
     const CameraFrame camera = camera_frame(scene.camera);
     const bool perspective = scene.camera.projection == Projection::perspective;
@@ -670,15 +722,17 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
         // Only `depth = "auto"` asks (a scan of every corner per corner of one face).
         footprint.can_overlap_itself =
             scene.options.depth == DepthMode::automatic && can_overlap_itself(mesh);
-        // Projects a view-space corner and stops a non-finite one (naming the mesh).
-        const auto project_checked = [&](const ViewVertex& v, std::size_t index) {
-            const TexturedVertex corner = project_vertex(scene, lens, v);
+        // Stops a projected corner that is not finite (naming the mesh).
+        const auto checked = [&](const TexturedVertex& corner, std::size_t index) {
             try {
                 check_finite(corner, scene.options.precision, index);
             } catch (const Error& error) {
                 throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
             }
             return corner;
+        };
+        const auto project_checked = [&](const ViewVertex& v, std::size_t index) {
+            return checked(project_vertex(scene, lens, v), index);
         };
         const Clock::time_point t0 = Clock::now(); // the whole mesh: clocks cost time
         for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
@@ -690,19 +744,27 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
                 colours[k] = triangle[k].colour;
             }
             report.geometry.triangles += 1;
-            if (outside_one(volume.reject, view)) { // covers no pixel: not even projected
-                report.rejected.triangles += 1;
-                report.geometry.seconds += seconds_since(t0);
-                continue;
+            std::array<TexturedVertex, 3> corners{}; // of a triangle not clipped
+            bool needs_clip = false;
+            if (fast.screen_accept && screen_accept(scene, lens, view, corners)) {
+                for (std::size_t k = 0; k < 3; ++k) { // inside: neither rejected nor cut
+                    corners[k] = checked(corners[k], index);
+                }
+            } else {                                    // the plain path
+                if (outside_one(volume.reject, view)) { // covers no pixel: not projected
+                    report.rejected.triangles += 1;
+                    continue;
+                }
+                needs_clip = any_outside(volume.clip, view);
+                if (!needs_clip) {
+                    for (std::size_t k = 0; k < 3; ++k) {
+                        corners[k] = project_checked(view[k], index);
+                    }
+                }
             }
-            const bool needs_clip = any_outside(volume.clip, view);
             // A whole triangle is culled before it is lit: the same projected corners
             // decide it here and below, so the decision cannot differ.
-            std::array<TexturedVertex, 3> corners{}; // of a triangle not clipped
             if (!needs_clip) {
-                for (std::size_t k = 0; k < 3; ++k) {
-                    corners[k] = project_checked(view[k], index);
-                }
                 if (mesh.cull_back && screen_area2(corners) >= 0.0) {
                     report.culling.triangles += 1;
                     continue;
@@ -731,21 +793,23 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
                 report.lighting.seconds += seconds_since(l0);
             }
             //> clip-only-when-needed
-            std::vector<ClippedCorners> pieces{{view, colours, view_normals}};
-            if (needs_clip) { // the only triangles that pay for it
+            const ClippedCorners whole{view, colours, view_normals}; // uncut: one piece
+            std::vector<ClippedCorners> cut; // the pieces of a cut triangle
+            if (needs_clip) {                // the only triangles that pay for it
                 const Clock::time_point c0 = Clock::now();
-                pieces = clip_corners(view, colours, view_normals, volume.clip,
-                                      with_colours, phong);
+                cut = clip_corners(view, colours, view_normals, volume.clip, with_colours,
+                                   phong);
                 report.clipping.triangles += 1;
                 report.clipping.seconds += seconds_since(c0);
             }
             //< clip-only-when-needed
-            for (const ClippedCorners& piece : pieces) {
+            const std::size_t piece_count = needs_clip ? cut.size() : 1;
+            for (std::size_t p = 0; p < piece_count; ++p) {
+                const ClippedCorners& piece = needs_clip ? cut[p] : whole;
                 ScreenTriangle t{};
                 for (std::size_t k = 0; k < 3; ++k) {
                     t.corners[k] = needs_clip ? project_checked(piece.view[k], index)
                                               : corners[k]; // piece.view is view
-
                     t.nearness[k] =
                         perspective ? 1.0 / t.corners[k].w : -piece.view[k].position.z;
                     t.points[k] = piece.view[k].position;
@@ -796,13 +860,13 @@ void share_drawing_time(RenderReport& report, const RenderReport& before, double
 } // namespace
 
 //> render-scene
-RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
+RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths fast) {
     const Clock::time_point start = Clock::now();
     RenderResult result{
         Framebuffer(scene.width, scene.height, to_rgba8(scene.background)), {}};
     RenderReport& report = result.report;
     const bool lit = !scene.lights.empty();
-    const SceneGeometry geometry = run_geometry(scene, report);
+    const SceneGeometry geometry = run_geometry(scene, report, fast);
     const DepthPlan depth_plan = plan_depth(scene.options.depth, geometry.footprints,
                                             Viewport{scene.width, scene.height});
     report.depth_on = depth_plan.on;
@@ -847,6 +911,8 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates) {
                       Material{mesh.specular, mesh.shininess},
                       to_rgba8(mesh.colour),
                       {}};
+        m.masked_fetch = fast.masked_fetch && m.texture != nullptr &&
+                         can_fetch_masked(*m.texture, mesh.wrap);
         bool full_chain = mesh.texture && full_chains[*mesh.texture];
         m.full_chain = &full_chain;
         try {

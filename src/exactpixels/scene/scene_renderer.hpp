@@ -45,6 +45,25 @@ namespace exactpixels {
 inline constexpr double guard_band_px = 524288.0; // 2^19
 //< guard-band
 
+//> fast-paths
+/// The renderer's speed tricks: each a named fast variant beside a plain step of the
+/// pipeline, giving the same pixels and the same report counts on every scene
+/// (tests/ch07_fast_paths.cpp). All on by default; all off is the plain teaching path.
+struct FastPaths {
+    /// Geometry: a triangle whose corners lie between the near and far planes and
+    /// project well inside the guard band, onto a box that overlaps the screen, is
+    /// neither rejected nor clipped, decided from its projected corners with a few
+    /// compares (screen_accept) instead of the view volume's plane tests.
+    bool screen_accept = true;
+    /// Texture: a power-of-two texture under `repeat` is read inline with the indices
+    /// wrapped by a bit mask (fetch_texel_masked) instead of two integer remainders.
+    bool masked_fetch = true;
+};
+
+/// Every fast path off: the plain teaching path.
+inline constexpr FastPaths plain_paths{false, false};
+//< fast-paths
+
 /// What one stage did over a whole render.
 struct StageCounter {
     long long triangles = 0; ///< triangles the stage ran on
@@ -123,8 +142,9 @@ struct SceneGeometry {
 /// back-face culled (a triangle that needs no clipping is culled before it is lit).
 /// Counts go to `report` (geometry, rejected, clipping, culling, lit_vertices, the
 /// lighting fields). Throws
-/// Error naming the mesh when a corner projects to a value that is not finite.
-SceneGeometry run_geometry(const Scene& scene, RenderReport& report);
+/// Error naming the mesh when a corner projects to a value that is not finite. `fast`
+/// chooses the fast variants (FastPaths); the result is the same either way.
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths fast = {});
 
 /// A rendered image and what it cost.
 struct RenderResult {
@@ -136,8 +156,10 @@ struct RenderResult {
 /// pixel last written by a textured triangle the texel coordinate the mapper computed
 /// (and the indices it picked); pixels written by untextured triangles are uncovered.
 /// Throws Error naming the mesh (file, line, column, key path) when a triangle leaves
-/// the range the rasterizer or the mapper can handle exactly.
-RenderResult render_scene(const Scene& scene, TexelMap* coordinates = nullptr);
+/// the range the rasterizer or the mapper can handle exactly. `fast` chooses the fast
+/// variants (FastPaths); pixels, coordinates and counts are the same either way.
+RenderResult render_scene(const Scene& scene, TexelMap* coordinates = nullptr,
+                          FastPaths fast = {});
 
 /// The report as a table: one line per stage and per mapper that ran.
 std::string format_report(const RenderReport& report);

@@ -52,6 +52,12 @@ Rgba8 fetch_texel(const Texture& texture, int i, int j, Wrap wrap) {
                          wrap_index(j, texture.height(), wrap));
 }
 
+bool can_fetch_masked(const Texture& texture, Wrap wrap) {
+    const auto power_of_two = [](int n) { return n > 0 && (n & (n - 1)) == 0; };
+    return wrap == Wrap::repeat && power_of_two(texture.width()) &&
+           power_of_two(texture.height());
+}
+
 //> sample-nearest
 Rgba8 sample_nearest(const Texture& texture, TexCoord uv, Wrap wrap) {
     // Texel i covers [i, i+1): the texel holding u is floor(u) (rule 1).

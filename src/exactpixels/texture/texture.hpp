@@ -18,6 +18,7 @@
 #include "exactpixels/base/framebuffer.hpp"
 #include "exactpixels/base/types.hpp"
 
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <vector>
@@ -70,6 +71,20 @@ inline int wrap_index_masked(int i, int size) {
 /// Texel (i, j) of the texture after wrapping each index: the nearest-texel fetch that
 /// every mapper ends in.
 Rgba8 fetch_texel(const Texture& texture, int i, int j, Wrap wrap);
+
+/// Whether fetch_texel_masked may stand in for fetch_texel: the wrap is repeat and the
+/// width and the height are both powers of two.
+bool can_fetch_masked(const Texture& texture, Wrap wrap);
+
+/// The fast variant of fetch_texel for a texture that can_fetch_masked allows: inline,
+/// each index wrapped by wrap_index_masked, one bit mask in place of an integer
+/// remainder and a compare. The same texel as fetch_texel(texture, i, j, Wrap::repeat)
+/// for every int i and j (tests/ch07_fast_paths.cpp).
+inline const Rgba8& fetch_texel_masked(const Texture& texture, int i, int j) {
+    const auto column = static_cast<std::size_t>(wrap_index_masked(i, texture.width()));
+    const auto row = static_cast<std::size_t>(wrap_index_masked(j, texture.height()));
+    return texture.texels()[row * static_cast<std::size_t>(texture.width()) + column];
+}
 
 /// Nearest-texel sampling at (u, v) in texels: texel (floor(u), floor(v)), wrapped.
 Rgba8 sample_nearest(const Texture& texture, TexCoord uv, Wrap wrap);

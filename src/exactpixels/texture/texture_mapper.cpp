@@ -57,17 +57,22 @@ void check_textured_triangle(const std::array<TexturedVertex, 3>& v,
 }
 
 TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
-                             const std::array<TexturedVertex, 3>& v) {
+                             const std::array<TexturedVertex, 3>& v, bool affine) {
     const auto plane = [&](auto value) {
         return plane_through(corners, {value(v[0]), value(v[1]), value(v[2])});
     };
     // u/w, v/w and 1/w are linear in screen space (@eq:linear-in-screen); so are u and
     // v of the affine mapper, by assumption.
-    return {plane([](const TexturedVertex& t) { return t.uv.x / t.w; }),
-            plane([](const TexturedVertex& t) { return t.uv.y / t.w; }),
-            plane([](const TexturedVertex& t) { return 1.0 / t.w; }),
-            plane([](const TexturedVertex& t) { return t.uv.x; }),
-            plane([](const TexturedVertex& t) { return t.uv.y; })};
+    TexturePlanes planes{plane([](const TexturedVertex& t) { return t.uv.x / t.w; }),
+                         plane([](const TexturedVertex& t) { return t.uv.y / t.w; }),
+                         plane([](const TexturedVertex& t) { return 1.0 / t.w; }),
+                         {},
+                         {}};
+    if (affine) {
+        planes.u = plane([](const TexturedVertex& t) { return t.uv.x; });
+        planes.v = plane([](const TexturedVertex& t) { return t.uv.y; });
+    }
+    return planes;
 }
 
 PerspectiveSpan<double> perspective_span(const TexturePlanes& planes, Span s) {

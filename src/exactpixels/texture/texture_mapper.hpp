@@ -140,8 +140,10 @@ struct TexturePlanes {
 };
 
 /// The planes of the triangle whose corners, snapped to 1/256 px, are at `corners`.
+/// Without `affine` the planes u and v are left zero: a caller whose spans never run
+/// the affine mapper need not set them up.
 TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
-                             const std::array<TexturedVertex, 3>& v);
+                             const std::array<TexturedVertex, 3>& v, bool affine = true);
 
 /// One row span's setup for the perspective mappers: the planes at the first pixel's
 /// centre (x_begin + 0.5, y + 0.5) and their steps per pixel.

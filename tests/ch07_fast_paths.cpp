@@ -1,0 +1,246 @@
+// Chapter 7 tests: the renderer's fast paths (FastPaths) are speed tricks only. With
+// them on and off, every shipped scene and the big torus of the speed comparison give
+// the same pixels, the same texel coordinates and the same report counts; random
+// triangles placed on and around the screen's edges, the guard band, the near and the
+// far plane are rejected, clipped and drawn alike; the masked texel fetch reads the
+// texel fetch_texel reads.
+#include "exactpixels/base/atomic_file.hpp"
+#include "exactpixels/lab/model_generator.hpp"
+#include "exactpixels/scene/scene_loader.hpp"
+#include "exactpixels/scene/scene_renderer.hpp"
+#include "exactpixels/texture/texture.hpp"
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+#include <glm/glm.hpp>
+
+#include <algorithm>
+#include <array>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+using namespace exactpixels;
+
+namespace {
+
+/// Every count of a stage (its seconds are not counts).
+void check_same_counts(const StageCounter& a, const StageCounter& b, const char* stage) {
+    INFO(stage);
+    CHECK(a.triangles == b.triangles);
+    CHECK(a.spans == b.spans);
+    CHECK(a.pixels == b.pixels);
+    CHECK(a.divides == b.divides);
+}
+
+/// Every count of two reports.
+void check_same_report(const RenderReport& a, const RenderReport& b) {
+    check_same_counts(a.geometry, b.geometry, "geometry");
+    check_same_counts(a.rejected, b.rejected, "rejected");
+    check_same_counts(a.clipping, b.clipping, "clipping");
+    check_same_counts(a.culling, b.culling, "culling");
+    check_same_counts(a.depth, b.depth, "depth");
+    check_same_counts(a.hidden, b.hidden, "hidden");
+    check_same_counts(a.raster, b.raster, "raster");
+    check_same_counts(a.flat, b.flat, "flat");
+    check_same_counts(a.colour, b.colour, "colour");
+    check_same_counts(a.colour_perspective, b.colour_perspective, "colour_perspective");
+    check_same_counts(a.texture, b.texture, "texture");
+    check_same_counts(a.auto_choice, b.auto_choice, "auto_choice");
+    for (std::size_t k = 0; k < a.mappers.size(); ++k) {
+        check_same_counts(a.mappers[k], b.mappers[k], "mapper");
+    }
+    check_same_counts(a.filter, b.filter, "filter");
+    check_same_counts(a.lighting, b.lighting, "lighting");
+    CHECK(a.lit_vertices == b.lit_vertices);
+    CHECK(a.filter_triangles == b.filter_triangles);
+    CHECK(a.mip_chains == b.mip_chains);
+    CHECK(a.depth_on == b.depth_on);
+    CHECK(a.colour_bound == b.colour_bound);
+}
+
+/// Renders the scene with every fast path and on the plain path and checks that the
+/// pixels, the texel coordinates and the counts are the same.
+void check_fast_is_plain(const Scene& scene) {
+    TexelMap fast_map(scene.width, scene.height), plain_map(scene.width, scene.height);
+    const RenderResult fast = render_scene(scene, &fast_map);
+    const RenderResult plain = render_scene(scene, &plain_map, plain_paths);
+    CHECK(fast.image == plain.image);
+    CHECK(fast_map.covered == plain_map.covered);
+    CHECK(fast_map.i == plain_map.i);
+    CHECK(fast_map.j == plain_map.j);
+    CHECK(fast_map.u == plain_map.u);
+    CHECK(fast_map.v == plain_map.v);
+    check_same_report(fast.report, plain.report);
+}
+
+/// The TOML number that reads back as x exactly (fmt's shortest round trip).
+std::string number(double x) {
+    return fmt::format("{}", x);
+}
+
+} // namespace
+
+TEST_CASE("the fast paths draw every shipped scene as the plain path does") {
+    const std::filesystem::path folder = shipped_scene_folder();
+    int scenes = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        if (entry.path().extension() != ".toml") {
+            continue;
+        }
+        INFO(entry.path().string());
+        check_fast_is_plain(load_scene(entry.path()));
+        scenes += 1;
+    }
+    CHECK(scenes >= 7); // shipped_scenes() and the model scenes
+    // A narrow view (corners far off screen, inside the guard band) and a far plane
+    // that cuts: the undecided triangles go the plain way.
+    Scene narrow = load_scene(folder / "horizon.toml");
+    narrow.camera.fov_degrees = 5.0;
+    check_fast_is_plain(narrow);
+    Scene cut = load_scene(folder / "corridor.toml");
+    cut.camera.far = 0.5 * (cut.camera.near + 20.0);
+    check_fast_is_plain(cut);
+}
+
+TEST_CASE("the fast paths draw the big torus as the plain path does") {
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() /
+        ("exactpixels-test-fast-paths-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    write_generated_model(big_torus_model(), folder);
+    write_file_atomically(folder / "big_torus.toml", "scene", big_torus_scene());
+    const Scene scene = load_scene(folder / "big_torus.toml");
+    std::filesystem::remove_all(folder);
+    REQUIRE(scene.meshes.size() == 1);
+    CHECK(scene.meshes[0].triangles.size() == 102400);
+    check_fast_is_plain(scene);
+}
+
+TEST_CASE("screen_accept decides as the view volume's planes on triangles at its edges") {
+    // Corners placed on screen at and around each line the tests compare with: the
+    // screen's edges, the guard band's, the margin inside them; at depths at and
+    // around the near and the far plane. A corner (px, py) at depth z is the view-space
+    // point ((px - cx) z / f, (cy - py) z / f, z), all within the loader's 1e6 units.
+    constexpr int width = 64, height = 48;
+    constexpr double near = 0.5, far = 40.0;
+    const double f = 0.5 * height / std::tan(0.25 * std::acos(-1.0)); // fov 90
+    const double band = guard_band_px, tiny = 1.0 / 256.0;
+    const std::vector<double> xs = {-band - 1.0,
+                                    -band,
+                                    -band + tiny,
+                                    -band + 2.0 * tiny,
+                                    -1.0,
+                                    -tiny,
+                                    0.0,
+                                    tiny / 2.0,
+                                    tiny,
+                                    2.0 * tiny,
+                                    10.0,
+                                    width - tiny,
+                                    width - tiny / 2.0,
+                                    width,
+                                    width + 1.0,
+                                    band - 2.0 * tiny,
+                                    band - tiny,
+                                    band,
+                                    band + 1.0,
+                                    band + 1000.0};
+    std::vector<double> ys = xs;
+    for (double& y : ys) {
+        y = y == width ? height : y == width - tiny ? height - tiny : y;
+    }
+    const std::vector<double> zs = {std::nextafter(near, 0.0), near, 1.0, 3.0, far,
+                                    std::nextafter(far, 1e9),  44.0};
+    std::mt19937 random(1717);
+    const auto pick = [&](const std::vector<double>& from) {
+        return from[std::uniform_int_distribution<std::size_t>(0,
+                                                               from.size() - 1)(random)];
+    };
+    for (const char* projection : {"perspective", "orthographic"}) {
+        INFO(projection);
+        const bool perspective = std::string(projection) == "perspective";
+        std::string positions, uvs;
+        for (int t = 0; t < 3000;) {
+            std::array<glm::dvec3, 3> corner{};
+            for (glm::dvec3& c : corner) {
+                // Mostly near the screen, so that most triangles cover pixels.
+                const bool wild = std::uniform_int_distribution<int>(0, 2)(random) == 0;
+                const double px = wild ? pick(xs)
+                                       : std::uniform_real_distribution<double>(
+                                             -4.0, width + 4.0)(random);
+                const double py = wild ? pick(ys)
+                                       : std::uniform_real_distribution<double>(
+                                             -4.0, height + 4.0)(random);
+                const double z = pick(zs);
+                const double scale = perspective ? z / f : 1.0 / f; // view_height = h / f
+                c = {(px - 0.5 * width) * scale, (0.5 * height - py) * scale, z};
+            }
+            const glm::dvec3 a = corner[1] - corner[0], b = corner[2] - corner[0];
+            if (glm::length(glm::cross(a, b)) <= 1e-6 * glm::length(a) * glm::length(b)) {
+                continue; // the loader refuses a triangle without area
+            }
+            for (std::size_t k = 0; k < 3; ++k) {
+                positions += fmt::format("[{}, {}, {}],", number(corner[k].x),
+                                         number(corner[k].y), number(corner[k].z));
+                uvs += fmt::format("[{}, {}],", 8 * k, 4 * t % 64);
+            }
+            t += 1;
+        }
+        const std::string toml = fmt::format(
+            "[image]\nwidth = {}\nheight = {}\n[camera]\nprojection = \"{}\"\n"
+            "position = [0, 0, 0]\ntarget = [0, 0, 1]\nfov = 90\nview_height = {}\n"
+            "near = {}\nfar = {}\n[render]\ndepth = true\nmapper = \"auto\"\n"
+            "[textures.checks]\nkind = \"checkerboard\"\nsize = [64, 64]\n"
+            "square = 8\n"
+            "[[mesh]]\nprimitive = \"triangles\"\ntexture = \"checks\"\n"
+            "positions = [{}]\nuv = [{}]\n",
+            width, height, projection, number(height / f), number(near), number(far),
+            positions, uvs);
+        const Scene scene = parse_scene(toml, "edges.toml", ".");
+        check_fast_is_plain(scene);
+        // The scene reaches every case: some triangles rejected, some cut, some drawn.
+        const RenderReport report = render_scene(scene).report;
+        CHECK(report.rejected.triangles > 0);
+        CHECK(report.clipping.triangles > 0);
+        CHECK(report.raster.triangles > 1000);
+    }
+}
+
+TEST_CASE("fetch_texel_masked reads fetch_texel's texel on power-of-two textures") {
+    for (const auto& [w, h] :
+         {std::pair{1, 1}, std::pair{2, 8}, std::pair{64, 32}, std::pair{16, 16}}) {
+        const Texture texture =
+            checkerboard_texture(w, h, 1, rgba(1, 2, 3), rgba(9, 8, 7));
+        std::vector<Rgba8> texels(texture.texels().size());
+        for (std::size_t k = 0; k < texels.size(); ++k) { // every texel different
+            texels[k] = rgba(static_cast<std::uint8_t>(k % 251),
+                             static_cast<std::uint8_t>(k / 251 % 251), 17);
+        }
+        const Texture numbered(w, h, texels);
+        REQUIRE(can_fetch_masked(numbered, Wrap::repeat));
+        std::vector<int> indices;
+        for (int i = -3 * 64; i <= 3 * 64; ++i) {
+            indices.push_back(i);
+        }
+        for (const int i : {INT_MIN, INT_MIN + 1, INT_MAX - 1, INT_MAX}) {
+            indices.push_back(i);
+        }
+        for (const int i : indices) {
+            for (const int j :
+                 {-65, -64, -33, -1, 0, 1, 31, 32, 63, 64, INT_MIN, INT_MAX, i}) {
+                REQUIRE(fetch_texel_masked(numbered, i, j) ==
+                        fetch_texel(numbered, i, j, Wrap::repeat));
+            }
+        }
+        CHECK(!can_fetch_masked(texture, Wrap::clamp));
+    }
+    CHECK(!can_fetch_masked(checkerboard_texture(20, 28, 4), Wrap::repeat));
+    CHECK(!can_fetch_masked(checkerboard_texture(64, 48, 4), Wrap::repeat));
+    CHECK(!can_fetch_masked(checkerboard_texture(48, 64, 4), Wrap::repeat));
+}
