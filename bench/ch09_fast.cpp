@@ -416,14 +416,9 @@ GLsizei prepare_textured_peer(int area) {
     return static_cast<GLsizei>(a.xyzw.size() / 4);
 }
 
-void llvmpipe_textured(benchmark::State& state) {
-    const int area = static_cast<int>(state.range(0));
-    Peer& p = peer();
-    if (p.context == nullptr) {
-        state.SkipWithError(p.problem.c_str());
-        return;
-    }
-    const GLsizei vertices = prepare_textured_peer(area);
+/// Times llvmpipe drawing the `vertices` prepared for `area` (one uncounted drawing
+/// first, which compiles its code for this state).
+void time_peer(benchmark::State& state, int area, GLsizei vertices) {
     glDrawArrays(GL_TRIANGLES, 0, vertices); // compiles llvmpipe's code for this state
     glFinish();
     for (auto _ : state) {
@@ -436,6 +431,16 @@ void llvmpipe_textured(benchmark::State& state) {
     report(state, area);
 }
 
+void llvmpipe_textured(benchmark::State& state) {
+    const int area = static_cast<int>(state.range(0));
+    Peer& p = peer();
+    if (p.context == nullptr) {
+        state.SkipWithError(p.problem.c_str());
+        return;
+    }
+    time_peer(state, area, prepare_textured_peer(area));
+}
+
 void llvmpipe(benchmark::State& state, bool with_depth) {
     const int area = static_cast<int>(state.range(0));
     Peer& p = peer();
@@ -443,17 +448,7 @@ void llvmpipe(benchmark::State& state, bool with_depth) {
         state.SkipWithError(p.problem.c_str());
         return;
     }
-    const GLsizei vertices = prepare_peer(area, with_depth);
-    glDrawArrays(GL_TRIANGLES, 0, vertices); // compiles llvmpipe's code for this state
-    glFinish();
-    for (auto _ : state) {
-        glDrawArrays(GL_TRIANGLES, 0, vertices);
-        glFinish();
-    }
-    if (glGetError() != GL_NO_ERROR) {
-        state.SkipWithError("OpenGL reported an error");
-    }
-    report(state, area);
+    time_peer(state, area, prepare_peer(area, with_depth));
 }
 
 /// The one drawing callgrind counts (see the top of the file).
