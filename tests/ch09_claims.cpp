@@ -148,6 +148,13 @@ TEST_CASE(
     CHECK(rate("flat", "tiled", 1000) < rate("flat", "runs", 1000));
 }
 
+TEST_CASE("claim: the fastest 3 px rate, and the walk's, are between 40 and 60 Mtri/s") {
+    for (const double r : {best("flat", 3), rate("flat", "walk", 3)}) {
+        CHECK(r > 40e6);
+        CHECK(r < 60e6);
+    }
+}
+
 TEST_CASE("claim: a 3 px triangle costs the pixel walk 400 to 500 instructions") {
     CHECK(instructions("flat/walk/3") > 400);
     CHECK(instructions("flat/walk/3") < 500);
