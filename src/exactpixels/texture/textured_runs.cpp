@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -58,19 +59,21 @@ void textured_run(Rgba8* row, const PerspectiveSpan<double>& ps, Fetch&& fetch) 
 }
 //< textured-run
 
-/// A power-of-two texture that repeats: texel (i, j) is texels[(j & h_mask) << w_shift
-/// | (i & w_mask)] (wrap_index_masked on both indices).
+/// A texture that can_fetch_masked allows (power-of-two sides, repeat): texel (i, j) is
+/// fetch_texel_masked's, and the SSE2 loop finds the same texel as
+/// texels[(j & h_mask) << w_shift | (i & w_mask)].
 struct MaskedTexels {
-    const Rgba8* texels; ///< row-major, width 1 << w_shift
-    int w_mask;          ///< width - 1
-    int h_mask;          ///< height - 1
-    int w_shift;         ///< log2(width)
+    explicit MaskedTexels(const Texture& t)
+        : texture(&t), texels(t.texels().data()), w_mask(t.width() - 1),
+          h_mask(t.height() - 1),
+          w_shift(std::countr_zero(static_cast<unsigned>(t.width()))) {}
+    const Texture* texture; ///< the texture read
+    const Rgba8* texels;    ///< its texels, row-major, width 1 << w_shift
+    int w_mask;             ///< width - 1
+    int h_mask;             ///< height - 1
+    int w_shift;            ///< log2(width)
     /// Texel (i, j) after wrapping.
-    Rgba8 operator()(int i, int j) const {
-        return texels[(static_cast<std::size_t>(wrap_index_masked(j, h_mask + 1))
-                       << w_shift) +
-                      static_cast<std::size_t>(wrap_index_masked(i, w_mask + 1))];
-    }
+    Rgba8 operator()(int i, int j) const { return fetch_texel_masked(*texture, i, j); }
 };
 
 #if defined(__SSE2__) && !defined(EXACTPIXELS_PORTABLE_LANES)
@@ -155,16 +158,9 @@ void draw_textured_runs(const RenderTarget& target,
                         std::span<const std::array<TexturedVertex, 3>> triangles,
                         const Texture& texture, Wrap wrap) {
     check_all(triangles);
-    const int w = texture.width(), h = texture.height();
-    const Rgba8* texels = texture.texels().data();
-    const auto power_of_two = [](int size) { return (size & (size - 1)) == 0; };
-    if (wrap == Wrap::repeat && power_of_two(w) && power_of_two(h)) {
+    if (can_fetch_masked(texture, wrap)) {
         // Repeat on a power of two: wrap_index_masked, a mask per index (the fast case).
-        int shift = 0;
-        while ((1 << shift) < w) {
-            ++shift;
-        }
-        const MaskedTexels fetch{texels, w - 1, h - 1, shift};
+        const MaskedTexels fetch(texture);
         for (const auto& tri : triangles) {
             draw_one(target, tri, fetch);
         }
