@@ -142,7 +142,7 @@ int texel_index_by_library(double u, std::int32_t bias) {
 
 } // namespace
 
-TEST_CASE("floor_to_int, ceil_to_int and the texel index equal the maths library's") {
+TEST_CASE("floor_to_int, ceil_to_int, round_to_int and the texel index equal libm's") {
     // Edge cases: integers, halves, the doubles next to them, both signs, the range's
     // ends.
     std::vector<double> xs{0.0,
@@ -158,7 +158,9 @@ TEST_CASE("floor_to_int, ceil_to_int and the texel index equal the maths library
                            0x1p30 - 0.5,
                            -0x1p30 + 0.5,
                            1e-300,
-                           -1e-300};
+                           -1e-300,
+                           0.49999999999999994, // floor(x + 0.5) gets this one wrong
+                           -0.49999999999999994};
     for (const double x : std::vector<double>(xs)) {
         xs.push_back(std::nextafter(x, 1e300));
         xs.push_back(std::nextafter(x, -1e300));
@@ -168,13 +170,16 @@ TEST_CASE("floor_to_int, ceil_to_int and the texel index equal the maths library
         const double x =
             std::ldexp(random.uniform(-1.0, 1.0), int(random.uniform(-20, 31)));
         xs.push_back(x);
-        xs.push_back(std::round(x)); // whole numbers, where floor and ceil meet
+        xs.push_back(std::round(x));       // whole numbers, where floor and ceil meet
+        xs.push_back(std::round(x) + 0.5); // halves, where rounding breaks a tie
     }
-    long long floor_differs = 0, ceil_differs = 0, index_differs = 0, indices = 0;
+    long long floor_differs = 0, ceil_differs = 0, round_differs = 0, index_differs = 0,
+              indices = 0;
     for (const double x : xs) {
         if (std::abs(x) <= max_floor_to_int_magnitude) {
             floor_differs += floor_to_int(x) != static_cast<int>(std::floor(x));
             ceil_differs += ceil_to_int(x) != static_cast<int>(std::ceil(x));
+            round_differs += round_to_int(x) != static_cast<int>(std::lround(x));
         }
         if (std::abs(x) < 0x1p31 - 2) { // the index fits in an int
             for (const std::int32_t bias : {texel_scale / 2, texel_scale / 2 - 1}) {
@@ -188,5 +193,6 @@ TEST_CASE("floor_to_int, ceil_to_int and the texel index equal the maths library
     CHECK(indices == 2 * static_cast<long long>(xs.size()) - 8); // all but +-max, outward
     CHECK(floor_differs == 0);
     CHECK(ceil_differs == 0);
+    CHECK(round_differs == 0);
     CHECK(index_differs == 0);
 }

@@ -18,6 +18,7 @@
 // shorter piece is aimed at the span's last pixel. n >= 2.
 #pragma once
 
+#include "exactpixels/base/floor_to_int.hpp"
 #include "exactpixels/texture/quadratic.hpp"
 
 #include <algorithm>
@@ -189,10 +190,11 @@ void map_span_quadratic_subdivided(const PerspectiveSpan<Real>& s, int n, Emit&&
     }
 }
 
-/// u in texels as a 16.16 integer, rounded to nearest. |u| must be < 2^15.
+/// u in texels as a 16.16 integer, rounded to nearest (halves away from zero). |u| must
+/// be < 2^15.
 inline std::int32_t to_fixed_texel(double u) {
     assert(std::abs(u) < 32768.0);
-    return static_cast<std::int32_t>(std::lround(u * 65536.0));
+    return round_to_int(u * 65536.0);
 }
 
 /// The exact mapper with a 16.16 result: the divide in double, U rounded to nearest.
