@@ -10,12 +10,18 @@
 //          blocks    chapter 2's 8x8 blocks (traverse_blocks_fast), per-pixel output
 //          runs      covered runs per row (row_runs.hpp), one triangle at a time
 //          masks     8x8 masks, SSE2 lanes (block_masks.hpp), one triangle at a time
-//          tiled     draw_tiled: 64x64 tiles, binning, runs; THREADS threads
+//          tiled     a kept TiledRenderer: 64x64 tiles, binning, runs; THREADS threads
+//                    (its pool and bins made once for the whole run)
 //          plain     a plain fill of the same number of pixels (no coverage test)
 //          llvmpipe  OSMesa/llvmpipe, LP_NUM_THREADS rasterizer threads (default 1)
 // Counters: tri_per_s and pix_per_s per second of process CPU time (all threads, so
 // llvmpipe's rasterizer thread counts; a loaded machine does not distort it), except
-// wall/tiled/AREA/THREADS: wall-clock time with 1 and 2 threads (the scaling target).
+// the wall-clock runs (the scaling target), with 1 and 2 threads:
+//          wall/tiled/AREA/THREADS          the kept TiledRenderer
+//          wall/tiled_per_call/AREA/THREADS draw_tiled, its threads started per call
+//          wall/llvmpipe/AREA/THREADS       llvmpipe, THREADS = LP_NUM_THREADS: OSMesa
+//                    reads it once, when the process makes its first context, so one
+//                    process measures one count (full_run.sh runs LP_NUM_THREADS=2 too).
 //
 // One iteration draws a whole set: the same 1024 triangles of one area
 // (triangle_sets.hpp, the set of chapter 2's benchmark) into a 1024 x 1024 frame, each
@@ -65,6 +71,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -176,7 +183,17 @@ void report(benchmark::State& state, int area) {
         Counter(sets * static_cast<double>(covered_pixels(area)), Counter::kIsRate);
 }
 
-enum class Variant { walk, blocks, runs, masks, tiled, plain };
+enum class Variant { walk, blocks, runs, masks, tiled, tiled_per_call, plain };
+
+/// The kept tiled renderer with `threads` threads: made on first use, kept for the run.
+TiledRenderer& renderer(int threads) {
+    static std::map<int, std::unique_ptr<TiledRenderer>> kept;
+    auto& r = kept[threads];
+    if (!r) {
+        r = std::make_unique<TiledRenderer>(threads);
+    }
+    return *r;
+}
 
 /// Draws the whole set of `area` once with `variant` (threads: for tiled only).
 void draw_set(Variant variant, bool with_depth, int area, int threads) {
@@ -220,6 +237,9 @@ void draw_set(Variant variant, bool with_depth, int area, int threads) {
         }
         break;
     case Variant::tiled:
+        renderer(threads).draw(target, tris);
+        break;
+    case Variant::tiled_per_call:
         draw_tiled(target, tris, threads);
         break;
     case Variant::plain: // `area` pixels as a near-square rectangle per triangle
@@ -615,15 +635,25 @@ void register_all() {
                 ->MeasureProcessCPUTime();
         }
     }
-    // Threads: wall-clock time of the tiled renderer with 1 and 2 threads.
+    // Threads: wall-clock time of the tiled renderer with 1 and 2 threads, kept and
+    // started per call, and of llvmpipe with this process's LP_NUM_THREADS.
     for (const int area : areas) {
         for (const int threads : {1, 2}) {
-            benchmark::RegisterBenchmark(
-                "wall/tiled",
-                [](benchmark::State& s) { project(s, Variant::tiled, false); })
-                ->Args({area, threads})
-                ->UseRealTime();
+            for (const auto& [name, variant] :
+                 {std::pair{"wall/tiled", Variant::tiled},
+                  std::pair{"wall/tiled_per_call", Variant::tiled_per_call}}) {
+                benchmark::RegisterBenchmark(name,
+                                             [variant = variant](benchmark::State& s) {
+                                                 project(s, variant, false);
+                                             })
+                    ->Args({area, threads})
+                    ->UseRealTime();
+            }
         }
+        benchmark::RegisterBenchmark("wall/llvmpipe",
+                                     [](benchmark::State& s) { llvmpipe(s, false); })
+            ->Args({area, peer_threads})
+            ->UseRealTime();
     }
 }
 

@@ -5,20 +5,25 @@
 // textured runs draw the texels of chapter 3's exact mapper under perspective.
 #include "ch02_grid.hpp"
 #include "exactpixels/raster/block_masks.hpp"
+#include "exactpixels/raster/depth_lanes.hpp"
 #include "exactpixels/raster/row_runs.hpp"
 #include "exactpixels/raster/sign_lanes.hpp"
+#include "exactpixels/raster/sign_lanes4.hpp"
 #include "exactpixels/raster/tiled_rasterizer.hpp"
+#include "exactpixels/raster/tiny_triangle.hpp"
 #include "exactpixels/texture/textured_runs.hpp"
 #include "support/meshes.hpp"
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 #include <random>
 #include <string>
+#include <type_traits>
 
 using namespace exactpixels;
 using ch02::Grid;
@@ -26,10 +31,11 @@ using ch02::Grid;
 namespace {
 
 /// The fast traversals of this chapter, by name.
-enum class Fast { runs, runs_fast, masks_portable, masks_sse2 };
+enum class Fast { runs, runs_fast, runs_stepped, masks_portable, masks_sse2 };
 
 // The plain traversal_runs is the exercise ch09-run-of-row: its own test below.
-constexpr Fast all_fast[] = {Fast::runs_fast, Fast::masks_portable, Fast::masks_sse2};
+constexpr Fast all_fast[] = {Fast::runs_fast, Fast::runs_stepped, Fast::masks_portable,
+                             Fast::masks_sse2};
 
 const char* name_of(Fast f) {
     switch (f) {
@@ -37,6 +43,8 @@ const char* name_of(Fast f) {
         return "runs";
     case Fast::runs_fast:
         return "runs (fast)";
+    case Fast::runs_stepped:
+        return "runs (stepped ends)";
     case Fast::masks_portable:
         return "8x8 masks (portable lanes)";
     case Fast::masks_sse2:
@@ -69,6 +77,9 @@ void draw_fast(Grid& g, const std::array<FixedPoint2, 3>& v, Fast f) {
         break;
     case Fast::runs_fast:
         traverse_runs_fast(s, r, run);
+        break;
+    case Fast::runs_stepped:
+        traverse_runs_stepped(s, r, run);
         break;
     case Fast::masks_portable:
         traverse_block_masks<lanes::Portable>(s, r, mask);
@@ -239,6 +250,28 @@ TEST_CASE(
     CHECK(near_2_60 > 1000);   // edge values near the top of the range were tried
 }
 
+namespace {
+
+/// The bits lanes L compute for three edges whose values in lane i are w[k] + i s[k].
+template <class L, class T> unsigned lane_bits(const T (&w)[3], const T (&s)[3]) {
+    return ((L::broadcast(w[0]) + L::ramp(s[0])) | (L::broadcast(w[1]) + L::ramp(s[1])) |
+            (L::broadcast(w[2]) + L::ramp(s[2])))
+        .nonnegative_bits();
+}
+
+/// The same bits by their definition, one lane at a time, for `lanes` lanes.
+template <class T> unsigned defined_bits(const T (&w)[3], const T (&s)[3], int lanes) {
+    unsigned bits = 0;
+    for (int i = 0; i < lanes; ++i) {
+        bits |=
+            unsigned{w[0] + i * s[0] >= 0 && w[1] + i * s[1] >= 0 && w[2] + i * s[2] >= 0}
+            << i;
+    }
+    return bits;
+}
+
+} // namespace
+
 TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes") {
     std::mt19937_64 rng(93);
     const std::int64_t big = std::numeric_limits<std::int64_t>::max() / 16;
@@ -253,35 +286,239 @@ TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes
                                    trial % 2 ? value(rng) : value(rng) >> 40};
         const std::int64_t s[3] = {step(rng) >> (trial % 40), step(rng) >> (trial % 40),
                                    step(rng) >> (trial % 40)};
-        const auto bits = [&](auto lanes_type) {
-            using L = decltype(lanes_type);
-            return ((L::broadcast(w[0]) + L::ramp(s[0])) |
-                    (L::broadcast(w[1]) + L::ramp(s[1])) |
-                    (L::broadcast(w[2]) + L::ramp(s[2])))
-                .nonnegative_bits();
-        };
-        const std::uint8_t portable = bits(lanes::Portable{});
-        unsigned scalar = 0; // the definition, one lane at a time
-        for (int i = 0; i < 8; ++i) {
-            scalar |= unsigned{w[0] + i * s[0] >= 0 && w[1] + i * s[1] >= 0 &&
-                               w[2] + i * s[2] >= 0}
-                      << i;
-        }
-        REQUIRE(portable == scalar);
+        const unsigned portable = lane_bits<lanes::Portable>(w, s);
+        REQUIRE(portable == defined_bits(w, s, 8));
 #if defined(__SSE2__)
-        REQUIRE(bits(lanes::Sse2{}) == portable);
+        REQUIRE(lane_bits<lanes::Sse2>(w, s) == portable);
 #endif
         all_mixed += portable != 0 && portable != 0xff;
     }
     CHECK(all_mixed > 1000); // the test saw many partly covered rows
 }
 
+TEST_CASE("depth lanes write plot's depth bits and colours, four pixels at a time") {
+    // Random depth planes over rows of 40 pixels of stored depths (many of them exactly
+    // the plane's own z, so that ties, which must not draw, are common; some +-0, some
+    // infinities, some the largest finite float), every run [x_begin, x_end) and every
+    // 8-pixel mask row of each, drawn by both implementations and by plot's definition
+    // one pixel at a time (z = plane.at(x, y), drawn when z < stored): the same depth
+    // bits and colours.
+    std::mt19937_64 rng(95);
+    constexpr int width = 40;
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::uniform_int_distribution<int> kind(0, 9), column(0, width), row_of(0, 4095);
+    const float big = std::numeric_limits<float>::max();
+    const float inf = std::numeric_limits<float>::infinity();
+    const float edge_values[] = {0.0f, -0.0f, inf, -inf, big, -big, 1.0f, 0.5f};
+    const Rgba8 paint = rgba(10, 200, 30, 77), ground = rgba(1, 2, 3, 4);
+    const auto bits_of = [](const std::vector<float>& d) {
+        std::vector<std::uint32_t> b;
+        for (const float z : d) {
+            b.push_back(std::bit_cast<std::uint32_t>(z));
+        }
+        return b;
+    };
+    int drawn = 0, kept = 0, ties = 0;
+    for (int trial = 0; trial < 4000; ++trial) {
+        // Gradients from tiny to steep, a row far down half the time.
+        const float scale = std::ldexp(1.0f, trial % 24 - 16);
+        const DepthPlane plane{unit(rng), unit(rng) * scale, unit(rng) * scale};
+        const int y = trial % 2 ? row_of(rng) : trial % 7;
+        std::vector<float> stored(width);
+        for (int x = 0; x < width; ++x) {
+            const int k = kind(rng);
+            stored[static_cast<std::size_t>(x)] =
+                k < 3   ? plane.at(x, y)
+                : k < 5 ? edge_values[static_cast<std::size_t>(trial + x) % 8]
+                        : plane.at(x, y) + unit(rng) * scale;
+        }
+        // One case: a run [b, e) or a mask row (8 pixels from a multiple of 8, random
+        // bits), drawn by `draw` into fresh copies of the row.
+        int b = column(rng), e = column(rng);
+        if (b > e) {
+            std::swap(b, e);
+        }
+        const int mask_x = 8 * (trial % (width / 8));
+        const auto bits = static_cast<std::uint8_t>(rng());
+        const bool as_mask = trial % 3 == 0;
+        const auto wanted = [&](int x) {
+            return as_mask ? x >= mask_x && x < mask_x + 8 && (bits >> (x - mask_x) & 1)
+                           : x >= b && x < e;
+        };
+        const auto draw = [&](auto lanes_type) {
+            using L = typename decltype(lanes_type)::type;
+            std::vector<float> d = stored;
+            std::vector<Rgba8> c(width, ground);
+            if (as_mask) {
+                // width 37 for the last block: its second half goes pixel by pixel
+                const int w = mask_x + 8 == width ? width - 3 : width;
+                const auto clipped =
+                    static_cast<std::uint8_t>(mask_x + 8 == width ? bits & 0x1f : bits);
+                depth_mask_row<L>(plane, paint, y, mask_x, clipped, w, d.data(),
+                                  c.data());
+            } else {
+                depth_run<L>(plane, paint, y, b, e, d.data(), c.data());
+            }
+            return std::pair{bits_of(d), c};
+        };
+        std::vector<float> d = stored;
+        std::vector<Rgba8> c(width, ground);
+        for (int x = 0; x < width; ++x) {
+            const bool in =
+                wanted(x) && !(as_mask && mask_x + 8 == width && x >= width - 3);
+            if (!in) {
+                continue;
+            }
+            ++kept;
+            const std::size_t i = static_cast<std::size_t>(x);
+            const float z = plane.at(x, y); // plot, pixel by pixel
+            ties += z == d[i];
+            if (z < d[i]) {
+                d[i] = z;
+                c[i] = paint;
+                ++drawn;
+            }
+        }
+        const auto expected = std::pair{bits_of(d), c};
+        REQUIRE(draw(std::type_identity<depth_lanes::Portable>{}) == expected);
+#if defined(__SSE2__)
+        REQUIRE(draw(std::type_identity<depth_lanes::Sse2>{}) == expected);
+#endif
+    }
+    CHECK(drawn > kept / 4);     // many pixels drawn,
+    CHECK(drawn < 3 * kept / 4); // many not,
+    CHECK(ties > kept / 10);     // and many of those not drawn were ties
+}
+
+TEST_CASE("fill_run writes exactly its run, whatever its length and alignment") {
+    const Rgba8 colour = rgba(12, 34, 56, 78), background = rgba(1, 2, 3, 4);
+    for (int offset = 0; offset < 4; ++offset) {
+        for (int count = 0; count <= 70; ++count) {
+            std::vector<Rgba8> row(80, background);
+            fill_run(row.data() + offset, count, colour);
+            for (int x = 0; x < 80; ++x) {
+                const bool inside = x >= offset && x < offset + count;
+                REQUIRE(row[static_cast<std::size_t>(x)] ==
+                        (inside ? colour : background));
+            }
+        }
+    }
+}
+
+TEST_CASE("four int32 SSE2 lanes compute the portable lanes' bits") {
+    std::mt19937_64 rng(98);
+    std::uniform_int_distribution<std::int32_t> value(-(1 << 29), 1 << 29);
+    std::uniform_int_distribution<std::int32_t> step(-(1 << 21), 1 << 21);
+    int mixed = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        // Values as large as the steps half the time, so that bits come out mixed.
+        const int shift = trial % 24, near = trial % 2 == 0 ? shift : shift + 8;
+        const std::int32_t w[3] = {value(rng) >> near, value(rng) >> near,
+                                   value(rng) >> near};
+        const std::int32_t s[3] = {step(rng) >> shift, step(rng) >> shift,
+                                   step(rng) >> shift};
+        const unsigned portable = lane_bits<lanes4::Portable>(w, s);
+        REQUIRE(portable == defined_bits(w, s, 4));
+#if defined(__SSE2__)
+        REQUIRE(lane_bits<lanes4::Sse2>(w, s) == portable);
+#endif
+        mixed += portable != 0 && portable != 0xf;
+    }
+    CHECK(mixed > 1000);
+}
+
+namespace {
+
+/// The pixels traverse_tiny with lanes L hands out for v, in order, or those of the
+/// pixel walk (walk = true), over a viewport big enough for any fixed-point vertex.
+template <class L>
+std::vector<std::pair<int, int>> tiny_pixels(const std::array<FixedPoint2, 3>& v,
+                                             Viewport viewport, bool walk) {
+    std::vector<std::pair<int, int>> pixels;
+    auto emit = [&](int x, int y) { pixels.emplace_back(x, y); };
+    const PixelRect r = pixel_bounds(v, viewport);
+    if (walk) {
+        const EdgeSetup<FixedEdge> s = setup_edges(v);
+        if (!s.empty) {
+            traverse_pixels(s, r, emit);
+        }
+    } else {
+        traverse_tiny<L>(v, r, emit);
+    }
+    return pixels;
+}
+
+} // namespace
+
+TEST_CASE("tiny triangles in int32 lanes draw the pixel walk's pixels up to 32 px") {
+    // Random triangles up to the 32 px limit, ties on the half-pixel grid, clipped by the
+    // frame's edges, and far out at the fixed-point limit (in a viewport that reaches
+    // it), against traverse_pixels with 64-bit edges: the same pixels in the same order.
+    std::mt19937_64 rng(99);
+    const std::int64_t m = max_fixed_coordinate;
+    const Viewport frame{80, 60}, far{1 << 21, 1 << 21};
+    std::vector<std::pair<std::array<FixedPoint2, 3>, Viewport>> set;
+    std::uniform_int_distribution<std::int64_t> extent(0, tiny_extent);
+    for (int trial = 0; trial < 6000; ++trial) {
+        const double size = trial % 3 == 0 ? 3.0 : trial % 3 == 1 ? 12.0 : 31.5;
+        if (trial % 4 ==
+            3) { // centres on the half-pixel grid: only the fill rule decides
+            std::uniform_int_distribution<int> p(-4, 2 * static_cast<int>(size) -
+                                                         4); // <= 32 px
+            const auto q = [&] { return 0.5 * p(rng) + 20.0; };
+            set.push_back({ch02::snap3({q(), q()}, {q(), q()}, {q(), q()}), frame});
+        } else if (trial % 4 == 2) { // far out, up to the largest coordinate
+            const std::int64_t x0 = m - tiny_extent - (trial % 7 == 0 ? 0 : extent(rng));
+            const auto p = [&] {
+                return FixedPoint2{x0 + extent(rng), x0 + extent(rng)};
+            };
+            set.push_back({{p(), p(), p()}, far});
+        } else { // anywhere around the frame, partly outside it too
+            std::uniform_real_distribution<double> corner(-size, 80.0);
+            std::uniform_real_distribution<double> offset(0.0, size);
+            const Point2 c{corner(rng), corner(rng)};
+            const auto p = [&] { return Point2{c.x + offset(rng), c.y + offset(rng)}; };
+            set.push_back({ch02::snap3(p(), p(), p()), frame});
+        }
+    }
+    // Extremes of the bound: vertex boxes exactly 32 px wide and high.
+    const std::int64_t e = tiny_extent;
+    set.push_back({{FixedPoint2{0, 0}, FixedPoint2{e, 1}, FixedPoint2{1, e}}, frame});
+    set.push_back({{FixedPoint2{e, e}, FixedPoint2{0, e}, FixedPoint2{e, 0}}, frame});
+    set.push_back(
+        {{FixedPoint2{m - e, m}, FixedPoint2{m, m - e}, FixedPoint2{m, m}}, far});
+    long pixels = 0, largest = 0;
+    for (const auto& [v, viewport] : set) {
+        REQUIRE(is_tiny(v));
+        const auto walk = tiny_pixels<lanes4::Portable>(v, viewport, true);
+        CHECK(tiny_pixels<lanes4::Portable>(v, viewport, false) == walk);
+#if defined(__SSE2__)
+        CHECK(tiny_pixels<lanes4::Sse2>(v, viewport, false) == walk);
+#endif
+        pixels += static_cast<long>(walk.size());
+        // @eq:tiny-bound: every value the lanes hold (up to seven columns past r's
+        // last, the step after its last four, and one row past its last) is below 2^29.
+        const PixelRect r = pixel_bounds(v, viewport);
+        const EdgeSetup<FixedEdge> s = setup_edges(v);
+        for (const FixedEdge& edge : s.edge) {
+            for (const int x : {r.x_begin, r.x_end + 6}) {
+                for (const int y : {r.y_begin, r.y_end}) {
+                    largest = std::max<long>(largest, std::abs(edge.at(x, y)));
+                }
+            }
+        }
+    }
+    CHECK(pixels > 100000);           // the set covers many pixels
+    CHECK(largest < (long{1} << 29)); // the int32 bound holds
+    CHECK(largest > (long{1} << 26)); // and the extremes come near it
+}
+
 TEST_CASE("the tiled renderer draws the teaching path's picture with 1 to 4 threads" *
           doctest::description("points: 2")) {
-    // 3000 overlapping triangles of all sizes, then a jittered mesh, a fan of 720 slivers
-    // and the hard cases, flat and depth-tested: the picture (and depth buffer) of
-    // draw_tiled equals draw_reference's, bit for bit, for every thread count, and the
-    // per-triangle fast paths (runs, masks) give it too.
+    // 3000 overlapping triangles of all sizes, then a jittered mesh, a fan of 720
+    // slivers, the hard cases and 300 of them again (depth ties), flat and depth-tested:
+    // the picture (and depth buffer) of draw_tiled equals draw_reference's, bit for bit,
+    // for every thread count, and the per-triangle fast paths (runs, masks) give it too.
     std::mt19937_64 rng(94);
     constexpr int width = 300, height = 200;
     std::uniform_real_distribution<float> depth(0.0f, 1.0f);
@@ -310,6 +547,13 @@ TEST_CASE("the tiled renderer draws the teaching path's picture with 1 to 4 thre
                         depth_plane(extra[n], {depth(rng), depth(rng), depth(rng)}),
                         rgba(255 - c, c, static_cast<std::uint8_t>(n >> 4))});
     }
+    // The first 300 again, same planes, new colours: with depth every pixel is a tie
+    // (z equal to the stored z), which must not draw.
+    for (std::size_t n = 0; n < 300; ++n) {
+        FlatTriangle again = tris[n];
+        again.colour = rgba(static_cast<std::uint8_t>(n), 255, 0);
+        tris.push_back(again);
+    }
     for (const bool with_depth : {false, true}) {
         INFO("depth test: " << with_depth);
         const auto draw = [&](auto&& how) {
@@ -317,7 +561,11 @@ TEST_CASE("the tiled renderer draws the teaching path's picture with 1 to 4 thre
             std::vector<float> z(width * height, 1.0f);
             how(RenderTarget{colour.data(), with_depth ? z.data() : nullptr, width,
                              height});
-            return std::pair{colour, z};
+            std::vector<std::uint32_t> z_bits; // depths compared bit for bit (+0 vs -0)
+            for (const float d : z) {
+                z_bits.push_back(std::bit_cast<std::uint32_t>(d));
+            }
+            return std::pair{colour, z_bits};
         };
         const auto reference =
             draw([&](const RenderTarget& t) { draw_reference(t, tris); });

@@ -19,6 +19,7 @@
 #include "exactpixels/raster/span.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -143,5 +144,117 @@ void traverse_runs_fast(const EdgeSetup<FixedEdge>& s, PixelRect r, SpanFn&& emi
         }
     }
 }
+
+//> run-end
+/// One end of the covered runs, the crossing of one edge with s_x != 0, stepped down the
+/// rows without a division (@eq:fast-step). With s = |s_x| and s_y = Q s + R,
+/// 0 <= R < s: for s_x > 0, k is the first column that passes, ceil(-w / s); for
+/// s_x < 0, one past the last, floor(w / s) + 1. e in [0, s) is the edge's value at the
+/// column k (s_x > 0) or k - 1 (s_x < 0), which tells when a row's step crosses one
+/// column more than Q.
+struct RunEnd {
+    std::int64_t k = 0; ///< the end on the current row (a column offset, unclamped)
+    std::int64_t e = 0; ///< the remainder, 0 <= e < s
+    std::int64_t s = 1; ///< |s_x| > 0
+    std::int64_t q = 0; ///< Q = floor(s_y / s)
+    std::int64_t r = 0; ///< R = s_y - Q s
+    /// Moves to the next row: k changes by Q or Q + 1 (carry), with no branch.
+    /// `sign` is -1 for a first column (s_x > 0: k falls as w rises), +1 for an end.
+    void step(std::int64_t sign) {
+        const std::int64_t t = e + r - s;  // >= 0 exactly when e + R reaches s
+        const std::int64_t keep = t >> 63; // -1 (no carry) or 0 (carry), arithmetic
+        k += sign * (q + 1 + keep);        // Q + carry
+        e = t + (keep & s);                // back into [0, s)
+    }
+};
+
+/// The crossing of an edge whose value at column 0 of the row is w and whose steps are
+/// s_x != 0 and s_y (@eq:fast-run, one exact division each, once per triangle).
+inline RunEnd run_end(std::int64_t w, std::int64_t step_x, std::int64_t step_y) {
+    RunEnd end;
+    end.s = step_x > 0 ? step_x : -step_x;
+    end.q = floor_div(step_y, end.s);
+    end.r = step_y - end.q * end.s;
+    if (step_x > 0) {
+        end.k = ceil_div(-w, end.s);
+        end.e = w + end.k * end.s;
+    } else {
+        end.k = floor_div(w, end.s) + 1;
+        end.e = w - (end.k - 1) * end.s;
+    }
+    return end;
+}
+//< run-end
+
+//> traverse-runs-stepped
+/// The stepped variant of traverse_runs (the same runs; tested): every crossing is
+/// divided out once, on r's first row, and stepped down the rows by RunEnd::step. A
+/// horizontal edge (s_x = 0) keeps or removes whole rows, so it narrows the rows
+/// instead. At most two edges bound each side (the three s_x sum to zero); a missing
+/// one is a RunEnd that stays at 0 (first column) or n (end).
+template <class SpanFn>
+void traverse_runs_stepped(const EdgeSetup<FixedEdge>& s, PixelRect r, SpanFn&& emit) {
+    if (r.empty()) {
+        return;
+    }
+    int y_begin = r.y_begin, y_end = r.y_end;
+    for (const FixedEdge& edge : s.edge) { // horizontal edges: the rows that pass
+        const std::int64_t sy = edge.step_y(), w = edge.at(r.x_begin, r.y_begin);
+        if (edge.step_x() != 0) {
+            continue;
+        }
+        if (sy > 0) { // rows from ceil(-w / s_y) on
+            const std::int64_t from = r.y_begin + ceil_div(-w, sy);
+            y_begin = static_cast<int>(std::clamp<std::int64_t>(from, y_begin, y_end));
+        } else if (sy < 0) { // rows up to floor(w / -s_y)
+            const std::int64_t to = r.y_begin + floor_div(w, -sy) + 1;
+            y_end = static_cast<int>(std::clamp<std::int64_t>(to, y_begin, y_end));
+        } else if (w < 0) {
+            return;
+        }
+    }
+    const int n = r.x_end - r.x_begin;
+    std::array<RunEnd, 2> first{}, end{}; // first columns (s_x > 0), ends (s_x < 0)
+    end[0].k = end[1].k = n;
+    std::size_t firsts = 0, ends = 0;
+    for (const FixedEdge& edge : s.edge) {
+        const std::int64_t sx = edge.step_x();
+        if (sx == 0) {
+            continue;
+        }
+        const RunEnd e = run_end(edge.at(r.x_begin, y_begin), sx, edge.step_y());
+        assert(sx > 0 ? firsts < 2 : ends < 2); // the three s_x sum to zero
+        (sx > 0 ? first[firsts++] : end[ends++]) = e;
+    }
+    // The rows, with the number of ends of each side known to the compiler: (2, 1),
+    // (1, 2), or (1, 1) with a horizontal edge, so that no unused end is stepped.
+    const auto rows = [&]<std::size_t F, std::size_t E>() {
+        for (int y = y_begin; y < y_end; ++y) {
+            std::int64_t k_begin = 0, k_end = n;
+            for (std::size_t i = 0; i < F; ++i) {
+                k_begin = std::max(k_begin, first[i].k);
+                first[i].step(-1);
+            }
+            for (std::size_t i = 0; i < E; ++i) {
+                k_end = std::min(k_end, end[i].k);
+                end[i].step(1);
+            }
+            if (k_begin < k_end) {
+                emit(Span{y, r.x_begin + static_cast<int>(k_begin),
+                          r.x_begin + static_cast<int>(k_end)});
+            }
+        }
+    };
+    if (firsts == 2 && ends == 1) {
+        rows.template operator()<2, 1>();
+    } else if (firsts == 1 && ends == 2) {
+        rows.template operator()<1, 2>();
+    } else if (firsts == 1 && ends == 1) {
+        rows.template operator()<1, 1>();
+    } else {
+        rows.template operator()<2, 2>(); // fewer: the missing ends stay at 0 and n
+    }
+}
+//< traverse-runs-stepped
 
 } // namespace exactpixels

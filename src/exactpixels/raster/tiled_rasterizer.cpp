@@ -2,17 +2,24 @@
 
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/raster/block_masks.hpp"
+#include "exactpixels/raster/depth_lanes.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/gradients.hpp"
 #include "exactpixels/raster/row_runs.hpp"
+#include "exactpixels/raster/sign_lanes4.hpp"
+#include "exactpixels/raster/tiny_triangle.hpp"
 
 #include <fmt/format.h>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstring>
-#include <thread>
+#include <optional>
 #include <vector>
 
 namespace exactpixels {
@@ -32,16 +39,25 @@ DepthPlane depth_plane(const std::array<FixedPoint2, 3>& v,
     return {static_cast<float>(z0), static_cast<float>(g.dx), static_cast<float>(g.dy)};
 }
 
+//> fill-run
 void fill_run(Rgba8* first, int count, Rgba8 colour) {
-    std::array<Rgba8, 16> pattern;
-    pattern.fill(colour);
-    for (; count >= 16; count -= 16, first += 16) {
-        std::memcpy(first, pattern.data(), sizeof pattern);
+#if defined(__SSE2__)
+    if (count >= 4) { // four pixels per store; the last four overlap the ones before
+        std::int32_t bits;
+        std::memcpy(&bits, &colour, sizeof bits);
+        const __m128i four = _mm_set1_epi32(bits);
+        for (int i = 0; i + 4 < count; i += 4) {
+            _mm_storeu_si128(reinterpret_cast<__m128i*>(first + i), four);
+        }
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(first + count - 4), four);
+        return;
     }
+#endif
     for (int i = 0; i < count; ++i) {
         first[i] = colour;
     }
 }
+//< fill-run
 
 namespace {
 
@@ -65,26 +81,22 @@ void plot(const RenderTarget& t, const FlatTriangle& tri, int x, int y) {
 }
 //< plot-pixel
 
-/// Draws the run s of `tri`: one fill without depth, pixel by pixel with it.
+//> plot-run
+/// Draws the run s of `tri`: one fill without depth, four depth tests at a time with it
+/// (depth_lanes.hpp: the bits plot writes).
 void plot_run(const RenderTarget& t, const FlatTriangle& tri, Span s) {
     if (t.depth == nullptr) {
         fill_run(t.colour + index(t, s.x_begin, s.y), s.x_end - s.x_begin, tri.colour);
         return;
     }
-    for (int x = s.x_begin; x < s.x_end; ++x) {
-        plot(t, tri, x, s.y);
-    }
+    const std::size_t row = index(t, 0, s.y);
+    depth_run(tri.depth, tri.colour, s.y, s.x_begin, s.x_end, t.depth + row,
+              t.colour + row);
 }
+//< plot-run
 
 Viewport viewport_of(const RenderTarget& t) {
     return {t.width, t.height};
-}
-
-void check_threads(int threads) {
-    if (threads < 1 || threads > max_threads) {
-        throw Error(
-            fmt::format("thread count {} is outside 1 .. {}", threads, max_threads));
-    }
 }
 
 void check_all(std::span<const FlatTriangle> triangles) {
@@ -109,6 +121,43 @@ void walk(const RenderTarget& t, const FlatTriangle& tri, const EdgeSetup<FixedE
     traverse_pixels(s, r, emit);
 }
 
+/// Draws the pixels of r covered by `tri` when r is small and the triangle tiny (at most
+/// 32 px wide and high): in int32 lanes, with no 64-bit setup. Returns false, drawing
+/// nothing, otherwise (the caller walks the box or draws runs).
+bool draw_tiny(const RenderTarget& t, const FlatTriangle& tri, PixelRect r) {
+    if (!small(r) || !is_tiny(tri.v)) {
+        return false;
+    }
+    if (t.depth == nullptr) { // flat: a store per pixel, no depth test to skip
+        traverse_tiny<Lanes4>(
+            tri.v, r, [&](int x, int y) { t.colour[index(t, x, y)] = tri.colour; });
+    } else {
+        traverse_tiny<Lanes4>(tri.v, r, [&](int x, int y) { plot(t, tri, x, y); });
+    }
+    return true;
+}
+
+/// What draw_runs and draw_masks do first: check `tri`, find its pixel bounds r, and
+/// draw it here when r is small (tiny in lanes, else pixel by pixel) or empty. Returns
+/// the edges when the caller still has to draw r, nothing when the triangle is done.
+std::optional<EdgeSetup<FixedEdge>> draw_if_small(const RenderTarget& target,
+                                                  const FlatTriangle& tri, PixelRect& r) {
+    check_fixed_triangle(tri.v);
+    r = pixel_bounds(tri.v, viewport_of(target));
+    if (r.empty() || draw_tiny(target, tri, r)) {
+        return std::nullopt;
+    }
+    const EdgeSetup<FixedEdge> s = setup_edges(tri.v);
+    if (s.empty) {
+        return std::nullopt;
+    }
+    if (small(r)) {
+        walk(target, tri, s, r);
+        return std::nullopt;
+    }
+    return s;
+}
+
 /// A triangle ready to draw: its edges and pixel bounds (setup done once, not per tile).
 struct Prepared {
     EdgeSetup<FixedEdge> edges;
@@ -126,51 +175,107 @@ void draw_reference(const RenderTarget& target, std::span<const FlatTriangle> tr
 }
 
 void draw_runs(const RenderTarget& target, const FlatTriangle& tri) {
-    check_fixed_triangle(tri.v);
-    const EdgeSetup<FixedEdge> s = setup_edges(tri.v);
-    const PixelRect r = pixel_bounds(tri.v, viewport_of(target));
-    if (s.empty || r.empty()) {
+    PixelRect r;
+    const std::optional<EdgeSetup<FixedEdge>> s = draw_if_small(target, tri, r);
+    if (!s) {
         return;
     }
-    if (small(r)) {
-        walk(target, tri, s, r);
-        return;
-    }
-    traverse_runs_fast(s, r, [&](Span run) { plot_run(target, tri, run); });
+    traverse_runs_stepped(*s, r, [&](Span run) { plot_run(target, tri, run); });
 }
 
 void draw_masks(const RenderTarget& target, const FlatTriangle& tri) {
-    check_fixed_triangle(tri.v);
-    const EdgeSetup<FixedEdge> s = setup_edges(tri.v);
-    const PixelRect r = pixel_bounds(tri.v, viewport_of(target));
-    if (s.empty || r.empty()) {
+    PixelRect r;
+    const std::optional<EdgeSetup<FixedEdge>> s = draw_if_small(target, tri, r);
+    if (!s) {
         return;
     }
-    if (small(r)) {
-        walk(target, tri, s, r);
-        return;
-    }
-    traverse_block_masks(s, r, [&](BlockMask m) {
+    traverse_block_masks(*s, r, [&](BlockMask m) {
         if (target.depth == nullptr) {
             fill_block_mask(target.colour, target.width, m, tri.colour);
         } else {
-            for_each_pixel(m, [&](int x, int y) { plot(target, tri, x, y); });
+            for (int j = 0; j < 8; ++j) { // rows below the image have no bits
+                const std::uint8_t bits = m.row(j);
+                if (bits != 0) {
+                    const std::size_t row = index(target, 0, m.y + j);
+                    depth_mask_row(tri.depth, tri.colour, m.y + j, m.x, bits,
+                                   target.width, target.depth + row, target.colour + row);
+                }
+            }
         }
     });
 }
 
+//> tiled-state
+namespace {
+/// One chunk's bins: tile k lists the triangles of the chunk (a contiguous slice of the
+/// submission order) whose bounds meet it, in order, as bins[first[k]] ..
+/// bins[first[k + 1] - 1] (a counting sort: count per tile, offsets, then fill). Kept
+/// from draw to draw, so the memory is allocated once; each on its own cache lines.
+struct alignas(64) ChunkBins {
+    std::vector<std::uint32_t> first; ///< tile_count + 1 offsets into bins
+    std::vector<std::uint32_t> bins;  ///< triangle indices, tile after tile
+    std::vector<std::uint32_t> fill;  ///< while filling: each tile's next free place
+};
+
+/// Chunks per thread: more than one, so that a thread that starts late (the machine is
+/// busy) finds the others have binned its share, and nobody waits for it.
+constexpr std::size_t chunks_per_thread = 4;
+/// The fewest triangles worth a chunk of their own: each chunk costs every tile a look.
+constexpr std::size_t min_chunk_triangles = 64;
+
+/// How many chunks `triangles` triangles are binned in by `threads` threads.
+std::size_t chunk_count(std::size_t triangles, int threads) {
+    if (threads == 1) {
+        return 1;
+    }
+    const std::size_t most = chunks_per_thread * static_cast<std::size_t>(threads);
+    return std::clamp<std::size_t>(triangles / min_chunk_triangles, 1, most);
+}
+
+/// A counter on a cache line of its own: the next tile of one thread's band.
+struct alignas(64) TileCounter {
+    std::atomic<std::size_t> next{0}; ///< the band's next tile not yet taken
+};
+} // namespace
+
+struct TiledRenderer::State {
+    explicit State(int threads) : bands(static_cast<std::size_t>(threads)) {}
+    std::vector<Prepared> prepared;          ///< every triangle's setup, by index
+    std::vector<ChunkBins> chunks;           ///< at least the chunks of this draw
+    std::atomic<std::size_t> next_chunk{0};  ///< the next chunk to bin
+    std::atomic<std::size_t> chunks_done{0}; ///< chunks binned (or failed)
+    std::vector<TileCounter> bands;          ///< per thread: its band of tiles
+    std::atomic<bool> failed{false};         ///< a chunk could not be binned: no drawing
+};
+//< tiled-state
+
+TiledRenderer::TiledRenderer(int threads)
+    : pool_(threads), state_(std::make_unique<State>(threads)) {
+}
+
+TiledRenderer::~TiledRenderer() = default;
+
 //> draw-tiled
-void draw_tiled(const RenderTarget& target, std::span<const FlatTriangle> triangles,
-                int threads) {
-    check_threads(threads);
+void TiledRenderer::draw(const RenderTarget& target,
+                         std::span<const FlatTriangle> triangles) {
     check_all(triangles);
     const int tiles_x = (target.width + tile_size - 1) / tile_size;
     const int tiles_y = (target.height + tile_size - 1) / tile_size;
     const auto tile_count = static_cast<std::size_t>(tiles_x * tiles_y);
-    // Binning: every tile lists, in submission order, the triangles whose bounds meet
-    // it, all in one array (a counting sort: count per tile, offsets, then fill).
-    std::vector<Prepared> prepared(triangles.size());
-    std::vector<std::uint32_t> first(tile_count + 1, 0); // tile k: [first[k], first[k+1])
+    const std::size_t chunks = chunk_count(triangles.size(), threads());
+    std::vector<Prepared>& prepared = state_->prepared;
+    prepared.resize(triangles.size());
+    if (state_->chunks.size() < chunks) {
+        state_->chunks.resize(chunks);
+    }
+    state_->next_chunk = 0;
+    state_->chunks_done = 0;
+    const std::size_t band_count = state_->bands.size();
+    const auto band_begin = [&](std::size_t b) { return tile_count * b / band_count; };
+    for (std::size_t b = 0; b < band_count; ++b) {
+        state_->bands[b].next = band_begin(b);
+    }
+    state_->failed = false;
     const auto for_each_tile = [&](const PixelRect& b, auto&& f) {
         for (int ty = b.y_begin / tile_size; ty * tile_size < b.y_end; ++ty) {
             for (int tx = b.x_begin / tile_size; tx * tile_size < b.x_end; ++tx) {
@@ -178,27 +283,41 @@ void draw_tiled(const RenderTarget& target, std::span<const FlatTriangle> triang
             }
         }
     };
-    for (std::size_t n = 0; n < triangles.size(); ++n) {
-        Prepared& p = prepared[n];
-        p.edges = setup_edges(triangles[n].v);
-        p.bounds = p.edges.empty ? PixelRect{}
-                                 : pixel_bounds(triangles[n].v, viewport_of(target));
-        for_each_tile(p.bounds, [&](std::size_t tile) { ++first[tile + 1]; });
-    }
-    for (std::size_t k = 0; k < tile_count; ++k) {
-        first[k + 1] += first[k];
-    }
-    std::vector<std::uint32_t> bins(first[tile_count]);
-    std::vector<std::uint32_t> end(first.begin(), first.end() - 1);
-    for (std::size_t n = 0; n < triangles.size(); ++n) {
-        for_each_tile(prepared[n].bounds, [&](std::size_t tile) {
-            bins[end[tile]++] = static_cast<std::uint32_t>(n);
-        });
-    }
+    // Binning, by every thread at once: the triangles in `chunks` contiguous slices of
+    // the submission order, taken from a shared counter; chunk c's triangles [begin, end)
+    // are set up and sorted into chunk c's own bins.
+    const auto bin_chunk = [&](std::size_t c) {
+        const std::size_t begin = triangles.size() * c / chunks;
+        const std::size_t end = triangles.size() * (c + 1) / chunks;
+        std::vector<std::uint32_t>& first = state_->chunks[c].first;
+        first.assign(tile_count + 1, 0);
+        for (std::size_t n = begin; n < end; ++n) {
+            Prepared& p = prepared[n];
+            p.edges = setup_edges(triangles[n].v);
+            p.bounds = p.edges.empty ? PixelRect{}
+                                     : pixel_bounds(triangles[n].v, viewport_of(target));
+            for_each_tile(p.bounds, [&](std::size_t tile) { ++first[tile + 1]; });
+        }
+        for (std::size_t k = 0; k < tile_count; ++k) {
+            first[k + 1] += first[k];
+        }
+        std::vector<std::uint32_t>& bins = state_->chunks[c].bins;
+        bins.resize(first[tile_count]);
+        std::vector<std::uint32_t>& end_of = state_->chunks[c].fill;
+        end_of.assign(first.begin(), first.end() - 1);
+        for (std::size_t n = begin; n < end; ++n) {
+            for_each_tile(prepared[n].bounds, [&](std::size_t tile) {
+                bins[end_of[tile]++] = static_cast<std::uint32_t>(n);
+            });
+        }
+    };
     // Drawing: a tile is one thread's; its triangles in order, each tested against the
     // whole tile first (@eq:edge-block): outside, nothing; inside, plain runs; else exact
-    // runs.
-    const auto draw_tile = [&](std::size_t tile) {
+    // runs. The triangles of one chunk's bins come in order, and the chunks follow each
+    // other, so walking the bins in chunk order is submission order.
+    const auto draw_tile = [&](std::size_t tile, const ChunkBins& from) {
+        const std::vector<std::uint32_t>& first = from.first;
+        const std::vector<std::uint32_t>& bins = from.bins;
         const int tx = static_cast<int>(tile) % tiles_x;
         const int ty = static_cast<int>(tile) / tiles_x;
         for (std::uint32_t k = first[tile]; k < first[tile + 1]; ++k) {
@@ -210,7 +329,9 @@ void draw_tiled(const RenderTarget& target, std::span<const FlatTriangle> triang
                               std::min(p.bounds.y_end, (ty + 1) * tile_size)};
             const auto run = [&](Span s) { plot_run(target, tri, s); };
             if (small(r)) {
-                walk(target, tri, p.edges, r);
+                if (!draw_tiny(target, tri, r)) {
+                    walk(target, tri, p.edges, r);
+                }
                 continue;
             }
             switch (classify_block(p.edges, r)) {
@@ -222,23 +343,55 @@ void draw_tiled(const RenderTarget& target, std::span<const FlatTriangle> triang
                 }
                 break;
             case BlockClass::partial:
-                traverse_runs_fast(p.edges, r, run);
+                traverse_runs_stepped(p.edges, r, run);
                 break;
             }
         }
     };
-    std::atomic<std::size_t> next{0};
-    const auto worker = [&] {
-        for (std::size_t tile = next++; tile < tile_count; tile = next++) {
-            draw_tile(tile);
+    pool_.run([&](int thread) {
+        std::atomic<std::size_t>& done = state_->chunks_done;
+        for (std::size_t c = state_->next_chunk++; c < chunks; c = state_->next_chunk++) {
+            try {
+                bin_chunk(c);
+            } catch (...) { // out of memory: count the chunk, so nobody waits; no drawing
+                state_->failed = true;
+                if (++done == chunks) {
+                    done.notify_all();
+                }
+                throw;
+            }
+            if (++done == chunks) {
+                done.notify_all(); // the last chunk is binned: every tile may be drawn
+            }
         }
-    };
-    std::vector<std::jthread> pool;
-    for (int k = 1; k < threads; ++k) {
-        pool.emplace_back(worker);
-    }
-    worker(); // the calling thread is one of the `threads`
+        for (std::size_t d = done.load(); d < chunks; d = done.load()) {
+            done.wait(d); // another thread bins the last chunks
+        }
+        if (state_->failed) {
+            return;
+        }
+        const std::span<const ChunkBins> in_order(state_->chunks.data(), chunks);
+        // Thread t draws the tiles of band t first, the same rows of the frame every
+        // time, so they are still in its core's cache from the last frame; then it helps
+        // the other bands, taking their tiles from their counters.
+        for (std::size_t k = 0; k < band_count; ++k) {
+            const std::size_t b = (static_cast<std::size_t>(thread) + k) % band_count;
+            std::atomic<std::size_t>& next = state_->bands[b].next;
+            for (std::size_t tile = next++; tile < band_begin(b + 1); tile = next++) {
+                for (const ChunkBins& from : in_order) {
+                    draw_tile(tile, from);
+                }
+            }
+        }
+    });
 }
 //< draw-tiled
+
+//> draw-tiled-once
+void draw_tiled(const RenderTarget& target, std::span<const FlatTriangle> triangles,
+                int threads) {
+    TiledRenderer(threads).draw(target, triangles);
+}
+//< draw-tiled-once
 
 } // namespace exactpixels

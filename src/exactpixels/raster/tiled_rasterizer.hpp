@@ -5,7 +5,9 @@
 // Usage:
 //   std::vector<FlatTriangle> tris = {{v, depth_plane(v, {0.5f, 0.2f, 0.9f}), red}, ...};
 //   RenderTarget target{fb_pixels, depth_or_null, width, height};
-//   draw_tiled(target, tris, 2);            // two threads
+//   draw_tiled(target, tris, 2);            // two threads, started for this call
+//   TiledRenderer renderer(2);              // two threads kept from call to call
+//   renderer.draw(target, tris);            // every frame: the same pixels again
 //   draw_reference(target, tris);           // the teaching path: the same pixels
 //
 // Vertices are snapped (1/256 px, within +-max_fixed_coordinate). A pixel is drawn when
@@ -18,9 +20,11 @@
 
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/base/framebuffer.hpp"
+#include "exactpixels/base/worker_pool.hpp"
 #include "exactpixels/raster/edge_function.hpp"
 
 #include <array>
+#include <memory>
 #include <span>
 
 namespace exactpixels {
@@ -56,18 +60,18 @@ struct RenderTarget {
     int height = 0;          ///< rows
 };
 
-/// Writes `colour` into count pixels from `first` on: 16 pixels (64 bytes) per copy of a
-/// prepared pattern, which the compiler turns into wide stores, then the rest one by one.
+/// Writes `colour` into count pixels from `first` on and nowhere else: with SSE2, four
+/// pixels per 16-byte store, the last store overlapping the one before when count is
+/// not a multiple of four; runs shorter than four, and without SSE2, pixel by pixel.
 void fill_run(Rgba8* first, int count, Rgba8 colour);
 
 /// Bounding boxes of at most this many pixels are walked pixel by pixel by the fast
 /// paths: the per-row or per-block setup would cost more than it saves.
 inline constexpr int small_box_pixels = 64;
 
-/// The side of a tile in pixels: a multiple of the 8 x 8 block.
+/// The side of a tile in pixels: a multiple of the 8 x 8 block. (The most threads a
+/// tiled renderer accepts is max_threads, worker_pool.hpp.)
 inline constexpr int tile_size = 64;
-/// The most threads draw_tiled accepts.
-inline constexpr int max_threads = 64;
 
 /// The teaching path: every triangle in order, pixel by pixel (traverse_pixels),
 /// depth-tested when the target has depth. Throws Error for an out-of-range vertex
@@ -82,11 +86,39 @@ void draw_runs(const RenderTarget& target, const FlatTriangle& triangle);
 /// whole rows of a mask without depth are 8 stores at once.
 void draw_masks(const RenderTarget& target, const FlatTriangle& triangle);
 
-/// The same pixels as draw_reference, through tiles: triangles binned into the 64 x 64
-/// tiles their bounds meet; each tile trivially rejected or accepted per triangle, else
-/// drawn in covered runs (row_runs.hpp); tiles shared among `threads` threads, from 1
-/// to max_threads. Throws Error for a bad thread count or vertex, before drawing
-/// anything.
+/// The tiled renderer with its threads (a WorkerPool) and its bins' memory kept from one
+/// draw to the next: draw() gives the same pixels as draw_reference. The threads set up
+/// and bin contiguous chunks of the triangles, taken from a shared counter, each chunk
+/// into its own per-tile lists; then each thread draws the tiles of its own band of rows
+/// and helps with the others' bands when done, and a tile walks the chunks' lists in
+/// chunk order, which is submission order. Each tile is
+/// trivially rejected or accepted per triangle, else drawn in covered runs
+/// (row_runs.hpp).
+class TiledRenderer {
+  public:
+    /// A renderer drawing with `threads` threads (1 .. max_threads), the caller's
+    /// included; throws Error for any other count.
+    explicit TiledRenderer(int threads);
+    ~TiledRenderer();
+    TiledRenderer(const TiledRenderer&) = delete;
+    TiledRenderer& operator=(const TiledRenderer&) = delete;
+
+    /// The number of threads that draw, the caller included.
+    int threads() const { return pool_.size(); }
+
+    /// Draws `triangles` in order into `target`. Throws Error for a bad vertex before
+    /// drawing anything. Not reentrant: one draw at a time per renderer.
+    void draw(const RenderTarget& target, std::span<const FlatTriangle> triangles);
+
+  private:
+    struct State; ///< the per-thread bins, prepared triangles and the phase barrier
+    WorkerPool pool_;
+    std::unique_ptr<State> state_;
+};
+
+/// The same pixels as draw_reference, through a TiledRenderer of `threads` threads
+/// (1 .. max_threads) made for this call: its threads are started and joined here.
+/// Throws Error for a bad thread count or vertex, before drawing anything.
 void draw_tiled(const RenderTarget& target, std::span<const FlatTriangle> triangles,
                 int threads);
 

@@ -135,8 +135,8 @@ void draw_one(const RenderTarget& target, const std::array<TexturedVertex, 3>& v
     if (s.empty || r.empty()) {
         return;
     }
-    const TexturePlanes planes = texture_planes(corners, v);
-    traverse_runs_fast(s, r, [&](Span run) {
+    const TexturePlanes planes = texture_planes(corners, v, /*affine=*/false);
+    traverse_runs_stepped(s, r, [&](Span run) {
         Rgba8* row =
             target.colour +
             static_cast<std::size_t>(run.y) * static_cast<std::size_t>(target.width) +

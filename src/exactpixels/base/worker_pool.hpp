@@ -1,0 +1,61 @@
+// worker_pool.hpp: a fixed number of threads, started once and kept, that run one job
+// together and wait for each other, so that a renderer called many times a second does
+// not pay for starting and joining threads on every call.
+//
+// Usage:
+//   WorkerPool pool(2);                      // the caller and one worker thread
+//   pool.run([&](int t) { work_on(slice(t)); }); // f(0) on the caller, f(1) on the
+//                                             // worker; returns when both are done
+//
+// size() threads take part in every run: the calling thread is thread 0, the pool's own
+// std::jthreads are 1 .. size() - 1 (a pool of one starts no thread). run() returns
+// once every thread has finished f; if some threads threw, the exception of the lowest
+// thread index is rethrown on the caller (the others are dropped), after all have
+// finished. One run at a time: run() is not reentrant and must be called from one
+// thread. The destructor stops and joins the workers.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <thread>
+#include <vector>
+
+namespace exactpixels {
+
+/// The most threads a WorkerPool (and so any renderer built on one) accepts.
+inline constexpr int max_threads = 64;
+
+/// Threads started once that run jobs together: f(thread_index) on each, then wait.
+class WorkerPool {
+  public:
+    /// A pool of `threads` threads in all, the caller included (1 .. max_threads);
+    /// throws Error for any other count before starting a thread.
+    explicit WorkerPool(int threads);
+    /// Stops and joins the worker threads.
+    ~WorkerPool();
+    WorkerPool(const WorkerPool&) = delete;
+    WorkerPool& operator=(const WorkerPool&) = delete;
+
+    /// The number of threads that take part in a run, the caller included.
+    int size() const { return static_cast<int>(workers_.size()) + 1; }
+
+    /// Runs f(t) for t = 0 .. size() - 1, f(0) on the calling thread, and returns when
+    /// all have returned; rethrows the exception of the lowest t that threw.
+    void run(const std::function<void(int)>& f);
+
+  private:
+    /// Asks every worker to stop, wakes them and joins them.
+    void stop();
+    /// A worker's loop: sleep until a run starts, run job_, report, again.
+    void work(int index, const std::stop_token& stop);
+
+    const std::function<void(int)>* job_ = nullptr; ///< the running job
+    std::atomic<std::uint64_t> generation_{0}; ///< bumped to start a run (or to stop)
+    std::atomic<int> busy_{0};                 ///< workers still in the current job
+    std::vector<std::exception_ptr> errors_;   ///< per thread, for the current run
+    std::vector<std::jthread> workers_;        ///< threads 1 .. size() - 1
+};
+
+} // namespace exactpixels
