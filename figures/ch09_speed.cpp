@@ -2,6 +2,7 @@
 // (chapters/09-fast-pixels/data/ch09_fast.csv, bench_ch09_fast's CSV with a '#' header
 // naming machine and date): ch09_speed_flat.dat and ch09_speed_depth.dat (millions of
 // pixels per second against area, one column per variant, for ch09_speed.gp),
+// ch09_speed_textured.dat (the same for the textured run: teaching path, runs, llvmpipe),
 // ch09_table.md (the same numbers and the ratio to llvmpipe), ch09_targets.md (each
 // target of the chapter, met or not, with the numbers that decide it) and
 // ch09_instructions.md (instructions per triangle from data/ch09_instructions.csv),
@@ -9,7 +10,8 @@
 // textured runs and llvmpipe, with the ratios), ch09_textured.txt (the textured
 // section's facts, with data/ch09_textured_compare.csv's pixel counts), and
 // ch09_threads.txt (facts for Exercise 4's solution: the one-core ratio of the tiled
-// renderer to llvmpipe, and what two threads gave on the machine of the committed run).
+// renderer to llvmpipe, and what two threads gave on the machine of the committed run)
+// and ch09_threads.md (the wall-clock table of one and two threads, ours and llvmpipe's).
 // Usage: fig_ch09_speed FIGURE_DIR
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/lab/benchmark_csv.hpp"
@@ -95,6 +97,25 @@ std::string table(const BenchmarkRuns& r) {
             mode);
     }
     return md;
+}
+
+/// ch09_speed_textured.dat: Mpix/s of the teaching path, the textured runs and llvmpipe
+/// against area in the textured run (one core).
+void write_textured_dat(const BenchmarkRuns& t, const std::filesystem::path& path) {
+    std::ostringstream out;
+    out << "# area teaching runs llvmpipe (Mpix/s, one core, perspective-correct nearest "
+           "texturing)\n";
+    for (const int area : areas) {
+        out << area;
+        for (const char* v : {"teaching", "runs", "llvmpipe"}) {
+            out << ' '
+                << t.value(fmt::format("textured/{}/{}/1/process_time", v, area),
+                           "pix_per_s") /
+                       1e6;
+        }
+        out << '\n';
+    }
+    write_figure_file(path, out.str());
 }
 
 /// Triangles per second of textured/VARIANT/AREA in the textured run (one core).
@@ -248,6 +269,12 @@ std::string instruction_table(const BenchmarkRuns& r) {
 /// renderer's rate over llvmpipe's with one thread each (process CPU time), in both
 /// modes; the tiled renderer's wall-clock rate with two threads over one; and the
 /// instructions per triangle of runs, masks and llvmpipe at 1000 px (callgrind).
+/// Triangles per second of wall/VARIANT/AREA/THREADS (wall clock).
+double wall_rate(const BenchmarkRuns& r, const std::string& variant, int area, int threads) {
+    return r.value(fmt::format("wall/{}/{}/{}/real_time", variant, area, threads),
+                   "tri_per_s");
+}
+
 std::string thread_facts(const BenchmarkRuns& r, const BenchmarkRuns& instructions) {
     std::string facts = "# chapter 9, Exercise 4: what the committed runs can say\n";
     for (const std::string mode : {"flat", "depth"}) {
@@ -263,12 +290,40 @@ std::string thread_facts(const BenchmarkRuns& r, const BenchmarkRuns& instructio
         }
     }
     for (const int area : {80, 1000, 65536}) {
-        facts += fmt::format(
-            "wall_two_over_one_{} {:.4f}\n", area,
-            r.value(fmt::format("wall/tiled/{}/2/real_time", area), "tri_per_s") /
-                r.value(fmt::format("wall/tiled/{}/1/real_time", area), "tri_per_s"));
+        facts += fmt::format("wall_two_over_one_{} {:.4f}\n", area,
+                             wall_rate(r, "tiled", area, 2) / wall_rate(r, "tiled", area, 1));
+        facts += fmt::format("wall_llvmpipe_two_over_one_{} {:.4f}\n", area,
+                             wall_rate(r, "llvmpipe", area, 2) /
+                                 wall_rate(r, "llvmpipe", area, 1));
+        for (const int n : {1, 2}) {
+            facts += fmt::format("wall_tiled_over_llvmpipe_{}_{} {:.4f}\n", area, n,
+                                 wall_rate(r, "tiled", area, n) /
+                                     wall_rate(r, "llvmpipe", area, n));
+        }
     }
     return facts;
+}
+
+/// The threads table: wall-clock Mtri/s of the kept tiled renderer and of llvmpipe
+/// (its own process per thread count) on one and two threads, and the ratios.
+std::string thread_table(const BenchmarkRuns& r) {
+    std::string md = "| area (px) | tiled, 1 thread | 2 threads | 2 / 1 | llvmpipe, 1 thread "
+                     "| 2 threads | 2 / 1 | tiled / llvmpipe, 2 threads |\n"
+                     "|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+    for (const int area : areas) {
+        const double t1 = wall_rate(r, "tiled", area, 1), t2 = wall_rate(r, "tiled", area, 2);
+        const double p1 = wall_rate(r, "llvmpipe", area, 1),
+                     p2 = wall_rate(r, "llvmpipe", area, 2);
+        md += fmt::format("| {} | {:.3g} | {:.3g} | {:.2f} | {:.3g} | {:.3g} | {:.2f} | "
+                          "{:.2f} |\n",
+                          area, t1 / 1e6, t2 / 1e6, t2 / t1, p1 / 1e6, p2 / 1e6, p2 / p1,
+                          t2 / p2);
+    }
+    md += "\n: Millions of triangles per second by the wall clock, flat colour, from the "
+          "committed run: the kept tiled renderer and llvmpipe on one and two threads "
+          "(llvmpipe's two-thread rows from a second process, as OSMesa reads "
+          "LP_NUM_THREADS once). {#tbl:ch09-threads}\n";
+    return md;
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
@@ -291,6 +346,7 @@ int main(int argc, char** argv) {
                                "chapters/09-fast-pixels/data/ch09_textured.csv");
         write_text(folder / "ch09_targets.md", targets(r, textured));
         write_text(folder / "ch09_textured.md", textured_table(textured));
+        write_textured_dat(textured, folder / "ch09_speed_textured.dat");
         const BenchmarkRuns compare =
             read_benchmark_csv(std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
                                "chapters/09-fast-pixels/data/ch09_textured_compare.csv");
@@ -304,6 +360,7 @@ int main(int argc, char** argv) {
                                "chapters/09-fast-pixels/data/ch09_instructions.csv");
         write_text(folder / "ch09_instructions.md", instruction_table(instructions));
         write_text(folder / "ch09_threads.txt", thread_facts(r, instructions));
+        write_text(folder / "ch09_threads.md", thread_table(r));
     } catch (const Error& error) {
         std::fprintf(stderr, "fig_ch09_speed: %s\n", error.what());
         return 2;

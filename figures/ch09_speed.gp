@@ -1,6 +1,7 @@
 # Chapter 9: pixels per second against triangle area, every variant and llvmpipe,
-# one core, from the committed run (data: ch09_speed_{flat,depth}.dat, written by
-# fig_ch09_speed from chapters/09-fast-pixels/data/ch09_fast.csv).
+# one core, from the committed runs (data: ch09_speed_{flat,depth}.dat, written by
+# fig_ch09_speed from chapters/09-fast-pixels/data/ch09_fast.csv, and
+# ch09_speed_textured.dat from data/ch09_textured.csv).
 set terminal svg size 640,420 font "sans,12" background "white"
 set logscale x 2
 set logscale y
@@ -30,3 +31,7 @@ do for [mode in "flat depth"] {
              "" using 1:7 with linespoints lw 2 dt 2 pt 6 lc rgb "#b03030" title "llvmpipe"
     }
 }
+set output "ch09_speed_textured.svg"
+plot "ch09_speed_textured.dat" using 1:3 with linespoints lw 2 pt 5 lc rgb "#6a9ad0" title "textured runs", \
+     "" using 1:2 with linespoints lw 2 pt 11 lc rgb "#e0a060" title "teaching path (ch. 3)", \
+     "" using 1:4 with linespoints lw 2 dt 2 pt 6 lc rgb "#b03030" title "llvmpipe"

@@ -66,29 +66,34 @@ TEST_CASE("claim: on 3 and 15 px the pixel walk and 8x8 blocks beat llvmpipe 5x"
     }
 }
 
-TEST_CASE(
-    "claim: flat, the walk leads llvmpipe 5x at 80 px and the runs 2.5x at 1000 px") {
-    CHECK(rate("flat", "walk", 80) >= 5.0 * rate("flat", "llvmpipe", 80));
-    CHECK(rate("flat", "runs", 1000) >= 2.5 * rate("flat", "llvmpipe", 1000));
-}
-
-TEST_CASE("claim: with a depth test at 65536 px llvmpipe beats the walk and the masks") {
-    for (const char* v : {"walk", "masks"}) {
-        INFO(v);
-        CHECK(rate("depth", "llvmpipe", 65536) > rate("depth", v, 65536));
+TEST_CASE("claim: flat, the runs lead llvmpipe 5x at 80 and at 1000 px") {
+    for (const int area : {80, 1000}) {
+        INFO(area << " px");
+        CHECK(rate("flat", "runs", area) >= 5.0 * rate("flat", "llvmpipe", area));
     }
 }
 
-TEST_CASE("claim: at 65536 px flat, runs are fastest, over 3x llvmpipe and 6x the walk") {
+TEST_CASE(
+    "claim: depth-tested at 65536 px llvmpipe beats the walk, not the runs or masks") {
+    CHECK(rate("depth", "llvmpipe", 65536) > rate("depth", "walk", 65536));
+    for (const char* v : {"runs", "masks"}) {
+        INFO(v);
+        CHECK(rate("depth", "llvmpipe", 65536) < rate("depth", v, 65536));
+    }
+}
+
+TEST_CASE(
+    "claim: flat at 65536 px runs are fastest, 4.5x to 5x llvmpipe, over 6x the walk") {
     CHECK(rate("flat", "runs", 65536) == best("flat", 65536));
-    CHECK(rate("flat", "runs", 65536) > 3.0 * rate("flat", "llvmpipe", 65536));
+    CHECK(rate("flat", "runs", 65536) > 4.5 * rate("flat", "llvmpipe", 65536));
+    CHECK(rate("flat", "runs", 65536) < 5.0 * rate("flat", "llvmpipe", 65536));
     CHECK(rate("flat", "runs", 65536) > 6.0 * rate("flat", "walk", 65536));
 }
 
-TEST_CASE("claim: runs reach between 30 and 40 % of a plain fill at 65536 px") {
+TEST_CASE("claim: runs reach between 40 and 50 % of a plain fill at 65536 px") {
     const double share = rate("flat", "runs", 65536) / rate("flat", "plain", 65536);
-    CHECK(share > 0.30);
-    CHECK(share < 0.40);
+    CHECK(share > 0.40);
+    CHECK(share < 0.50);
 }
 
 TEST_CASE("claim: flat 8x8 blocks beat the walk at 1000 px and up, not at 80 px") {
@@ -105,18 +110,19 @@ TEST_CASE("claim: flat 8x8 blocks reach under a fifth of a plain fill at 65536 p
     CHECK(share < 0.20);
 }
 
-TEST_CASE("claim: with a depth test llvmpipe comes within 1.3x at 1000 and 65536 px") {
-    for (const int area : {1000, 65536}) {
+TEST_CASE(
+    "claim: depth-tested, the best variant leads llvmpipe 2x to 3.5x from 80 px up") {
+    for (const int area : {80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(best("depth", area) < 1.3 * rate("depth", "llvmpipe", area));
+        CHECK(best("depth", area) > 2.0 * rate("depth", "llvmpipe", area));
+        CHECK(best("depth", area) < 3.5 * rate("depth", "llvmpipe", area));
     }
 }
 
-TEST_CASE("claim: flat 8x8 masks lose to the walk at 15 and 80 px, win from 1000 up") {
-    for (const int area : {15, 80}) {
-        CHECK(rate("flat", "masks", area) < rate("flat", "walk", area));
-    }
-    for (const int area : {1000, 65536}) {
+TEST_CASE("claim: flat 8x8 masks beat the walk at 15 px and from 1000 up, not at 80 px") {
+    CHECK(rate("flat", "masks", 80) < rate("flat", "walk", 80));
+    for (const int area : {15, 1000, 65536}) {
+        INFO(area << " px");
         CHECK(rate("flat", "masks", area) > rate("flat", "walk", area));
     }
 }
@@ -131,16 +137,36 @@ double wall(int area, int threads) {
 
 } // namespace
 
-TEST_CASE("claim: two threads beat one at 1000 px, by less than 1.5x") {
-    CHECK(wall(1000, 2) > wall(1000, 1));
-    CHECK(wall(1000, 2) < 1.5 * wall(1000, 1));
+TEST_CASE("claim: two threads beat one from 80 px up, by 1.3 to 1.8 times") {
+    for (const int area : {80, 1000, 65536}) {
+        INFO(area << " px");
+        CHECK(wall(area, 2) > 1.3 * wall(area, 1));
+        CHECK(wall(area, 2) < 1.8 * wall(area, 1));
+    }
 }
 
-TEST_CASE("claim: two threads are slower than one at 3 and at 65536 px") {
-    for (const int area : {3, 65536}) {
+TEST_CASE("claim: two threads are slower than one at 3 and at 15 px") {
+    for (const int area : {3, 15}) {
         INFO(area << " px");
         CHECK(wall(area, 2) < wall(area, 1));
     }
+}
+
+TEST_CASE("claim: on two threads each, the tiled renderer draws 4x llvmpipe's rate") {
+    const auto peer = [](int area, int threads) {
+        return timed().value(fmt::format("wall/llvmpipe/{}/{}/real_time", area, threads),
+                             "tri_per_s");
+    };
+    for (const int area : {3, 15, 80, 1000, 65536}) {
+        INFO(area << " px");
+        CHECK(wall(area, 2) > 4.0 * peer(area, 2));
+    }
+    // and llvmpipe gains from its second thread from 15 px up to 1000 px, not at 65536
+    for (const int area : {15, 80, 1000}) {
+        INFO(area << " px");
+        CHECK(peer(area, 2) > 1.3 * peer(area, 1));
+    }
+    CHECK(peer(65536, 2) < peer(65536, 1));
 }
 
 TEST_CASE(
@@ -148,11 +174,9 @@ TEST_CASE(
     CHECK(rate("flat", "tiled", 1000) < rate("flat", "runs", 1000));
 }
 
-TEST_CASE("claim: the fastest 3 px rate, and the walk's, are between 40 and 60 Mtri/s") {
-    for (const double r : {best("flat", 3), rate("flat", "walk", 3)}) {
-        CHECK(r > 40e6);
-        CHECK(r < 60e6);
-    }
+TEST_CASE("claim: the fastest 3 px rate is between 50 and 60 Mtri/s") {
+    CHECK(best("flat", 3) > 50e6);
+    CHECK(best("flat", 3) < 60e6);
 }
 
 TEST_CASE("claim: a 3 px triangle costs the pixel walk 400 to 500 instructions") {
@@ -165,11 +189,16 @@ TEST_CASE("claim: at 1000 px runs take under a third of the walk's instructions"
 }
 
 TEST_CASE(
-    "claim: at 1000 px flat llvmpipe executes about three times runs' instructions") {
+    "claim: at 1000 px flat llvmpipe executes five to seven times runs' instructions") {
     const double ratio =
         instructions("flat/llvmpipe/1000") / instructions("flat/runs/1000");
-    CHECK(ratio > 2.5);
-    CHECK(ratio < 4.0);
+    CHECK(ratio > 5.0);
+    CHECK(ratio < 7.0);
+}
+
+TEST_CASE(
+    "claim: with depth at 1000 px runs take under a third of llvmpipe's instructions") {
+    CHECK(instructions("depth/runs/1000") < instructions("depth/llvmpipe/1000") / 3.0);
 }
 
 TEST_CASE(
@@ -202,25 +231,29 @@ TEST_CASE("claim: llvmpipe covers the textured sets exactly; texels differ next 
     }
 }
 
-TEST_CASE("claim: textured runs draw 1.4 to 2 times llvmpipe's rate at every size") {
-    for (const int area : {3, 15, 80, 1000, 65536}) {
+TEST_CASE("claim: textured runs draw 3x llvmpipe's rate up to 80 px, not from 1000 px") {
+    for (const int area : {3, 15, 80}) {
+        INFO(area << " px");
+        CHECK(textured("runs", area) > 3.0 * textured("llvmpipe", area));
+    }
+    for (const int area : {1000, 65536}) {
         INFO(area << " px");
         const double ratio = textured("runs", area) / textured("llvmpipe", area);
-        CHECK(ratio > 1.4);
-        CHECK(ratio < 2.0); // so the 3x target is not met at any size
+        CHECK(ratio > 1.5); // ahead, but short of the 3x target
+        CHECK(ratio < 3.0);
     }
 }
 
-TEST_CASE("claim: textured runs gain on the teaching path from 80 px, not at 3 or 15") {
+TEST_CASE("claim: textured runs gain on the teaching path mostly from 80 px up") {
     for (const int area : {3, 15}) {
         INFO(area << " px");
         const double ratio = textured("runs", area) / textured("teaching", area);
         CHECK(ratio > 0.85);
-        CHECK(ratio < 1.1);
+        CHECK(ratio < 1.25);
     }
     CHECK(textured("runs", 80) > 1.3 * textured("teaching", 80));
     CHECK(textured("runs", 1000) > 2.5 * textured("teaching", 1000));
-    CHECK(textured("runs", 65536) > 4.0 * textured("teaching", 65536));
+    CHECK(textured("runs", 65536) > 3.5 * textured("teaching", 65536));
 }
 
 TEST_CASE("claim: at 1000 px textured runs execute about two thirds of llvmpipe's") {
@@ -232,7 +265,7 @@ TEST_CASE("claim: at 1000 px textured runs execute about two thirds of llvmpipe'
         per_triangle("textured/runs/1000") / per_triangle("textured/llvmpipe/1000");
     CHECK(ratio > 0.6);
     CHECK(ratio < 0.75);
-    // and at 3 px fewer than llvmpipe too, though over 1500 per triangle
-    CHECK(per_triangle("textured/runs/3") > 1500);
+    // and at 3 px fewer than llvmpipe too, though over 1400 per triangle
+    CHECK(per_triangle("textured/runs/3") > 1400);
     CHECK(per_triangle("textured/runs/3") < per_triangle("textured/llvmpipe/3"));
 }

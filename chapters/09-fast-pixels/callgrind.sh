@@ -10,7 +10,7 @@
 # which counts the instructions (Ir) of one drawing of the run's 1024 triangles, after
 # an uncounted first drawing (llvmpipe compiles its code then; LP_NUM_THREADS=0 makes it
 # rasterize in the counted thread). Writes a CSV (default:
-# chapters/09-fast-pixels/data/ch09_instructions.csv). Takes ten minutes or more.
+# chapters/09-fast-pixels/data/ch09_instructions.csv). Takes a few minutes.
 set -eu
 build=${1:?usage: callgrind.sh BUILD_DIR [OUTPUT.csv]}
 out=${2:-chapters/09-fast-pixels/data/ch09_instructions.csv}

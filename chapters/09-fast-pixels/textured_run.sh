@@ -5,14 +5,15 @@
 # Usage (from the repository root, after building bench_ch09_fast in BUILD_DIR, a
 # Release build, on a machine as quiet as can be had):
 #   chapters/09-fast-pixels/textured_run.sh BUILD_DIR
-# Writes data/ch09_textured.csv (the full run at Google Benchmark's default measuring
-# time, llvmpipe with LP_NUM_THREADS=1, rates per second of process CPU time) with a
+# Writes data/ch09_textured.csv (every benchmark three times in random order, the median
+# of each kept, as full_run.sh does; llvmpipe with LP_NUM_THREADS=1, rates per second of
+# process CPU time) with a
 # '#' header naming the date, machine, load, software and command, and
 # data/ch09_textured_compare.csv (bench_ch09_fast --compare-textured=AREA for every area:
 # pixels drawn, coverage and texel differences against llvmpipe, and the runs against the
 # teaching path), and data/ch09_textured_instructions.csv (instructions per triangle of
 # one drawing, counted by callgrind as callgrind.sh counts the default run: the teaching
-# path, the runs and llvmpipe at 3 and 1000 px). Takes five to ten minutes.
+# path, the runs and llvmpipe at 3 and 1000 px). Takes about five minutes.
 set -eu
 build=${1:?usage: textured_run.sh BUILD_DIR}
 data=chapters/09-fast-pixels/data
@@ -27,17 +28,19 @@ type=$(sed -n 's/^CMAKE_BUILD_TYPE:[A-Z]*=//p' "$build/CMakeCache.txt" 2>/dev/nu
 commit=$(git rev-parse --short HEAD 2>/dev/null || echo unknown)
 start=$(date -u +'%Y-%m-%d %H:%M')
 load_start=$(cut -d ' ' -f 1-3 /proc/loadavg)
-LP_NUM_THREADS=1 "$bench" --textured --benchmark_out="$scratch/run.csv" \
-    --benchmark_out_format=csv >"$scratch/log"
+LP_NUM_THREADS=1 "$bench" --textured --benchmark_repetitions=3 \
+    --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true \
+    --benchmark_out="$scratch/run.csv" --benchmark_out_format=csv >"$scratch/log"
 end=$(date -u +%H:%M)
 load_end=$(cut -d ' ' -f 1-3 /proc/loadavg)
 {
-    echo "# bench_ch09_fast --textured full run (default measuring time), measured $start-$end UTC"
-    echo "# machine: $cpu, $(nproc) cores at $mhz MHz, load average (1, 5, 15 min) $load_start at the start, $load_end at the end"
+    echo "# bench_ch09_fast --textured full run, measured $start-$end UTC: every benchmark repeated"
+    echo "# three times in random order, the median of each kept under the run's name (as full_run.sh)"
+    echo "# machine: $cpu, $(nproc --all) cores at $mhz MHz, load average (1, 5, 15 min) $load_start at the start, $load_end at the end"
     echo "# software: $(c++ --version | head -n 1), Mesa $mesa llvmpipe via OSMesa, ${type:-unknown} build, commit $commit"
-    echo "# command: LP_NUM_THREADS=1 build/bin/bench_ch09_fast --textured --benchmark_out=ch09_textured.csv --benchmark_out_format=csv (chapters/09-fast-pixels/textured_run.sh)"
+    echo "# command: chapters/09-fast-pixels/textured_run.sh build (LP_NUM_THREADS=1 bench_ch09_fast --textured --benchmark_repetitions=3 --benchmark_enable_random_interleaving=true)"
     echo "# rates are per second of process CPU time (all threads, llvmpipe's rasterizer thread too)"
-    cat "$scratch/run.csv"
+    bench/repeated_csv.sh median "$scratch/run.csv"
 } >"$data/ch09_textured.csv.tmp"
 mv "$data/ch09_textured.csv.tmp" "$data/ch09_textured.csv"
 {
