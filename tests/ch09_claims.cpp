@@ -66,10 +66,11 @@ TEST_CASE("claim: on 3 and 15 px the pixel walk and 8x8 blocks beat llvmpipe 5x"
     }
 }
 
-TEST_CASE("claim: flat, the runs lead llvmpipe 5x at 80 and at 1000 px") {
+TEST_CASE("claim: flat, the best variant leads llvmpipe 2x to 3.5x at 80 and 1000 px") {
     for (const int area : {80, 1000}) {
         INFO(area << " px");
-        CHECK(rate("flat", "runs", area) >= 5.0 * rate("flat", "llvmpipe", area));
+        CHECK(best("flat", area) > 2.0 * rate("flat", "llvmpipe", area));
+        CHECK(best("flat", area) < 3.5 * rate("flat", "llvmpipe", area));
     }
 }
 
@@ -83,10 +84,10 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "claim: flat at 65536 px runs are fastest, 4.5x to 5x llvmpipe, over 6x the walk") {
+    "claim: flat at 65536 px runs are fastest, 5x to 7x llvmpipe, over 6x the walk") {
     CHECK(rate("flat", "runs", 65536) == best("flat", 65536));
-    CHECK(rate("flat", "runs", 65536) > 4.5 * rate("flat", "llvmpipe", 65536));
-    CHECK(rate("flat", "runs", 65536) < 5.0 * rate("flat", "llvmpipe", 65536));
+    CHECK(rate("flat", "runs", 65536) > 5.0 * rate("flat", "llvmpipe", 65536));
+    CHECK(rate("flat", "runs", 65536) < 7.0 * rate("flat", "llvmpipe", 65536));
     CHECK(rate("flat", "runs", 65536) > 6.0 * rate("flat", "walk", 65536));
 }
 
@@ -119,9 +120,9 @@ TEST_CASE(
     }
 }
 
-TEST_CASE("claim: flat 8x8 masks beat the walk at 15 px and from 1000 up, not at 80 px") {
-    CHECK(rate("flat", "masks", 80) < rate("flat", "walk", 80));
-    for (const int area : {15, 1000, 65536}) {
+TEST_CASE("claim: flat 8x8 masks beat the walk from 15 px up, by under 1 % at 15 px") {
+    CHECK(rate("flat", "masks", 15) < 1.01 * rate("flat", "walk", 15));
+    for (const int area : {15, 80, 1000, 65536}) {
         INFO(area << " px");
         CHECK(rate("flat", "masks", area) > rate("flat", "walk", area));
     }
@@ -137,36 +138,40 @@ double wall(int area, int threads) {
 
 } // namespace
 
-TEST_CASE("claim: two threads beat one from 80 px up, by 1.3 to 1.8 times") {
+TEST_CASE("claim: two threads beat one from 80 px up, by 1.8 to 2.1 times") {
     for (const int area : {80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(wall(area, 2) > 1.3 * wall(area, 1));
-        CHECK(wall(area, 2) < 1.8 * wall(area, 1));
+        CHECK(wall(area, 2) > 1.8 * wall(area, 1));
+        CHECK(wall(area, 2) < 2.1 * wall(area, 1));
     }
 }
 
-TEST_CASE("claim: two threads are slower than one at 3 and at 15 px") {
+TEST_CASE("claim: two threads gain under 1.4x on 3 and 15 px triangles") {
     for (const int area : {3, 15}) {
         INFO(area << " px");
-        CHECK(wall(area, 2) < wall(area, 1));
+        CHECK(wall(area, 2) > wall(area, 1));
+        CHECK(wall(area, 2) < 1.4 * wall(area, 1));
     }
 }
 
-TEST_CASE("claim: on two threads each, the tiled renderer draws 4x llvmpipe's rate") {
+TEST_CASE("claim: on two threads each, the tiled renderer draws 2.5x llvmpipe's rate") {
     const auto peer = [](int area, int threads) {
         return timed().value(fmt::format("wall/llvmpipe/{}/{}/real_time", area, threads),
                              "tri_per_s");
     };
     for (const int area : {3, 15, 80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(wall(area, 2) > 4.0 * peer(area, 2));
+        CHECK(wall(area, 2) > 2.5 * peer(area, 2));
     }
-    // and llvmpipe gains from its second thread from 15 px up to 1000 px, not at 65536
-    for (const int area : {15, 80, 1000}) {
+    // and llvmpipe gains from its second thread from 80 px up, under a tenth below
+    for (const int area : {80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(peer(area, 2) > 1.3 * peer(area, 1));
+        CHECK(peer(area, 2) > 1.4 * peer(area, 1));
     }
-    CHECK(peer(65536, 2) < peer(65536, 1));
+    for (const int area : {3, 15}) {
+        INFO(area << " px");
+        CHECK(peer(area, 2) < 1.1 * peer(area, 1));
+    }
 }
 
 TEST_CASE(
@@ -174,9 +179,9 @@ TEST_CASE(
     CHECK(rate("flat", "tiled", 1000) < rate("flat", "runs", 1000));
 }
 
-TEST_CASE("claim: the fastest 3 px rate is between 50 and 60 Mtri/s") {
-    CHECK(best("flat", 3) > 50e6);
-    CHECK(best("flat", 3) < 60e6);
+TEST_CASE("claim: the fastest 3 px rate is between 40 and 50 Mtri/s") {
+    CHECK(best("flat", 3) > 40e6);
+    CHECK(best("flat", 3) < 50e6);
 }
 
 TEST_CASE("claim: a 3 px triangle costs the pixel walk 400 to 500 instructions") {
@@ -231,16 +236,12 @@ TEST_CASE("claim: llvmpipe covers the textured sets exactly; texels differ next 
     }
 }
 
-TEST_CASE("claim: textured runs draw 3x llvmpipe's rate up to 80 px, not from 1000 px") {
-    for (const int area : {3, 15, 80}) {
-        INFO(area << " px");
-        CHECK(textured("runs", area) > 3.0 * textured("llvmpipe", area));
-    }
-    for (const int area : {1000, 65536}) {
+TEST_CASE("claim: textured runs draw 1.5 to 2.5 times llvmpipe's rate at every size") {
+    for (const int area : {3, 15, 80, 1000, 65536}) {
         INFO(area << " px");
         const double ratio = textured("runs", area) / textured("llvmpipe", area);
         CHECK(ratio > 1.5); // ahead, but short of the 3x target
-        CHECK(ratio < 3.0);
+        CHECK(ratio < 2.5);
     }
 }
 
