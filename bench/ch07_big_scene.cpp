@@ -32,11 +32,12 @@
 // one frame untimed, then one more inside ch07_frame_once, the function that
 // valgrind --tool=callgrind --toggle-collect=ch07_frame_once counts. Run it with
 // LP_NUM_THREADS=0 so that llvmpipe rasterizes in the counted thread.
-// `--report` prints format_report of one render of each EFFECTS; `--png=FILE` writes our
-// render of the full scene. `--fast=NAMES` (before --once, --report or --png) makes our
-// side use only the named fast paths (FastPaths, scene_renderer.hpp), a comma-separated
-// list of screen_accept and masked_fetch, or `none` for the plain path: the instruction
-// count of each fast path is the difference it makes.
+// `--report` prints format_report of the median of seven renders (by total time) of each
+// EFFECTS; `--png=FILE` writes our render of the full scene. `--fast=NAMES` (before
+// --once, --report or --png) makes our side use only the named fast paths (FastPaths,
+// scene_renderer.hpp), a comma-separated list of screen_accept and masked_fetch, or
+// `none` for the plain path: the instruction count of each fast path is the difference
+// it makes.
 #define GL_GLEXT_PROTOTYPES 1
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/png.hpp"
@@ -335,14 +336,27 @@ int frame_once(const std::string& name) {
     return 0;
 }
 
-/// --report: the report of one render of each EFFECTS, after a first one (as the
-/// benchmark times frames after the first).
+/// How many renders --report times per EFFECTS (after an untimed first one).
+constexpr int report_renders = 7;
+
+/// --report: for each EFFECTS, the report of the render whose total time is the median
+/// of report_renders renders made after a first one (as the benchmark times frames
+/// after the first). One whole report, so that its stages add up to its total; the
+/// median, so that one slow spell of a shared machine does not make the breakdown.
 int print_reports() {
     for (const char* effects : effects_names) {
         const Scene scene = big_scene(effects);
         render_scene(scene, nullptr, fast_paths);
-        const RenderResult result = render_scene(scene, nullptr, fast_paths);
-        std::printf("## %s\n\n%s\n", effects, format_report(result.report).c_str());
+        std::vector<RenderReport> reports;
+        for (int n = 0; n < report_renders; ++n) {
+            reports.push_back(render_scene(scene, nullptr, fast_paths).report);
+        }
+        const auto median = reports.begin() + report_renders / 2;
+        std::nth_element(reports.begin(), median, reports.end(),
+                         [](const RenderReport& a, const RenderReport& b) {
+                             return a.seconds < b.seconds;
+                         });
+        std::printf("## %s\n\n%s\n", effects, format_report(*median).c_str());
     }
     return 0;
 }

@@ -81,3 +81,14 @@ TEST_CASE(
     CHECK(fact("instructions_ours_full") < fact("instructions_ours_full_screen_accept"));
     CHECK(fact("instructions_ours_full") < fact("instructions_ours_full_masked_fetch"));
 }
+
+TEST_CASE("claim: the big torus's geometry and rasterizer take most of its frame") {
+    // The report kept is the median render's, so its stages add up to its total.
+    const double geometry = fact("stage_ms_full_geometry");
+    const double raster = fact("stage_ms_full_raster");
+    const double pixels = fact("stage_ms_full_depth") + fact("stage_ms_full_texture");
+    const double total = fact("stage_ms_full_total");
+    CHECK(geometry + raster > 0.66 * total);
+    CHECK(pixels < geometry + raster);
+    CHECK(geometry + raster + pixels <= total);
+}

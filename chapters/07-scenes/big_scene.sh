@@ -119,8 +119,21 @@ instructions() {
     echo "| pixels drawn full | $pixels |"
     echo "| pixels per drawn triangle full | $(ratio "$pixels" "$drawn") |"
     echo
-    echo "Our renderer's report of each, rendered after a first render (times: that one" \
-         "render, wall clock, on the loaded machine):"
+    echo "Where the time of one frame goes, stage by stage, in milliseconds: the reports" \
+         "below, the render whose total is the median of seven (depth has no row where" \
+         "its stage is off):"
+    echo
+    echo "| stage | ms |"
+    echo "|:--|--:|"
+    awk '/^## / { set = $2 }
+         set != "" && $2 ~ /^[0-9]+$/ &&
+             ($1 == "geometry" || $1 == "depth" || $1 == "raster" || $1 == "texture") {
+             printf "| stage ms %s %s | %s |\n", set, $1, $NF }
+         /^total:/ { printf "| stage ms %s total | %s |\n", set, $(NF - 1) }' \
+        "$scratch/report.txt"
+    echo
+    echo "Our renderer's report of each: of seven renders after a first, the one whose" \
+         "total time is the median (times: wall clock, on the machine as the header says):"
     echo
     echo '```text'
     cat "$scratch/report.txt"
