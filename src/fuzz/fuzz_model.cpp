@@ -1,6 +1,7 @@
 // fuzz_model: the libFuzzer target for chapter 7's OBJ reader (preset `fuzz`). Every
-// input is parsed as an OBJ file whose mtllib and map_Kd names are looked up in
-// tests/fixtures/models/ (so the cube's materials and texture can be reached); bad
+// input is parsed as an OBJ file whose mtllib and map_Kd names are looked up in a folder
+// holding tests/fixtures/models/ and chapter 7's shipped models (src/fuzz/CMakeLists.txt
+// copies them there, so every seed's materials and textures can be reached); bad
 // input must end in exactpixels::Error and nothing else (no crash, no leak, no
 // undefined behaviour, no failed assertion, no other exception).
 #include "exactpixels/base/error.hpp"
