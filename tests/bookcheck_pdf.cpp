@@ -25,7 +25,9 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <unistd.h>
@@ -201,6 +203,40 @@ std::vector<std::string> unresolved_marks(const std::string& text) {
     return found;
 }
 
+// The table numbers the PDF prints. The text's references ("Table 7.4") are numbered by
+// the book filter, which counts captioned tables only, and LaTeX numbers the captions:
+// so in each chapter the captions must run 1, 2, 3, ... with no gap (a gap is a table
+// LaTeX counted that the filter did not, and every reference after it names the wrong
+// table), and every reference must name a caption. One line per problem.
+std::vector<std::string> table_number_problems(const std::string& pdf_text) {
+    // Line breaks and runs of spaces as one space: "Table" may end a line.
+    const std::string text = std::regex_replace(pdf_text, std::regex(R"(\s+)"), " ");
+    std::vector<std::string> problems;
+    std::map<int, int> last; // chapter -> its last caption's number
+    std::set<std::pair<int, int>> captions;
+    static const std::regex caption(R"(Table ([0-9]+)\.([0-9]+):)");
+    for (std::sregex_iterator it(text.begin(), text.end(), caption), end; it != end; ++it) {
+        const int chapter = std::stoi((*it)[1]), number = std::stoi((*it)[2]);
+        if (number != last[chapter] + 1) {
+            problems.push_back("table caption " + (*it)[1].str() + "." + (*it)[2].str() +
+                               " follows " + std::to_string(chapter) + "." +
+                               std::to_string(last[chapter]) +
+                               ": LaTeX counted a table the references do not");
+        }
+        last[chapter] = number;
+        captions.insert({chapter, number});
+    }
+    static const std::regex reference(R"(Table ([0-9]+)\.([0-9]+)(?![0-9:]))");
+    for (std::sregex_iterator it(text.begin(), text.end(), reference), end; it != end;
+         ++it) {
+        if (!captions.count({std::stoi((*it)[1]), std::stoi((*it)[2])})) {
+            problems.push_back("reference to Table " + (*it)[1].str() + "." +
+                               (*it)[2].str() + ", which no caption has");
+        }
+    }
+    return problems;
+}
+
 // The file of every \includegraphics in `tex`.
 std::vector<std::string> figures_of(const std::string& tex) {
     static const std::regex include(R"(\\includegraphics(\[[^\]]*\])?\{([^}]+)\})");
@@ -310,6 +346,21 @@ TEST_CASE("the PDF check catches overfull listings and equations, missing figure
     fs::remove_all(folder);
 }
 
+TEST_CASE("the PDF check catches a table number the references do not have") {
+    // As LaTeX printed chapter 7 when an uncaptioned longtable stepped the counter.
+    const std::string gap = "Table 7.1: Colours\n... see Table 7.2 and (Table\n7.1).\n"
+                            "Table 7.3: Speed\n";
+    const auto problems = table_number_problems(gap);
+    REQUIRE(problems.size() == 2);
+    CHECK(problems[0].find("table caption 7.3 follows 7.1") != std::string::npos);
+    CHECK(problems[1].find("reference to Table 7.2") != std::string::npos);
+    // Consecutive captions in two chapters, references to them (one across a line
+    // break): nothing to report.
+    CHECK(table_number_problems("Table 2.1: a Table 2.2: b Table 7.1: c see Table 2.2, "
+                                "Table\n7.1 and Table 2.1.")
+              .empty());
+}
+
 TEST_CASE(
     "overfull prose is listed but does not fail; small overfull boxes are allowed") {
     const std::string tex =
@@ -415,6 +466,9 @@ TEST_CASE("every page of the built PDF book prints without a fault") {
     REQUIRE(text.exit_code == 0);
     for (const auto& mark : unresolved_marks(text.out)) {
         problems.push_back(mark);
+    }
+    for (const auto& p : table_number_problems(text.out)) {
+        problems.push_back(p);
     }
 
     MESSAGE(pages << " pages rendered to " << page_dir.string() << ", " << figure_count

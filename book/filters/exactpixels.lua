@@ -437,6 +437,14 @@ local function render_block(block, counters, state)
       .. "mark it .pseudocode / .text / .sh / .toml")
   end
 
+  -- longtable, which Pandoc writes every LaTeX table as, steps LaTeX's table counter
+  -- for a table without a caption too, while this filter numbers only captioned tables:
+  -- step it back, or every table after an uncaptioned one in a chapter would carry a
+  -- number the text's references do not.
+  if block.t == "Table" and not html and table_label(block) == nil then
+    return { block, raw("latex", "\\addtocounter{table}{-1}") }
+  end
+
   if kind == "tbl" then
     local caption = block.caption.long
     local inlines = caption[#caption].content
