@@ -5,6 +5,7 @@
 // far plane are rejected, clipped and drawn alike; the masked texel fetch reads the
 // texel fetch_texel reads.
 #include "exactpixels/base/atomic_file.hpp"
+#include "exactpixels/base/error.hpp"
 #include "exactpixels/lab/model_generator.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
@@ -243,4 +244,32 @@ TEST_CASE("fetch_texel_masked reads fetch_texel's texel on power-of-two textures
     CHECK(!can_fetch_masked(checkerboard_texture(20, 28, 4), Wrap::repeat));
     CHECK(!can_fetch_masked(checkerboard_texture(64, 48, 4), Wrap::repeat));
     CHECK(!can_fetch_masked(checkerboard_texture(48, 64, 4), Wrap::repeat));
+}
+
+TEST_CASE("unlit_geometry stops a corner that is not finite as the plain path does") {
+    // The loader's limits keep u/w finite; a scene made in code need not. Under float
+    // precision a texture coordinate of 1e45 texels gives u/w beyond the largest float at
+    // every depth the horizon has: the fast path's bound fails and check_finite throws
+    // the plain path's message, naming the same mesh and the same triangle.
+    Scene scene = load_scene(shipped_scene_folder() / "horizon.toml");
+    REQUIRE(scene.lights.empty());
+    scene.options.precision = Precision::float32;
+    SceneMesh& mesh = scene.meshes.at(0);
+    const std::size_t first = mesh.triangles.size() / 2; // the ones before stay sane
+    for (std::size_t t = first; t < mesh.triangles.size(); ++t) {
+        mesh.triangles[t][1].uv = {1e45, 0.0};
+    }
+    const auto message = [&](FastPaths fast) {
+        try {
+            render_scene(scene, nullptr, fast);
+        } catch (const Error& error) {
+            return std::string(error.what());
+        }
+        return std::string("no error");
+    };
+    const std::string plain = message(plain_paths);
+    INFO(plain);
+    CHECK(plain.find("not finite in float") != std::string::npos);
+    CHECK(message(FastPaths{}) == plain);
+    CHECK(message(FastPaths{false, false, true}) == plain); // unlit_geometry alone
 }

@@ -20,6 +20,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -643,6 +644,41 @@ bool screen_accept(const Scene& scene, const Pinhole& lens,
 }
 //< screen-accept
 
+/// screen_accept under a perspective camera in fewer instructions, for
+/// FastPaths::unlit_geometry: the same compares on the same values in the same
+/// precision, with each finite test folded into a compare (false for NaN and infinity:
+/// z <= min(far, the largest double) is false for an infinite z, and a corner that is
+/// not finite projects to a value that fails the band's compare) and project()'s two
+/// divides written out. The same answer, and the same corners when it is yes
+/// (tests/ch07_fast_paths.cpp).
+bool screen_accept_perspective(const Scene& scene, const Pinhole& lens,
+                               const std::array<ViewVertex, 3>& view,
+                               std::array<TexturedVertex, 3>& corners) {
+    const double near = scene.camera.near;
+    const double far = std::min(scene.camera.far, std::numeric_limits<double>::max());
+    const double margin = screen_accept_margin_px;
+    const double band = guard_band_px - margin;
+    double lo_x = band, lo_y = band, hi_x = -band, hi_y = -band;
+    for (std::size_t k = 0; k < 3; ++k) {
+        const glm::dvec3 p = view[k].position;
+        if (!(p.z >= near && p.z <= far)) {
+            return false;
+        }
+        const double x = lens.centre.x + lens.focal * p.x / p.z; // as project()
+        const double y = lens.centre.y - lens.focal * p.y / p.z;
+        if (!(std::abs(x) <= band && std::abs(y) <= band)) {
+            return false;
+        }
+        corners[k] = {{x, y}, p.z, view[k].uv};
+        lo_x = std::min(lo_x, x);
+        lo_y = std::min(lo_y, y);
+        hi_x = std::max(hi_x, x);
+        hi_y = std::max(hi_y, y);
+    }
+    return hi_x >= margin && lo_x <= scene.width - margin && hi_y >= margin &&
+           lo_y <= scene.height - margin;
+}
+
 /// Twice the signed screen area of the triangle; negative when it faces the camera
 /// (its corners run counter-clockwise as seen from its front).
 double screen_area2(const std::array<TexturedVertex, 3>& t) {
@@ -734,8 +770,9 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
         const auto project_checked = [&](const ViewVertex& v, std::size_t index) {
             return checked(project_vertex(scene, lens, v), index);
         };
-        const Clock::time_point t0 = Clock::now(); // the whole mesh: clocks cost time
-        for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
+        // Every step of one triangle, the plain way (the fast paths inside it are
+        // screen_accept's).
+        const auto plain_triangle = [&](std::size_t index) {
             const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
             std::array<ViewVertex, 3> view{};
             std::array<Colour, 3> colours{};
@@ -753,7 +790,7 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
             } else {                                    // the plain path
                 if (outside_one(volume.reject, view)) { // covers no pixel: not projected
                     report.rejected.triangles += 1;
-                    continue;
+                    return;
                 }
                 needs_clip = any_outside(volume.clip, view);
                 if (!needs_clip) {
@@ -767,7 +804,7 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
             if (!needs_clip) {
                 if (mesh.cull_back && screen_area2(corners) >= 0.0) {
                     report.culling.triangles += 1;
-                    continue;
+                    return;
                 }
             }
             std::array<glm::dvec3, 3> view_normals{};
@@ -824,6 +861,65 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
                     footprint.box.add(v.position);
                 }
                 out.push_back(t);
+            }
+        };
+        //> unlit-geometry
+        // FastPaths::unlit_geometry: an unlit mesh under a perspective camera. A corner
+        // screen_accept accepts has a finite w >= near > 0 and a finite position inside
+        // the band, so of check_finite's values only w, 1/w and uv/w are left to
+        // compare with the limit, and 1/w <= 1/near, |uv| (1/w) <= |uv| (1/near)
+        // (rounding is monotone): a few compares per triangle, without 1/w, and
+        // check_finite itself where one fails (it throws as on the plain path).
+        const double limit = scene.options.precision == Precision::float32
+                                 ? double(std::numeric_limits<float>::max())
+                                 : std::numeric_limits<double>::max();
+        const double most_inverse_w = 1.0 / scene.camera.near;
+        const auto unlit_triangle = [&](std::size_t index) {
+            const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
+            std::array<ViewVertex, 3> view{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                view[k] = {to_view(triangle[k].position, true), triangle[k].uv};
+            }
+            std::array<TexturedVertex, 3> corners{};
+            if (!screen_accept_perspective(scene, lens, view, corners)) {
+                plain_triangle(index); // near a plane or off screen: the plane tests
+                return;
+            }
+            report.geometry.triangles += 1;
+            bool within = most_inverse_w <= limit; // each compare false for NaN
+            for (const TexturedVertex& c : corners) {
+                within = within && c.w <= limit &&
+                         std::abs(c.uv.x) * most_inverse_w <= limit &&
+                         std::abs(c.uv.y) * most_inverse_w <= limit;
+            }
+            if (!within) {
+                for (std::size_t k = 0; k < 3; ++k) {
+                    corners[k] = checked(corners[k], index); // throws as the plain path
+                }
+            }
+            if (mesh.cull_back && screen_area2(corners) >= 0.0) {
+                report.culling.triangles += 1;
+                return;
+            }
+            ScreenTriangle& t = out.emplace_back();
+            for (std::size_t k = 0; k < 3; ++k) {
+                t.corners[k] = corners[k];
+                t.nearness[k] = 1.0 / corners[k].w;
+                t.points[k] = view[k].position;
+                t.colours[k] = triangle[k].colour;
+                footprint.box.add(corners[k].position);
+            }
+        };
+        //< unlit-geometry
+        const Clock::time_point t0 = Clock::now(); // the whole mesh: clocks cost time
+        if (fast.unlit_geometry && perspective && !lit) {
+            out.reserve(mesh.triangles.size() / 2); // about half face the camera
+            for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
+                unlit_triangle(index);
+            }
+        } else {
+            for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
+                plain_triangle(index);
             }
         }
         report.geometry.seconds += seconds_since(t0);

@@ -58,10 +58,16 @@ struct FastPaths {
     /// Texture: a power-of-two texture under `repeat` is read inline with the indices
     /// wrapped by a bit mask (fetch_texel_masked) instead of two integer remainders.
     bool masked_fetch = true;
+    /// Geometry: an unlit mesh under a perspective camera goes through one short loop
+    /// (unlit_mesh_geometry): each triangle moved to view space, accepted by
+    /// screen_accept's compares, checked for finite values with one bound per triangle
+    /// instead of check_finite's six per corner, culled, and stored; a triangle the
+    /// compares do not accept takes the plain steps.
+    bool unlit_geometry = true;
 };
 
 /// Every fast path off: the plain teaching path.
-inline constexpr FastPaths plain_paths{false, false};
+inline constexpr FastPaths plain_paths{false, false, false};
 //< fast-paths
 
 /// What one stage did over a whole render.
