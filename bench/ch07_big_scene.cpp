@@ -35,8 +35,8 @@
 // `--report` prints format_report of the median of seven renders (by total time) of each
 // EFFECTS; `--png=FILE` writes our render of the full scene. `--fast=NAMES` (before
 // --once, --report or --png) makes our side use only the named fast paths (FastPaths,
-// scene_renderer.hpp), a comma-separated list of screen_accept, masked_fetch and
-// unlit_geometry, or
+// scene_renderer.hpp), a comma-separated list of screen_accept, masked_fetch,
+// unlit_geometry and lean_spans, or
 // `none` for the plain path: the instruction count of each fast path is the difference
 // it makes.
 #define GL_GLEXT_PROTOTYPES 1
@@ -83,6 +83,8 @@ bool read_fast_paths(const std::string& names) {
             fast_paths.masked_fetch = true;
         } else if (name == "unlit_geometry") {
             fast_paths.unlit_geometry = true;
+        } else if (name == "lean_spans") {
+            fast_paths.lean_spans = true;
         } else if (name != "none") {
             std::fprintf(stderr, "bench_ch07_big_scene: unknown fast path %s\n",
                          name.c_str());

@@ -171,6 +171,80 @@ void prepare_chain(MeshContext& m, Filter filter) {
     }
 }
 
+/// What the texture stage sets up once per triangle.
+struct TextureSetup {
+    bool affine_exact = false; ///< the depths are equal: affine is exact (and free)
+    TexturePlanes planes{};    ///< u/w, v/w, 1/w; u and v where affine runs
+    TexelRounding perspective_rounding{}, affine_rounding{}; ///< chapter 4's choice
+};
+
+/// The texture stage's setup of a textured triangle whose corners `tv` snap to `p`
+/// (its planes run through the snapped corners). Throws Error when the triangle leaves
+/// the ranges of chapter 3's mappers.
+TextureSetup texture_setup(const MeshContext& m, const std::array<TexturedVertex, 3>& tv,
+                           const std::array<Point2, 3>& p) {
+    TextureSetup setup;
+    setup.affine_exact =
+        constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
+    const RenderOptions& options = m.scene.options;
+    const MapperSettings settings{.mapper = options.mapper.mapper,
+                                  .precision = options.precision,
+                                  .rounding = {},
+                                  .wrap = m.mesh.wrap};
+    check_textured_triangle(tv, settings); // ranges of chapter 3's mappers
+    // The spans use affine on every span or on none (auto never picks affine where
+    // w varies): its planes and rounding only where it runs.
+    const bool affine_only = options.mapper.automatic
+                                 ? setup.affine_exact
+                                 : options.mapper.mapper.kind == MapperKind::affine;
+    setup.planes = texture_planes(p, tv, affine_only);
+    if (options.rounding) { // chapter 4: ties go right, or down
+        if (affine_only) {
+            setup.affine_rounding = choose_rounding(tv, MapperKind::affine);
+        } else {
+            setup.perspective_rounding = choose_rounding(tv, MapperKind::exact);
+        }
+    }
+    return setup;
+}
+
+/// The mapper a span gets: the scene's, affine where the depth is constant (exact there
+/// and no divide), or auto's choice within the budget (counted in the report).
+Mapper span_mapper(MeshContext& m, const TextureSetup& setup,
+                   const PerspectiveSpan<double>& ps) {
+    const MapperChoice& wanted = m.scene.options.mapper;
+    if (setup.affine_exact && (wanted.automatic || wanted.mapper.kind == MapperKind::affine)) {
+        return {MapperKind::affine, 2};
+    }
+    if (!wanted.automatic) {
+        return wanted.mapper;
+    }
+    const AutoChoice choice = choose_span_mapper(ps, m.scene.options.budget);
+    m.report.auto_choice.spans += 1;
+    m.report.auto_choice.pixels += ps.count;
+    m.report.auto_choice.divides += choice.divides;
+    return choice.mapper;
+}
+
+/// Counts a span of `count` pixels mapped by `mapper` into the texture stage and the
+/// mapper's counter (its triangle once per triangle: `used` remembers), with `seconds`.
+void count_mapped_span(RenderReport& report, Mapper mapper, int count, double seconds,
+                       std::array<bool, 5>& used) {
+    const auto kind = static_cast<std::size_t>(mapper.kind);
+    StageCounter& counter = report.mappers[kind];
+    const long long divides = mapper_divides(mapper, count);
+    counter.triangles += used[kind] ? 0 : 1;
+    used[kind] = true;
+    counter.spans += 1;
+    counter.pixels += count;
+    counter.divides += divides;
+    counter.seconds += seconds;
+    report.texture.spans += 1;
+    report.texture.pixels += count;
+    report.texture.divides += divides;
+    report.texture.seconds += seconds;
+}
+
 //> draw-triangle
 /// Rasterizes one projected triangle and runs the mesh's stages on its spans.
 void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
@@ -184,31 +258,11 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
         snapped[k] = snap_in_range(tv[k].position); // Error beyond +-2^20 px
         p[k] = to_pixels(snapped[k]); // the planes run through the snapped corners
     }
-    // Texture stage setup: only for textured meshes.
-    const bool affine_exact =
-        constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
     const RenderOptions& options = m.scene.options;
-    const MapperSettings settings{.mapper = options.mapper.mapper,
-                                  .precision = options.precision,
-                                  .rounding = {},
-                                  .wrap = m.mesh.wrap};
-    TexturePlanes planes{};
-    TexelRounding perspective_rounding{}, affine_rounding{};
+    // Texture stage setup: only for textured meshes.
+    TextureSetup texture{};
     if (m.stages.texture) {
-        check_textured_triangle(tv, settings); // ranges of chapter 3's mappers
-        // The spans use affine on every span or on none (auto never picks affine where
-        // w varies): its planes and rounding only where it runs.
-        const bool affine_only = options.mapper.automatic
-                                     ? affine_exact
-                                     : options.mapper.mapper.kind == MapperKind::affine;
-        planes = texture_planes(p, tv, affine_only);
-        if (options.rounding) { // chapter 4: ties go right, or down
-            if (affine_only) {
-                affine_rounding = choose_rounding(tv, MapperKind::affine);
-            } else {
-                perspective_rounding = choose_rounding(tv, MapperKind::exact);
-            }
-        }
+        texture = texture_setup(m, tv, p);
         report.texture.triangles += 1;
     }
     // Filter stage setup: only for textured meshes of scenes that ask for a filter.
@@ -310,23 +364,13 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
         //> texture-stage
         if (m.stages.texture) {
             const Clock::time_point t0 = m.clock.now();
-            const PerspectiveSpan<double> ps = perspective_span(planes, s);
-            Mapper mapper = options.mapper.mapper;
-            if (affine_exact &&
-                (options.mapper.automatic || mapper.kind == MapperKind::affine)) {
-                mapper = {MapperKind::affine, 2}; // exact here, and no divide
-            } else if (options.mapper.automatic) {
-                const AutoChoice choice = choose_span_mapper(ps, options.budget);
-                mapper = choice.mapper;
-                report.auto_choice.spans += 1;
-                report.auto_choice.pixels += count;
-                report.auto_choice.divides += choice.divides;
-            }
+            const PerspectiveSpan<double> ps = perspective_span(texture.planes, s);
+            const Mapper mapper = span_mapper(m, texture, ps); // auto: within the budget
             const TexelRounding r = mapper.kind == MapperKind::affine
-                                        ? affine_rounding
-                                        : perspective_rounding;
+                                        ? texture.affine_rounding
+                                        : texture.perspective_rounding;
             const AffineSpan<double> as = mapper.kind == MapperKind::affine
-                                              ? affine_span(planes, s)
+                                              ? affine_span(texture.planes, s)
                                               : AffineSpan<double>{};
             map_span(mapper, options.precision, r, ps, as,
                      [&](int k, int i, int j, double uu, double vv) {
@@ -367,19 +411,8 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
                 report.filter.seconds += m.clock.since(f0);
             }
             //< filter-stage
-            StageCounter& used = report.mappers[static_cast<std::size_t>(mapper.kind)];
-            const long long divides = mapper_divides(mapper, count);
-            used.triangles += mapper_used[static_cast<std::size_t>(mapper.kind)] ? 0 : 1;
-            mapper_used[static_cast<std::size_t>(mapper.kind)] = true;
-            used.spans += 1;
-            used.pixels += count;
-            used.divides += divides;
             const double spent = m.clock.since(t0);
-            used.seconds += spent;
-            report.texture.spans += 1;
-            report.texture.pixels += count;
-            report.texture.divides += divides;
-            report.texture.seconds += spent;
+            count_mapped_span(report, mapper, count, spent, mapper_used);
             shading_seconds += spent;
         }
         //< texture-stage
@@ -464,6 +497,115 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
     report.raster.seconds += m.clock.since(start) - shading_seconds;
 }
 //< draw-triangle
+
+/// Whether draw_triangle_lean can draw the mesh's triangles: its only stages are the
+/// texture stage with nearest texels (or the flat colour) and the depth stage, and no
+/// texel coordinates are recorded.
+bool lean_drawable(const MeshContext& m) {
+    return !m.stages.colour && !m.stages.tint && m.lights == nullptr &&
+           m.coordinates == nullptr &&
+           (!m.stages.texture || m.scene.options.filter == SceneFilter::nearest);
+}
+
+//> draw-triangle-lean
+/// draw_triangle for a mesh lean_drawable accepts (FastPaths::lean_spans): the same
+/// setup, depth test, mapper choice and mapper on each span, in the same order and
+/// arithmetic, with the counts and the sampled times of the plain path; what it leaves
+/// out is the row of shaded pixels that the other stages would work on. A visible pixel
+/// goes straight from the mapper (or the flat colour) to the frame, and a hidden pixel's
+/// texel is not read.
+void draw_triangle_lean(MeshContext& m, const ScreenTriangle& triangle) {
+    const std::array<TexturedVertex, 3>& tv = triangle.corners;
+    RenderReport& report = m.report;
+    const Clock::time_point start = m.clock.now();
+    std::array<FixedPoint2, 3> snapped{};
+    std::array<Point2, 3> p{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        snapped[k] = snap_in_range(tv[k].position); // Error beyond +-2^20 px
+        p[k] = to_pixels(snapped[k]);
+    }
+    TextureSetup texture{};
+    if (m.stages.texture) {
+        texture = texture_setup(m, tv, p);
+        report.texture.triangles += 1;
+    } else {
+        report.flat.triangles += 1;
+    }
+    ScreenPlane nearness{};
+    if (m.depth != nullptr) {
+        nearness = plane_through(p, triangle.nearness);
+        report.depth.triangles += 1;
+    }
+    std::array<bool, 5> mapper_used{};
+    double shading_seconds = 0.0;
+    report.raster.triangles += 1;
+    const int width = m.frame.width();
+    m.visible.resize(static_cast<std::size_t>(width)); // every entry written before read
+    char* const visible = m.visible.data();
+    scanline_spans(snapped, Viewport{width, m.frame.height()}, [&](Span s) {
+        const int count = s.x_end - s.x_begin;
+        const double x = s.x_begin + 0.5, y = s.y + 0.5;
+        report.raster.spans += 1;
+        report.raster.pixels += count;
+        int shown = count;
+        if (m.depth != nullptr) {
+            const Clock::time_point t0 = m.clock.now();
+            shown = 0;
+            for (int k = 0; k < count; ++k) {
+                const float q = nearness_key(nearness.at(x + k, y));
+                const bool seen = m.depth->test_and_write(s.x_begin + k, s.y, q);
+                visible[k] = seen;
+                shown += seen;
+            }
+            report.depth.spans += 1;
+            report.depth.pixels += count;
+            report.hidden.spans += shown < count;
+            report.hidden.pixels += count - shown;
+            const double spent = m.clock.since(t0);
+            report.depth.seconds += spent;
+            shading_seconds += spent;
+            if (shown == 0) {
+                return;
+            }
+        }
+        Rgba8* const out = &m.frame.at(s.x_begin, s.y); // the span's pixels in a row
+        const bool all_shown = shown == count;
+        if (!m.stages.texture) {
+            for (int k = 0; k < count; ++k) {
+                if (all_shown || visible[k] != 0) {
+                    out[k] = m.flat;
+                }
+            }
+            report.flat.spans += 1;
+            report.flat.pixels += count;
+            return;
+        }
+        const Clock::time_point t0 = m.clock.now();
+        const PerspectiveSpan<double> ps = perspective_span(texture.planes, s);
+        const Mapper mapper = span_mapper(m, texture, ps);
+        const TexelRounding r = mapper.kind == MapperKind::affine
+                                    ? texture.affine_rounding
+                                    : texture.perspective_rounding;
+        const AffineSpan<double> as = mapper.kind == MapperKind::affine
+                                          ? affine_span(texture.planes, s)
+                                          : AffineSpan<double>{};
+        const Texture& texels = *m.texture;
+        const Wrap wrap = m.mesh.wrap;
+        const bool masked = m.masked_fetch;
+        map_span(mapper, m.scene.options.precision, r, ps, as,
+                 [&](int k, int i, int j, double, double) {
+                     if (all_shown || visible[k] != 0) {
+                         out[k] = masked ? fetch_texel_masked(texels, i, j)
+                                         : fetch_texel(texels, i, j, wrap);
+                     }
+                 });
+        const double spent = m.clock.since(t0);
+        count_mapped_span(report, mapper, count, spent, mapper_used);
+        shading_seconds += spent;
+    });
+    report.raster.seconds += m.clock.since(start) - shading_seconds;
+}
+//< draw-triangle-lean
 
 /// A triangle in view space with the colour and the normal of each corner.
 struct ClippedCorners {
@@ -1017,9 +1159,14 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
             const RenderReport before = report;
             const Clock::time_point t0 = Clock::now();
             const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
+            const bool lean = fast.lean_spans && lean_drawable(m);
             for (std::size_t k = 0; k < triangles.size(); ++k) {
                 m.clock.on = k % timed_triangle_interval == 0;
-                draw_triangle(m, triangles[k]);
+                if (lean) {
+                    draw_triangle_lean(m, triangles[k]);
+                } else {
+                    draw_triangle(m, triangles[k]);
+                }
             }
             share_drawing_time(report, before, seconds_since(t0));
             if (mesh.texture) {

@@ -64,10 +64,14 @@ struct FastPaths {
     /// instead of check_finite's six per corner, culled, and stored; a triangle the
     /// compares do not accept takes the plain steps.
     bool unlit_geometry = true;
+    /// Drawing: a mesh whose only stages are nearest texels (or its flat colour) and
+    /// depth is drawn by draw_triangle_lean, which writes each visible pixel straight to
+    /// the frame instead of shading a row of pixels that later stages would change.
+    bool lean_spans = true;
 };
 
 /// Every fast path off: the plain teaching path.
-inline constexpr FastPaths plain_paths{false, false, false};
+inline constexpr FastPaths plain_paths{false, false, false, false};
 //< fast-paths
 
 /// What one stage did over a whole render.
