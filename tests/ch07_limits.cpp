@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include <fcntl.h>
+#include <malloc.h>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -56,6 +57,11 @@ Peak run_measured(const std::vector<std::string>& arguments,
         argv.push_back(argument.data());
     }
     argv.push_back(nullptr);
+    // A forked child starts with this process's resident pages, and the kernel keeps
+    // that high-water mark through execv: ru_maxrss would be this process's size
+    // whenever it exceeds the child's own peak. Freed memory the allocator kept from
+    // earlier tests (the big torus's renders) goes back to the system first.
+    ::malloc_trim(0);
     const pid_t child = ::fork();
     if (child == 0) {
         const int in = ::open(input.c_str(), O_RDONLY);
