@@ -178,20 +178,24 @@ struct TextureSetup {
     TexelRounding perspective_rounding{}, affine_rounding{}; ///< chapter 4's choice
 };
 
+/// Throws Error when a textured triangle with corners `tv` leaves the ranges of chapter
+/// 3's mappers as the scene sets them.
+void check_mapper_ranges(const MeshContext& m, const std::array<TexturedVertex, 3>& tv) {
+    const RenderOptions& options = m.scene.options;
+    check_textured_triangle(tv, MapperSettings{.mapper = options.mapper.mapper,
+                                               .precision = options.precision,
+                                               .rounding = {},
+                                               .wrap = m.mesh.wrap});
+}
+
 /// The texture stage's setup of a textured triangle whose corners `tv` snap to `p`
-/// (its planes run through the snapped corners). Throws Error when the triangle leaves
-/// the ranges of chapter 3's mappers.
+/// (its planes run through the snapped corners), once check_mapper_ranges has passed.
 TextureSetup texture_setup(const MeshContext& m, const std::array<TexturedVertex, 3>& tv,
                            const std::array<Point2, 3>& p) {
     TextureSetup setup;
     setup.affine_exact =
         constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
     const RenderOptions& options = m.scene.options;
-    const MapperSettings settings{.mapper = options.mapper.mapper,
-                                  .precision = options.precision,
-                                  .rounding = {},
-                                  .wrap = m.mesh.wrap};
-    check_textured_triangle(tv, settings); // ranges of chapter 3's mappers
     // The spans use affine on every span or on none (auto never picks affine where
     // w varies): its planes and rounding only where it runs.
     const bool affine_only = options.mapper.automatic
@@ -213,7 +217,8 @@ TextureSetup texture_setup(const MeshContext& m, const std::array<TexturedVertex
 Mapper span_mapper(MeshContext& m, const TextureSetup& setup,
                    const PerspectiveSpan<double>& ps) {
     const MapperChoice& wanted = m.scene.options.mapper;
-    if (setup.affine_exact && (wanted.automatic || wanted.mapper.kind == MapperKind::affine)) {
+    if (setup.affine_exact &&
+        (wanted.automatic || wanted.mapper.kind == MapperKind::affine)) {
         return {MapperKind::affine, 2};
     }
     if (!wanted.automatic) {
@@ -262,6 +267,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
     // Texture stage setup: only for textured meshes.
     TextureSetup texture{};
     if (m.stages.texture) {
+        check_mapper_ranges(m, tv);
         texture = texture_setup(m, tv, p);
         report.texture.triangles += 1;
     }
@@ -512,8 +518,10 @@ bool lean_drawable(const MeshContext& m) {
 /// setup, depth test, mapper choice and mapper on each span, in the same order and
 /// arithmetic, with the counts and the sampled times of the plain path; what it leaves
 /// out is the row of shaded pixels that the other stages would work on. A visible pixel
-/// goes straight from the mapper (or the flat colour) to the frame, and a hidden pixel's
-/// texel is not read.
+/// goes straight from the mapper (or the flat colour) to the frame, a hidden pixel's
+/// texel is not read, and the planes are set up only when a span needs them: not at all
+/// for a triangle that covers no pixel centre, or (the texture's) whose every pixel the
+/// depth test hides.
 void draw_triangle_lean(MeshContext& m, const ScreenTriangle& triangle) {
     const std::array<TexturedVertex, 3>& tv = triangle.corners;
     RenderReport& report = m.report;
@@ -524,18 +532,21 @@ void draw_triangle_lean(MeshContext& m, const ScreenTriangle& triangle) {
         snapped[k] = snap_in_range(tv[k].position); // Error beyond +-2^20 px
         p[k] = to_pixels(snapped[k]);
     }
-    TextureSetup texture{};
     if (m.stages.texture) {
-        texture = texture_setup(m, tv, p);
+        check_mapper_ranges(m, tv); // its Error, if any, before the first pixel
         report.texture.triangles += 1;
     } else {
         report.flat.triangles += 1;
     }
-    ScreenPlane nearness{};
     if (m.depth != nullptr) {
-        nearness = plane_through(p, triangle.nearness);
         report.depth.triangles += 1;
     }
+    // The planes wait for the first span (a tiny triangle may cover no pixel centre),
+    // the texture's for the first span the depth test leaves any pixel of.
+    ScreenPlane nearness{};
+    bool nearness_ready = false;
+    TextureSetup texture{};
+    bool texture_ready = false;
     std::array<bool, 5> mapper_used{};
     double shading_seconds = 0.0;
     report.raster.triangles += 1;
@@ -549,6 +560,10 @@ void draw_triangle_lean(MeshContext& m, const ScreenTriangle& triangle) {
         report.raster.pixels += count;
         int shown = count;
         if (m.depth != nullptr) {
+            if (!nearness_ready) {
+                nearness = plane_through(p, triangle.nearness);
+                nearness_ready = true;
+            }
             const Clock::time_point t0 = m.clock.now();
             shown = 0;
             for (int k = 0; k < count; ++k) {
@@ -579,6 +594,10 @@ void draw_triangle_lean(MeshContext& m, const ScreenTriangle& triangle) {
             report.flat.spans += 1;
             report.flat.pixels += count;
             return;
+        }
+        if (!texture_ready) { // the rasterizer's time, as on the plain path
+            texture = texture_setup(m, tv, p);
+            texture_ready = true;
         }
         const Clock::time_point t0 = m.clock.now();
         const PerspectiveSpan<double> ps = perspective_span(texture.planes, s);
@@ -913,8 +932,12 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
             return checked(project_vertex(scene, lens, v), index);
         };
         // Every step of one triangle, the plain way (the fast paths inside it are
-        // screen_accept's).
-        const auto plain_triangle = [&](std::size_t index) {
+        // screen_accept's). Inlined into the plain loop below, and called out of line
+        // where unlit_geometry hands a triangle over (plain_triangle_call): inlined
+        // there too, it would crowd the fast loop (callgrind: 2.6M instructions more
+        // on the big torus's frame).
+        const auto plain_triangle = [&](std::size_t index)
+            __attribute__((always_inline)) {
             const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
             std::array<ViewVertex, 3> view{};
             std::array<Colour, 3> colours{};
@@ -1005,6 +1028,10 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
                 out.push_back(t);
             }
         };
+        const auto plain_triangle_call = [&](std::size_t index)
+            __attribute__((noinline)) {
+            plain_triangle(index);
+        };
         //> unlit-geometry
         // FastPaths::unlit_geometry: an unlit mesh under a perspective camera. A corner
         // screen_accept accepts has a finite w >= near > 0 and a finite position inside
@@ -1024,7 +1051,7 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
             }
             std::array<TexturedVertex, 3> corners{};
             if (!screen_accept_perspective(scene, lens, view, corners)) {
-                plain_triangle(index); // near a plane or off screen: the plane tests
+                plain_triangle_call(index); // near a plane or off screen: plane tests
                 return;
             }
             report.geometry.triangles += 1;

@@ -91,7 +91,9 @@ constexpr int fixed_texel_index(std::int32_t U, std::int32_t bias) {
 /// u * D is an integer. Every real mapper calls it for every pixel, twice: within
 /// |u| < 2^30 it rounds with floor_to_int and ceil_to_int (base/floor_to_int.hpp), which
 /// are exact and need no call into the maths library; beyond, std::floor and std::ceil.
-inline int real_texel_index(double u, std::int32_t bias) {
+/// Always inlined: where a file instantiates the mappers twice (chapter 7's renderer
+/// with its lean drawing path), GCC otherwise calls it, two calls per pixel.
+[[gnu::always_inline]] inline int real_texel_index(double u, std::int32_t bias) {
     const std::int32_t offset = bias - texel_scale / 2; // b' in floor((U + b') / D)
     const bool small = std::abs(u) < 0x1p30;            // false for NaN too
     if (offset >= 0) {
