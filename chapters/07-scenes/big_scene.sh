@@ -8,8 +8,9 @@
 # Instruction counts: for each run NAME it runs
 #   LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch07_frame_once \
 #       bench_ch07_big_scene --once=NAME
-# (and for our full scene also with --fast=none, --fast=screen_accept and
-# --fast=masked_fetch before --once: the plain path and each fast path alone)
+# (and for our full scene also with --fast=none, and --fast=NAME for each fast path,
+# screen_accept, masked_fetch, unlit_geometry and lean_spans, before --once: the plain
+# path and each fast path alone)
 # which counts one frame after an uncounted first one (llvmpipe compiles its code then;
 # LP_NUM_THREADS=0 makes it rasterize in the counted thread). Writes Markdown tables whose
 # rows are facts for the chapter's claims (default:
@@ -76,6 +77,8 @@ instructions() {
     ours_plain=$(instructions ours/full none)
     ours_accept=$(instructions ours/full screen_accept)
     ours_masked=$(instructions ours/full masked_fetch)
+    ours_unlit=$(instructions ours/full unlit_geometry)
+    ours_lean=$(instructions ours/full lean_spans)
     echo "| run | instructions |"
     echo "|:--|--:|"
     echo "| instructions ours full | $ours_full |"
@@ -91,6 +94,8 @@ instructions() {
     echo "| instructions ours full plain | $ours_plain |"
     echo "| instructions ours full screen_accept | $ours_accept |"
     echo "| instructions ours full masked_fetch | $ours_masked |"
+    echo "| instructions ours full unlit_geometry | $ours_unlit |"
+    echo "| instructions ours full lean_spans | $ours_lean |"
     echo
     echo "The same in millions:"
     echo
@@ -104,6 +109,10 @@ instructions() {
          "$(ratio "$ours_accept" 1000000) |"
     echo "| instructions ours full masked_fetch millions |" \
          "$(ratio "$ours_masked" 1000000) |"
+    echo "| instructions ours full unlit_geometry millions |" \
+         "$(ratio "$ours_unlit" 1000000) |"
+    echo "| instructions ours full lean_spans millions |" \
+         "$(ratio "$ours_lean" 1000000) |"
     "$bench" --report >"$scratch/report.txt"
     # The full scene's raster line: stage, triangles, spans, pixels, divides, ms.
     drawn=$(awk '/^## full/ { f = 1 } f && $1 == "raster" { print $2; exit }' \
