@@ -113,7 +113,6 @@ struct MeshLook {
     MeshStages stages;
 };
 
-//> referee-phong-shader
 /// The vertex stage of per-pixel lighting: the view-space point (texture unit 1's
 /// coordinate) and normal go out as varyings, which GL interpolates perspective-correctly
 /// (a/w over 1/w, in float), as the renderer's lighting stage does in double.
@@ -131,6 +130,7 @@ void main() {
 }
 )";
 
+//> referee-phong-shader
 /// light_colour (lighting.cpp) in single precision, on the pixel the renderer's texture
 /// and colour stages would write: the texel times the colour, rounded to 8 bits.
 constexpr const char* per_pixel_fragment = R"(#version 450 compatibility
@@ -145,12 +145,12 @@ uniform bool decode_codes; // false only for a planted fault (RefereeFault)
 uniform vec3 ambient;      // sRGB code / 255
 uniform vec3 specular;     // sRGB code / 255
 uniform float shininess;
-uniform int light_count;
+uniform int light_count;         // at most 8, max_scene_lights
 uniform bool light_is_point[8];
 uniform vec3 light_towards[8];  // directional: unit vector to the light
 uniform vec3 light_position[8]; // point: view space
 uniform vec3 light_radiance[8]; // linear light
-const float min_light_distance = 1e-6;
+uniform float min_light_distance;
 float decode(float s) {
     return s <= 0.04045 ? s / 12.92 : pow((s + 0.055) / 1.055, 2.4);
 }
@@ -195,6 +195,7 @@ void main() {
 }
 )";
 //< referee-phong-shader
+static_assert(max_scene_lights == 8, "per_pixel_fragment's light arrays hold 8");
 
 /// In place of per_pixel_fragment, for the probe passes: one float the lighting starts
 /// from (the renormalised normal's x, y or z, or the point's, as `component` says 0..5),
@@ -279,6 +280,11 @@ void set_lighting_uniforms(GLuint program, const Scene& scene,
                 static_cast<float>(mesh.specular.g), static_cast<float>(mesh.specular.b));
     glUniform1f(at("shininess"),
                 static_cast<float>(mesh.shininess + fault.shininess_offset));
+    if (geometry.lights.size() > static_cast<std::size_t>(max_scene_lights)) {
+        throw Error(fmt::format("the referee's shader takes at most {} lights",
+                                max_scene_lights)); // its arrays' size
+    }
+    glUniform1f(at("min_light_distance"), static_cast<float>(min_light_distance));
     glUniform1i(at("light_count"), static_cast<GLint>(geometry.lights.size()));
     for (std::size_t k = 0; k < geometry.lights.size(); ++k) {
         const ViewLight& light = geometry.lights[k];
