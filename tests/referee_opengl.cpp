@@ -1,6 +1,7 @@
 // Chapter 7's referee (@sec:scene-referee): every shipped scene drawn again by Mesa's
 // llvmpipe through OSMesa, from the same snapped triangles, and compared pixel for pixel:
-// coverage, the triangle that wins each pixel, colours within the derived tolerance.
+// coverage, the triangle that wins each pixel, colours within the derived tolerances
+// (per-pixel lighting through a GLSL program, and a planted fault that it catches).
 // Not a ch07_*.cpp file (the chapter's kit does not link OSMesa); label ch07 all the
 // same.
 #include <doctest/doctest.h>
@@ -100,7 +101,10 @@ TEST_CASE("llvmpipe's colours are the renderer's within the derived tolerance") 
     for (const auto& [name, c] : comparisons(skip)) {
         INFO(name << ": tolerance " << c.tolerance << ", worst " << c.worst_colour
                   << ", beyond " << c.colour_over << " (on texel edges " << c.texel_edge
-                  << "), worst off edges " << c.worst_off_edge);
+                  << "), worst off edges " << c.worst_off_edge << "; lit per pixel "
+                  << c.lit_compared << ", worst off edges " << c.worst_lit_off_edge
+                  << ", float bound " << c.worst_lit_float << "; not compared "
+                  << c.colour_uncompared << " (" << c.uncompared << ")");
         // Off texel edges every compared pixel is within the tolerance; on them
         // llvmpipe's single-precision coordinate may take the neighbouring texel, at
         // no more than one pixel in a thousand.
@@ -108,6 +112,53 @@ TEST_CASE("llvmpipe's colours are the renderer's within the derived tolerance") 
         CHECK(c.colour_over == c.texel_edge);
         CHECK(c.worst_off_edge <= c.tolerance);
         CHECK(c.texel_edge * 1000 <= c.colour_compared);
+        // Pixels are left out only for a named reason.
+        CHECK((c.colour_uncompared == 0) == c.uncompared.empty());
+        if (c.colour_uncompared > 0) {
+            MESSAGE(name << ": " << c.colour_uncompared
+                         << " pixels' colours not compared: " << c.uncompared);
+        }
+    }
+}
+
+TEST_CASE("llvmpipe lights per pixel as the renderer does, within one level") {
+    std::string skip;
+    int lit_scenes = 0;
+    for (const auto& [name, c] : comparisons(skip)) {
+        if (c.phong_meshes == 0) {
+            continue;
+        }
+        INFO(name << ": " << c.lit_compared << " lit pixels compared, worst off texel "
+                  << "edges " << c.worst_lit_off_edge << " levels, GL's float moves "
+                  << "the lit value by at most " << c.worst_lit_float << " levels");
+        lit_scenes += 1;
+        CHECK(c.lit_compared > 0);
+        // @eq:scene-referee-lit: two roundings of 1/2 level and GL's float error below
+        // 1 keep two integers less than 2 apart, so within referee_lit_levels.
+        CHECK(c.worst_lit_float < 1.0);
+        CHECK(c.worst_lit_off_edge <= referee_lit_levels);
+    }
+    CHECK(lit_scenes >= 2); // lit and lit_torus
+}
+
+TEST_CASE("a fault planted in llvmpipe's per-pixel lighting goes beyond the tolerance") {
+    // The comparison can fail: light the codes without the sRGB decode, or raise the
+    // Blinn-Phong exponent by 8, on GL's side only, and the lit pixels part.
+    std::string skip;
+    for (const auto& [name, c] : comparisons(skip)) {
+        if (c.phong_meshes == 0) {
+            continue;
+        }
+        const Scene scene = load_scene(shipped_scene_folder() / (name + ".toml"));
+        const RefereeComparison undecoded = referee_scene(scene, name, {true, 0.0});
+        const RefereeComparison shinier = referee_scene(scene, name, {false, 8.0});
+        INFO(name << ": beyond the tolerance off texel edges "
+                  << undecoded.colour_over - undecoded.texel_edge
+                  << " without the decode, " << shinier.colour_over - shinier.texel_edge
+                  << " with s + 8");
+        CHECK(undecoded.colour_over - undecoded.texel_edge > c.lit_compared / 2);
+        CHECK(shinier.colour_over - shinier.texel_edge > 100);
+        CHECK(shinier.worst_lit_off_edge > 2 * referee_lit_levels);
     }
 }
 

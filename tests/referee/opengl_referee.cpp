@@ -11,17 +11,23 @@
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_pipeline.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
+#include "exactpixels/texture/srgb.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
 
+#define GL_GLEXT_PROTOTYPES 1 // glCreateShader and the rest: libOSMesa exports them
 #include <GL/osmesa.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <random>
+#include <utility>
 
 namespace exactpixels {
 
@@ -102,15 +108,220 @@ std::vector<bool> exact_coverage(const SceneGeometry& geometry, int width, int h
 
 /// What GL draws one mesh with in the colour pass.
 struct MeshLook {
-    bool comparable = true; ///< GL's fixed pipeline draws it as the renderer does
+    bool comparable = true; ///< GL draws its colours as the renderer does
+    bool phong = false;     ///< lit per pixel: drawn with per_pixel_program()
     MeshStages stages;
 };
 
+/// The vertex stage of per-pixel lighting: the view-space point (texture unit 1's
+/// coordinate) and normal go out as varyings, which GL interpolates perspective-correctly
+/// (a/w over 1/w, in float), as the renderer's lighting stage does in double.
+constexpr const char* per_pixel_vertex = R"(#version 450 compatibility
+out vec3 point;
+out vec3 normal;
+out vec4 colour;
+out vec2 uv;
+void main() {
+    gl_Position = gl_ModelViewProjectionMatrix * gl_Vertex;
+    point = gl_MultiTexCoord1.xyz;
+    normal = gl_Normal;
+    colour = gl_Color;
+    uv = gl_MultiTexCoord0.xy;
+}
+)";
+
+//> referee-phong-shader
+/// light_colour (lighting.cpp) in single precision, on the pixel the renderer's texture
+/// and colour stages would write: the texel times the colour, rounded to 8 bits.
+constexpr const char* per_pixel_fragment = R"(#version 450 compatibility
+in vec3 point;
+in vec3 normal;
+in vec4 colour;
+in vec2 uv;
+uniform sampler2D texels;
+uniform bool textured;
+uniform bool perspective;
+uniform bool decode_codes; // false only for a planted fault (RefereeFault)
+uniform vec3 ambient;      // sRGB code / 255
+uniform vec3 specular;     // sRGB code / 255
+uniform float shininess;
+uniform int light_count;         // at most 8, max_scene_lights
+uniform bool light_is_point[8];
+uniform vec3 light_towards[8];  // directional: unit vector to the light
+uniform vec3 light_position[8]; // point: view space
+uniform vec3 light_radiance[8]; // linear light
+uniform float min_light_distance;
+float decode(float s) {
+    return s <= 0.04045 ? s / 12.92 : pow((s + 0.055) / 1.055, 2.4);
+}
+float encode(float l) {
+    return l <= 0.0031308 ? 12.92 * l : 1.055 * pow(l, 1.0 / 2.4) - 0.055;
+}
+vec3 to_linear(vec3 c) {
+    return decode_codes ? vec3(decode(c.r), decode(c.g), decode(c.b)) : c;
+}
+void main() {
+    vec3 base = colour.rgb;
+    if (textured) {
+        base *= texture(texels, uv).rgb;
+    }
+    base = floor(clamp(base, 0.0, 1.0) * 255.0 + 0.5) / 255.0; // an 8-bit pixel
+    vec3 n = normalize(normal);
+    vec3 to_eye = perspective ? normalize(-point) : vec3(0.0, 0.0, -1.0);
+    vec3 lambert = to_linear(ambient);
+    vec3 highlight = vec3(0.0);
+    for (int i = 0; i < light_count; ++i) {
+        vec3 towards = light_towards[i];
+        vec3 irradiance = light_radiance[i];
+        if (light_is_point[i]) {
+            vec3 d = light_position[i] - point;
+            float d2 = max(dot(d, d), min_light_distance * min_light_distance);
+            towards = d / sqrt(d2);
+            irradiance /= d2;
+        }
+        float cosine = dot(n, towards);
+        if (cosine <= 0.0) {
+            continue; // the light is behind the surface
+        }
+        lambert += cosine * irradiance;
+        vec3 sum = towards + to_eye;
+        if (dot(sum, sum) > 0.0) {
+            float facing = max(0.0, dot(n, normalize(sum)));
+            highlight += pow(facing, shininess) * irradiance;
+        }
+    }
+    vec3 l = max(to_linear(base) * lambert + to_linear(specular) * highlight, 0.0);
+    gl_FragColor = vec4(encode(l.r), encode(l.g), encode(l.b), 1.0);
+}
+)";
+//< referee-phong-shader
+static_assert(max_scene_lights == 8, "per_pixel_fragment's light arrays hold 8");
+
+/// In place of per_pixel_fragment, for the probe passes: one float the lighting starts
+/// from (the renormalised normal's x, y or z, or the point's, as `component` says 0..5),
+/// its 32 bits written as the pixel's four 8-bit channels, so that the referee reads
+/// exactly what GL interpolated.
+constexpr const char* probe_fragment = R"(#version 450 compatibility
+in vec3 point;
+in vec3 normal;
+uniform int component;
+void main() {
+    vec3 n = normalize(normal);
+    float value = component < 3 ? n[component] : point[component - 3];
+    uint bits = floatBitsToUint(value);
+    gl_FragColor = vec4(float(bits & 255u), float((bits >> 8) & 255u),
+                        float((bits >> 16) & 255u), float(bits >> 24)) / 255.0;
+}
+)";
+
+/// Compiles one shader stage; throws Error with GL's log when it fails.
+GLuint compile_shader(GLenum kind, const char* source) {
+    const GLuint shader = glCreateShader(kind);
+    glShaderSource(shader, 1, &source, nullptr);
+    glCompileShader(shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        std::string log(4096, '\0');
+        GLsizei length = 0;
+        glGetShaderInfoLog(shader, static_cast<GLsizei>(log.size()), &length, log.data());
+        log.resize(static_cast<std::size_t>(length));
+        throw Error("the referee's per-pixel lighting shader does not compile: " + log);
+    }
+    return shader;
+}
+
+/// Links per_pixel_vertex with `fragment`; throws Error when it fails.
+GLuint link_program(const char* fragment) {
+    const GLuint made = glCreateProgram();
+    glAttachShader(made, compile_shader(GL_VERTEX_SHADER, per_pixel_vertex));
+    glAttachShader(made, compile_shader(GL_FRAGMENT_SHADER, fragment));
+    glLinkProgram(made);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(made, GL_LINK_STATUS, &ok);
+    if (ok != GL_TRUE) {
+        throw Error("the referee's per-pixel lighting program does not link");
+    }
+    return made;
+}
+
+/// The per-pixel lighting program, linked once (the context must be current).
+GLuint per_pixel_program() {
+    static const GLuint program = link_program(per_pixel_fragment);
+    return program;
+}
+
+/// The probe program (probe_fragment), linked once.
+GLuint probe_program() {
+    static const GLuint program = link_program(probe_fragment);
+    return program;
+}
+
+/// Sets the per-pixel program's uniforms for one mesh: the scene's lights (view space,
+/// as run_geometry moved them), ambient, the mesh's material, and `fault`.
+void set_lighting_uniforms(GLuint program, const Scene& scene,
+                           const SceneGeometry& geometry, const SceneMesh& mesh,
+                           bool textured, const RefereeFault& fault) {
+    const auto at = [&](const char* name) { return glGetUniformLocation(program, name); };
+    const auto vec3 = [&](const char* name, std::size_t k, double x, double y, double z) {
+        const std::string indexed = fmt::format("{}[{}]", name, k);
+        glUniform3f(at(indexed.c_str()), static_cast<float>(x), static_cast<float>(y),
+                    static_cast<float>(z));
+    };
+    glUniform1i(at("texels"), 0);
+    glUniform1i(at("textured"), textured ? 1 : 0);
+    glUniform1i(at("perspective"),
+                scene.camera.projection == Projection::perspective ? 1 : 0);
+    glUniform1i(at("decode_codes"), fault.skip_decode ? 0 : 1);
+    const Colour& a = scene.options.ambient;
+    glUniform3f(at("ambient"), static_cast<float>(a.r), static_cast<float>(a.g),
+                static_cast<float>(a.b));
+    glUniform3f(at("specular"), static_cast<float>(mesh.specular.r),
+                static_cast<float>(mesh.specular.g), static_cast<float>(mesh.specular.b));
+    glUniform1f(at("shininess"),
+                static_cast<float>(mesh.shininess + fault.shininess_offset));
+    if (geometry.lights.size() > static_cast<std::size_t>(max_scene_lights)) {
+        throw Error(fmt::format("the referee's shader takes at most {} lights",
+                                max_scene_lights)); // its arrays' size
+    }
+    glUniform1f(at("min_light_distance"), static_cast<float>(min_light_distance));
+    glUniform1i(at("light_count"), static_cast<GLint>(geometry.lights.size()));
+    for (std::size_t k = 0; k < geometry.lights.size(); ++k) {
+        const ViewLight& light = geometry.lights[k];
+        const std::string point = fmt::format("light_is_point[{}]", k);
+        glUniform1i(at(point.c_str()), light.type == LightType::point ? 1 : 0);
+        vec3("light_towards", k, light.towards.x, light.towards.y, light.towards.z);
+        vec3("light_position", k, light.position.x, light.position.y, light.position.z);
+        vec3("light_radiance", k, light.radiance.r, light.radiance.g, light.radiance.b);
+    }
+}
+
+/// Uploads `texture` as the bound GL_TEXTURE_2D's only level (8-bit codes, nearest).
+void upload_nearest(const Texture& texture) {
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texture.width(), texture.height(), 0,
+                 GL_RGBA, GL_UNSIGNED_BYTE, texture.texels().data());
+}
+
+/// The texels of `texture` each multiplied by `tint` as the renderer's colour stage
+/// multiplies them (code / 255 times the tint, rounded to the nearest code).
+Texture tinted(const Texture& texture, const Colour& tint) {
+    std::vector<Rgba8> texels = texture.texels();
+    for (Rgba8& t : texels) {
+        t = to_rgba8(
+            Colour{t.r / 255.0 * tint.r, t.g / 255.0 * tint.g, t.b / 255.0 * tint.b});
+    }
+    return Texture(texture.width(), texture.height(), std::move(texels));
+}
+
 /// Draws every triangle through GL; `id_pass` gives each its index + 1 as a flat
-/// colour, else the renderer's colours and nearest texels. Returns the pixels.
+/// colour, else the renderer's colours and nearest texels, and per-pixel lighting (with
+/// `fault` planted) for the meshes lit per pixel, or, when `probe` is 0..5, those
+/// meshes' probe_fragment value of that component. Returns the pixels.
 std::vector<Rgba8> draw_gl(const Scene& scene, const SceneGeometry& geometry,
                            const std::vector<MeshLook>& looks, bool depth_on,
-                           bool id_pass) {
+                           bool id_pass, const RefereeFault& fault = {}, int probe = -1) {
     const int width = scene.width, height = scene.height;
     std::vector<Rgba8> pixels(static_cast<std::size_t>(width) * height);
     if (!OSMesaMakeCurrent(context().context, pixels.data(), GL_UNSIGNED_BYTE, width,
@@ -159,17 +370,25 @@ std::vector<Rgba8> draw_gl(const Scene& scene, const SceneGeometry& geometry,
     }
     const double q_span = q_max > q_min ? q_max - q_min : 1.0;
     const bool perspective = scene.camera.projection == Projection::perspective;
-    std::vector<GLuint> names(scene.textures.size(), 0);
-    if (!id_pass && !names.empty()) {
+    // One GL texture per scene texture, and for each tinted mesh lit per pixel one
+    // more, its texels tinted as the renderer's colour stage tints them (the shader
+    // lights that 8-bit product, as the renderer's lighting stage does).
+    std::vector<GLuint> names(id_pass ? 0 : scene.textures.size() + scene.meshes.size(),
+                              0);
+    if (!names.empty()) {
         glGenTextures(static_cast<GLsizei>(names.size()), names.data());
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        for (std::size_t i = 0; i < names.size(); ++i) {
-            const Texture& texture = scene.textures[i].texture;
+        for (std::size_t i = 0; i < scene.textures.size(); ++i) {
             glBindTexture(GL_TEXTURE_2D, names[i]);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, texture.width(), texture.height(), 0,
-                         GL_RGBA, GL_UNSIGNED_BYTE, texture.texels().data());
+            upload_nearest(scene.textures[i].texture);
+        }
+        for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+            const SceneMesh& mesh = scene.meshes[i];
+            if (looks[i].phong && looks[i].stages.texture && looks[i].stages.tint) {
+                glBindTexture(GL_TEXTURE_2D, names[scene.textures.size() + i]);
+                upload_nearest(
+                    tinted(scene.textures[*mesh.texture].texture, mesh.colour));
+            }
         }
         glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
     }
@@ -178,9 +397,23 @@ std::vector<Rgba8> draw_gl(const Scene& scene, const SceneGeometry& geometry,
         const SceneMesh& mesh = scene.meshes[i];
         const MeshStages& stages = looks[i].stages;
         const bool textured = !id_pass && stages.texture;
+        const bool phong = !id_pass && looks[i].phong;
+        const bool pretinted = phong && stages.texture && stages.tint;
+        if (phong && probe >= 0) {
+            const GLuint program = probe_program();
+            glUseProgram(program);
+            glUniform1i(glGetUniformLocation(program, "component"), probe);
+        } else if (phong) {
+            const GLuint program = per_pixel_program();
+            glUseProgram(program);
+            set_lighting_uniforms(program, scene, geometry, mesh, textured, fault);
+        } else {
+            glUseProgram(0);
+        }
         if (textured) {
             glEnable(GL_TEXTURE_2D);
-            glBindTexture(GL_TEXTURE_2D, names[*mesh.texture]);
+            glBindTexture(GL_TEXTURE_2D,
+                          names[pretinted ? scene.textures.size() + i : *mesh.texture]);
             const GLint wrap = mesh.wrap == Wrap::repeat ? GL_REPEAT : GL_CLAMP_TO_EDGE;
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrap);
             glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrap);
@@ -196,6 +429,10 @@ std::vector<Rgba8> draw_gl(const Scene& scene, const SceneGeometry& geometry,
                 glColor4ub(static_cast<GLubyte>(index & 0xff),
                            static_cast<GLubyte>((index >> 8) & 0xff),
                            static_cast<GLubyte>((index >> 16) & 0xff), 255);
+            } else if (phong && !stages.colour) { // the 8-bit colour the shader lights
+                const Rgba8 c =
+                    stages.texture ? rgba(255, 255, 255) : to_rgba8(mesh.colour);
+                glColor4ub(c.r, c.g, c.b, 255);
             } else if (!stages.colour) {
                 const Colour c =
                     stages.texture && !stages.tint ? Colour{1.0, 1.0, 1.0} : mesh.colour;
@@ -212,6 +449,11 @@ std::vector<Rgba8> draw_gl(const Scene& scene, const SceneGeometry& geometry,
                 if (textured) {
                     glTexCoord2d(t.corners[k].uv.x / tw, t.corners[k].uv.y / th);
                 }
+                if (phong) { // the view-space point and normal the lighting stage uses
+                    glMultiTexCoord3d(GL_TEXTURE1, t.points[k].x, t.points[k].y,
+                                      t.points[k].z);
+                    glNormal3d(t.normals[k].x, t.normals[k].y, t.normals[k].z);
+                }
                 // glOrtho's z row is -z: clip z = -z_ndc w gives z_ndc after the divide.
                 glVertex4d(p.x * w, p.y * w, -z_ndc * w, w);
             }
@@ -219,6 +461,7 @@ std::vector<Rgba8> draw_gl(const Scene& scene, const SceneGeometry& geometry,
         }
         glEnd();
     }
+    glUseProgram(0);
     glFinish();
     if (!names.empty() && !id_pass) {
         glDeleteTextures(static_cast<GLsizei>(names.size()), names.data());
@@ -246,6 +489,95 @@ double nearness_at(const ScreenTriangle& t, int x, int y) {
 double edge_distance(double u) {
     return std::abs(u - std::round(u));
 }
+
+/// The view-space point and unit normal the renderer's lighting stage lights at pixel
+/// (x, y)'s centre: point/w and n/w planes through the snapped corners over the 1/w
+/// plane, the normal renormalised (scene_renderer.cpp, the lighting stage).
+std::pair<glm::dvec3, glm::dvec3> lit_point_normal(const ScreenTriangle& t, int x,
+                                                   int y) {
+    std::array<Point2, 3> p{};
+    std::array<double, 3> q{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        p[k] = to_pixels(snap_in_range(t.corners[k].position));
+        q[k] = 1.0 / t.corners[k].w;
+    }
+    const double px = x + 0.5, py = y + 0.5;
+    const double w = 1.0 / plane_through(p, q).at(px, py);
+    glm::dvec3 point{}, normal{};
+    for (int c = 0; c < 3; ++c) {
+        std::array<double, 3> a{}, n{};
+        for (std::size_t k = 0; k < 3; ++k) {
+            a[k] = t.points[k][c] * q[k];
+            n[k] = t.normals[k][c] * q[k];
+        }
+        point[c] = plane_through(p, a).at(px, py) * w;
+        normal[c] = plane_through(p, n).at(px, py);
+    }
+    return {point, glm::normalize(normal)};
+}
+
+/// The unit vector from a view-space point to the eye, as the renderer's to_eye.
+glm::dvec3 eye_direction(const Scene& scene, glm::dvec3 p) {
+    return scene.camera.projection == Projection::perspective
+               ? glm::normalize(-p)
+               : glm::dvec3{0.0, 0.0, -1.0};
+}
+
+/// The float a probe pass wrote at pixel `at` (its four channels are its 32 bits).
+float probed(const std::vector<Rgba8>& pass, std::size_t at) {
+    const Rgba8 b = pass[at];
+    const std::uint32_t bits =
+        static_cast<std::uint32_t>(b.r) | (static_cast<std::uint32_t>(b.g) << 8) |
+        (static_cast<std::uint32_t>(b.b) << 16) | (static_cast<std::uint32_t>(b.a) << 24);
+    float value = 0.0f;
+    std::memcpy(&value, &bits, sizeof value);
+    return value;
+}
+
+//> referee-lit-bound
+/// How far GL's single precision can move a lit pixel's colour, levels, before the two
+/// roundings (@eq:scene-referee-lit): the colour the renderer's light_colour gives at the
+/// point and normal GL interpolated (read from the probe passes) against at its own,
+/// plus the bound 115 x^(5/12) rho on GL's float arithmetic, x the linear light and rho
+/// = referee_float_relative(shininess). Texel (i, j) is the one the exact render picked.
+double lit_float_levels(const Scene& scene, const SceneGeometry& geometry,
+                        const SceneMesh& mesh, const MeshStages& stages,
+                        const ScreenTriangle& t, int x, int y, int i, int j,
+                        const std::vector<std::vector<Rgba8>>& probes, std::size_t at) {
+    Rgba8 base = to_rgba8(mesh.colour); // the pixel the stages before lighting write
+    if (stages.texture) {
+        base = fetch_texel(scene.textures[*mesh.texture].texture, i, j, mesh.wrap);
+        if (stages.tint) {
+            base = to_rgba8(Colour{base.r / 255.0 * mesh.colour.r,
+                                   base.g / 255.0 * mesh.colour.g,
+                                   base.b / 255.0 * mesh.colour.b});
+        }
+    }
+    const Colour diffuse{base.r / 255.0, base.g / 255.0, base.b / 255.0};
+    const Material material{mesh.specular, mesh.shininess};
+    const auto [point, normal] = lit_point_normal(t, x, y);
+    const glm::dvec3 gl_normal = glm::normalize(
+        glm::dvec3{probed(probes[0], at), probed(probes[1], at), probed(probes[2], at)});
+    const glm::dvec3 gl_point{probed(probes[3], at), probed(probes[4], at),
+                              probed(probes[5], at)};
+    const Colour ours =
+        light_colour(geometry.lights, scene.options.ambient, diffuse, material, point,
+                     normal, eye_direction(scene, point));
+    const Colour moved =
+        light_colour(geometry.lights, scene.options.ambient, diffuse, material, gl_point,
+                     gl_normal, eye_direction(scene, gl_point));
+    double interpolation = 0.0, arithmetic = 0.0;
+    const double rho = referee_float_relative(mesh.shininess);
+    for (int c = 0; c < 3; ++c) {
+        interpolation = std::max(interpolation, 255.0 * std::abs(ours[c] - moved[c]));
+        const double linear = srgb_decode(ours[c]); // the x that was encoded
+        arithmetic = std::max(arithmetic, 115.0 * std::pow(linear, 5.0 / 12.0) * rho);
+    }
+    const double levels = interpolation + arithmetic;
+    // A probe that did not hold a number (NaN) must not pass as a small bound.
+    return std::isfinite(levels) ? levels : std::numeric_limits<double>::infinity();
+}
+//< referee-lit-bound
 
 } // namespace
 
@@ -323,7 +655,8 @@ CoverageComparison referee_coverage(const std::vector<ScreenTriangle>& triangles
     return c;
 }
 
-RefereeComparison referee_scene(const Scene& scene, const std::string& name) {
+RefereeComparison referee_scene(const Scene& scene, const std::string& name,
+                                const RefereeFault& fault) {
     std::string why;
     if (!opengl_referee_ready(why)) {
         throw Error(why);
@@ -334,6 +667,7 @@ RefereeComparison referee_scene(const Scene& scene, const std::string& name) {
     c.height = scene.height;
     RenderResult ours = render_scene(scene);
     c.depth_on = ours.report.depth_on;
+    c.phong_meshes = ours.report.phong_meshes;
     // The colour reference: the same scene with the exact mapper in double precision and
     // colours perspective-correct, as GL interpolates them (chapter 7 measures how far
     // the scene's own mapper and colour choice stray from it: check_against_exact).
@@ -353,17 +687,28 @@ RefereeComparison referee_scene(const Scene& scene, const std::string& name) {
     }
     std::vector<MeshLook> looks(scene.meshes.size());
     std::vector<std::size_t> mesh_of; // per triangle index
+    bool any_phong = false;
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& mesh = scene.meshes[i];
         looks[i].stages = mesh_stages(scene, mesh); // the renderer's own choice
-        const bool lit = !scene.lights.empty();
-        if (lit && mesh_shading(scene, mesh) == Shading::phong) {
+        looks[i].phong =
+            !scene.lights.empty() && mesh_shading(scene, mesh) == Shading::phong;
+        any_phong = any_phong || looks[i].phong;
+        if (looks[i].phong && looks[i].stages.colour) {
+            // Both sides would round the interpolated colour to 8 bits before lighting
+            // it, and at a tie the two roundings part by a level that lighting scales.
             looks[i].comparable = false;
-            c.uncompared = "per-pixel lighting";
+            c.uncompared = "vertex colours lit per pixel";
         }
         if (looks[i].stages.texture && scene.options.filter != SceneFilter::nearest) {
+            // GL leaves anisotropic filtering to the implementation and approximates
+            // the level of detail from 2 x 2 pixel differences, where the renderer
+            // uses exact derivatives: a difference would measure GL's approximation.
             looks[i].comparable = false;
-            c.uncompared = "filtered texels";
+            const auto& f = ours.report.filter_triangles;
+            c.uncompared = fmt::format("filtered texels ({} bilinear, {} trilinear, {} "
+                                       "anisotropic triangles)",
+                                       f[0], f[1], f[2]);
         }
         mesh_of.insert(mesh_of.end(), geometry.meshes[i].size(), i);
     }
@@ -381,7 +726,12 @@ RefereeComparison referee_scene(const Scene& scene, const std::string& name) {
     const std::vector<bool> exact = exact_coverage(geometry, scene.width, scene.height);
     const std::vector<Rgba8> gl_ids = draw_gl(scene, geometry, looks, c.depth_on, true);
     const std::vector<Rgba8> gl_colours =
-        draw_gl(scene, geometry, looks, c.depth_on, false);
+        draw_gl(scene, geometry, looks, c.depth_on, false, fault);
+    std::vector<std::vector<Rgba8>> probes; // GL's normal x, y, z and point x, y, z
+    for (int component = 0; any_phong && component < 6; ++component) {
+        probes.push_back(
+            draw_gl(scene, geometry, looks, c.depth_on, false, fault, component));
+    }
     c.tolerance = referee_rounding_levels;
     const Rgba8 background = to_rgba8(scene.background);
     c.theirs = Framebuffer(scene.width, scene.height, background);
@@ -427,10 +777,15 @@ RefereeComparison referee_scene(const Scene& scene, const std::string& name) {
                 c.depth_pixels.push_back({x, y});
                 shown = rgba(255, 220, 0);
             } else if (ours_id >= 0 &&
-                       looks[mesh_of[static_cast<std::size_t>(ours_id)]].comparable) {
+                       !looks[mesh_of[static_cast<std::size_t>(ours_id)]].comparable) {
+                c.colour_uncompared += 1;
+            } else if (ours_id >= 0) {
+                const std::size_t mesh_index = mesh_of[static_cast<std::size_t>(ours_id)];
+                const bool lit = looks[mesh_index].phong;
+                const int tolerance = lit ? referee_lit_levels : c.tolerance;
                 c.colour_compared += 1;
-                c.shipped_differ +=
-                    channel_difference(mine, gl_colours[at]) > c.tolerance;
+                c.lit_compared += lit;
+                c.shipped_differ += channel_difference(mine, gl_colours[at]) > tolerance;
                 const int d =
                     channel_difference(reference.image.at(x, y), gl_colours[at]);
                 c.worst_colour = std::max(c.worst_colour, d);
@@ -441,7 +796,17 @@ RefereeComparison referee_scene(const Scene& scene, const std::string& name) {
                 if (!on_edge) {
                     c.worst_off_edge = std::max(c.worst_off_edge, d);
                 }
-                if (d > c.tolerance) {
+                if (!on_edge && lit) {
+                    c.worst_lit_off_edge = std::max(c.worst_lit_off_edge, d);
+                    const double bound = lit_float_levels(
+                        scene, geometry, scene.meshes[mesh_index],
+                        looks[mesh_index].stages,
+                        *triangles[static_cast<std::size_t>(ours_id)], x, y,
+                        texels.covered[at] ? texels.i[at] : 0,
+                        texels.covered[at] ? texels.j[at] : 0, probes, at);
+                    c.worst_lit_float = std::max(c.worst_lit_float, bound);
+                }
+                if (d > tolerance) {
                     c.colour_over += 1;
                     c.texel_edge += on_edge;
                     shown = on_edge ? rgba(0, 200, 255) : rgba(255, 0, 255);
