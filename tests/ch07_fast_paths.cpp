@@ -125,6 +125,24 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
     REQUIRE(scene.meshes.size() == 1);
     CHECK(scene.meshes[0].triangles.size() == 102400);
     check_fast_is_plain(scene);
+    // Each fast path alone (as big_scene.sh counts their instructions), on the torus and
+    // on it without depth, where every pixel a triangle covers is written: the same
+    // pixels and counts as the plain path. All of them together is the check above.
+    Scene no_depth = scene;
+    no_depth.options.depth = DepthMode::off;
+    for (const Scene* s : std::array<const Scene*, 2>{&scene, &no_depth}) {
+        const RenderResult plain = render_scene(*s, nullptr, plain_paths);
+        for (int path = 0; path < 4; ++path) {
+            INFO("fast path " << path << (s == &scene ? ", depth on" : ", depth off"));
+            FastPaths alone = plain_paths;
+            bool* const flags[] = {&alone.screen_accept, &alone.masked_fetch,
+                                   &alone.unlit_geometry, &alone.lean_spans};
+            *flags[path] = true;
+            const RenderResult fast = render_scene(*s, nullptr, alone);
+            CHECK(fast.image == plain.image);
+            check_same_report(fast.report, plain.report);
+        }
+    }
 }
 
 TEST_CASE("screen_accept decides as the view volume's planes on triangles at its edges") {
