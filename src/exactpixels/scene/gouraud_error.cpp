@@ -29,10 +29,11 @@ GouraudError gouraud_perspective_error(const Scene& scene) {
             }
         }
         probe.options.precision = Precision::float64;
-        probe.options.mapper = {false, MapperKind::affine, 16}; // the colour stage's line
+        probe.options.mapper = {false,
+                                {MapperKind::affine, 16}}; // the colour stage's line
         TexelMap gouraud(scene.width, scene.height);
         render_scene(probe, &gouraud);
-        probe.options.mapper = {false, MapperKind::exact, 16}; // c/w over 1/w
+        probe.options.mapper = {false, {MapperKind::exact, 16}}; // c/w over 1/w
         TexelMap correct(scene.width, scene.height);
         render_scene(probe, &correct);
         // |Gouraud - correct| over the pixels both maps cover.

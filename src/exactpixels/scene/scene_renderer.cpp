@@ -250,6 +250,32 @@ void count_mapped_span(RenderReport& report, Mapper mapper, int count, double se
     report.texture.seconds += seconds;
 }
 
+//> depth-stage
+/// The depth stage on one span: every pixel's nearness (the triangle's plane at the pixel
+/// centre, rounded to a key) is tested and, where it passes, written; visible[k] says
+/// which passed. Counts the span and its hidden pixels into the report and returns how
+/// many pixels are seen: a span with none is not shaded at all. (Always inlined: both
+/// drawing paths call it on every span, and called, it cost the big torus's frame 8M
+/// instructions, 4 %.)
+[[gnu::always_inline]] inline int
+depth_test_span(MeshContext& m, const ScreenPlane& nearness, Span s, char* visible) {
+    const int count = s.x_end - s.x_begin;
+    const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
+    int shown = 0;
+    for (int k = 0; k < count; ++k) {
+        const float q = nearness_key(nearness.at(x + k, y));
+        const bool seen = m.depth->test_and_write(s.x_begin + k, s.y, q);
+        visible[k] = seen;
+        shown += seen;
+    }
+    m.report.depth.spans += 1;
+    m.report.depth.pixels += count;
+    m.report.hidden.spans += shown < count;
+    m.report.hidden.pixels += count - shown;
+    return shown;
+}
+//< depth-stage
+
 //> draw-triangle
 /// Rasterizes one projected triangle and runs the mesh's stages on its spans.
 void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
@@ -340,21 +366,10 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
         const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
         report.raster.spans += 1;
         report.raster.pixels += count;
-        //> depth-stage
         if (m.depth != nullptr) { // test every pixel first: a hidden span is not shaded
             const Clock::time_point t0 = m.clock.now();
-            m.visible.assign(static_cast<std::size_t>(count), 0);
-            int shown = 0;
-            for (int k = 0; k < count; ++k) {
-                const float q = nearness_key(nearness.at(x + k, y));
-                const bool seen = m.depth->test_and_write(s.x_begin + k, s.y, q);
-                m.visible[static_cast<std::size_t>(k)] = seen;
-                shown += seen;
-            }
-            report.depth.spans += 1;
-            report.depth.pixels += count;
-            report.hidden.spans += shown < count;
-            report.hidden.pixels += count - shown;
+            m.visible.resize(static_cast<std::size_t>(count));
+            const int shown = depth_test_span(m, nearness, s, m.visible.data());
             const double spent = m.clock.since(t0);
             report.depth.seconds += spent;
             shading_seconds += spent;
@@ -362,7 +377,6 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
                 return;
             }
         }
-        //< depth-stage
         const auto seen = [&](int k) {
             return m.depth == nullptr || m.visible[static_cast<std::size_t>(k)] != 0;
         };
@@ -555,7 +569,6 @@ void draw_triangle_lean(MeshContext& m, const ScreenTriangle& triangle) {
     char* const visible = m.visible.data();
     scanline_spans(snapped, Viewport{width, m.frame.height()}, [&](Span s) {
         const int count = s.x_end - s.x_begin;
-        const double x = s.x_begin + 0.5, y = s.y + 0.5;
         report.raster.spans += 1;
         report.raster.pixels += count;
         int shown = count;
@@ -565,17 +578,7 @@ void draw_triangle_lean(MeshContext& m, const ScreenTriangle& triangle) {
                 nearness_ready = true;
             }
             const Clock::time_point t0 = m.clock.now();
-            shown = 0;
-            for (int k = 0; k < count; ++k) {
-                const float q = nearness_key(nearness.at(x + k, y));
-                const bool seen = m.depth->test_and_write(s.x_begin + k, s.y, q);
-                visible[k] = seen;
-                shown += seen;
-            }
-            report.depth.spans += 1;
-            report.depth.pixels += count;
-            report.hidden.spans += shown < count;
-            report.hidden.pixels += count - shown;
+            shown = depth_test_span(m, nearness, s, visible);
             const double spent = m.clock.since(t0);
             report.depth.seconds += spent;
             shading_seconds += spent;
