@@ -6,9 +6,11 @@
 // texel fetch_texel reads.
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/lab/model_generator.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
+#include "exactpixels/texture/rounding.hpp"
 #include "exactpixels/texture/texture.hpp"
 
 #include <doctest/doctest.h>
@@ -266,6 +268,57 @@ TEST_CASE("fetch_texel_masked reads fetch_texel's texel on power-of-two textures
     CHECK(!can_fetch_masked(checkerboard_texture(20, 28, 4), Wrap::repeat));
     CHECK(!can_fetch_masked(checkerboard_texture(64, 48, 4), Wrap::repeat));
     CHECK(!can_fetch_masked(checkerboard_texture(48, 64, 4), Wrap::repeat));
+}
+
+/// The same plane: corner, value and gradient, bit for bit.
+void check_same_plane(const ScreenPlane& a, const ScreenPlane& b) {
+    CHECK(a.origin == b.origin);
+    CHECK(a.value == b.value);
+    CHECK(a.g.dx == b.g.dx);
+    CHECK(a.g.dy == b.g.dy);
+}
+
+TEST_CASE("texture planes and rounding from shared quotients are those of the corners") {
+    // The renderer divides u, v and 1 by each corner's w once (corner_quotients) for the
+    // texture's planes and chapter 4's rounding, and takes the depth stage's 1/w plane as
+    // the texture's: each must be what dividing again and setting up every plane gives.
+    std::mt19937_64 random(7);
+    std::uniform_real_distribution<double> position(-40.0, 1320.0), depth(0.05, 400.0),
+        coordinate(-300.0, 300.0);
+    for (int n = 0; n < 20000; ++n) {
+        std::array<TexturedVertex, 3> v{};
+        std::array<Point2, 3> p{};
+        std::array<double, 3> nearness{}; // as the geometry stage computes it
+        for (std::size_t k = 0; k < 3; ++k) {
+            v[k] = {{position(random), position(random)},
+                    depth(random),
+                    {coordinate(random), coordinate(random)}};
+            p[k] = to_pixels(snap_to_subpixel(v[k].position));
+            nearness[k] = 1.0 / v[k].w;
+        }
+        const CornerQuotients q = corner_quotients(v);
+        for (std::size_t k = 0; k < 3; ++k) {
+            REQUIRE(q.u_w[k] == v[k].uv.x / v[k].w);
+            REQUIRE(q.v_w[k] == v[k].uv.y / v[k].w);
+            REQUIRE(q.one_w[k] == nearness[k]);
+        }
+        const TexturePlanes shared = texture_planes(p, v, q, plane_through(p, nearness),
+                                                    /*affine=*/true);
+        check_same_plane(shared.u_w, plane_through(p, {v[0].uv.x / v[0].w,
+                                                       v[1].uv.x / v[1].w,
+                                                       v[2].uv.x / v[2].w}));
+        check_same_plane(shared.v_w, plane_through(p, {v[0].uv.y / v[0].w,
+                                                       v[1].uv.y / v[1].w,
+                                                       v[2].uv.y / v[2].w}));
+        check_same_plane(shared.one_w,
+                         plane_through(p, {1.0 / v[0].w, 1.0 / v[1].w, 1.0 / v[2].w}));
+        check_same_plane(shared.u, plane_through(p, {v[0].uv.x, v[1].uv.x, v[2].uv.x}));
+        check_same_plane(shared.v, plane_through(p, {v[0].uv.y, v[1].uv.y, v[2].uv.y}));
+        const TexelRounding alone = choose_rounding(v, MapperKind::exact);
+        const TexelRounding from_q = choose_rounding(v, q);
+        CHECK(from_q.u_bias == alone.u_bias);
+        CHECK(from_q.v_bias == alone.v_bias);
+    }
 }
 
 TEST_CASE("unlit_geometry stops a corner that is not finite as the plain path does") {

@@ -43,9 +43,17 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// One triangle in this many has its stages timed span by span; reading the clock is
-/// not free (on a virtual machine it can cost more than shading a small span).
-constexpr std::size_t timed_triangle_interval = 16;
+/// About this many triangles of each mesh have their stages timed span by span (every
+/// triangle of a smaller mesh): reading the clock is not free. Here it costs 24 ns, more
+/// than shading a small span, and at one triangle in 16 the big torus's frame spent about
+/// 0.8 ms of its 20 reading it (bench_ch07_big_scene); 512 evenly spread triangles split
+/// a mesh's time among its stages as well, for almost nothing.
+constexpr std::size_t timed_triangles_per_mesh = 512;
+
+/// Which triangles of a mesh of `count` are timed: one in every this many.
+std::size_t timed_triangle_interval(std::size_t count) {
+    return std::max<std::size_t>(1, count / timed_triangles_per_mesh);
+}
 
 /// The clock of the stages inside one triangle: it reads the time only when `on`, and
 /// otherwise gives zero durations.
@@ -174,7 +182,10 @@ void prepare_chain(MeshContext& m, Filter filter) {
 /// What the texture stage sets up once per triangle.
 struct TextureSetup {
     bool affine_exact = false; ///< the depths are equal: affine is exact (and free)
-    TexturePlanes planes{};    ///< u/w, v/w, 1/w; u and v where affine runs
+    /// u/w, v/w, 1/w; u and v where affine runs. Not zeroed first: texture_setup sets
+    /// what is read, and zeroing the five planes cost the big torus's frame 2 % of its
+    /// time (perf).
+    TexturePlanes planes;
     TexelRounding perspective_rounding{}, affine_rounding{}; ///< chapter 4's choice
 };
 
@@ -190,8 +201,10 @@ void check_mapper_ranges(const MeshContext& m, const std::array<TexturedVertex, 
 
 /// The texture stage's setup of a textured triangle whose corners `tv` snap to `p`
 /// (its planes run through the snapped corners), once check_mapper_ranges has passed.
+/// `one_w` is the depth stage's plane where it stores 1/w (the same plane: the corners'
+/// 1/w through p), or null; the planes and the rounding share one divide per quotient.
 TextureSetup texture_setup(const MeshContext& m, const std::array<TexturedVertex, 3>& tv,
-                           const std::array<Point2, 3>& p) {
+                           const std::array<Point2, 3>& p, const ScreenPlane* one_w) {
     TextureSetup setup;
     setup.affine_exact =
         constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
@@ -201,12 +214,15 @@ TextureSetup texture_setup(const MeshContext& m, const std::array<TexturedVertex
     const bool affine_only = options.mapper.automatic
                                  ? setup.affine_exact
                                  : options.mapper.mapper.kind == MapperKind::affine;
-    setup.planes = texture_planes(p, tv, affine_only);
+    const CornerQuotients q = corner_quotients(tv);
+    setup.planes = texture_planes(p, tv, q,
+                                  one_w != nullptr ? *one_w : plane_through(p, q.one_w),
+                                  affine_only);
     if (options.rounding) { // chapter 4: ties go right, or down
         if (affine_only) {
             setup.affine_rounding = choose_rounding(tv, MapperKind::affine);
         } else {
-            setup.perspective_rounding = choose_rounding(tv, MapperKind::exact);
+            setup.perspective_rounding = choose_rounding(tv, q);
         }
     }
     return setup;
@@ -294,7 +310,7 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
     TextureSetup texture{};
     if (m.stages.texture) {
         check_mapper_ranges(m, tv);
-        texture = texture_setup(m, tv, p);
+        texture = texture_setup(m, tv, p, nullptr);
         report.texture.triangles += 1;
     }
     // Filter stage setup: only for textured meshes of scenes that ask for a filter.
@@ -559,7 +575,10 @@ void draw_triangle_lean(MeshContext& m, const ScreenTriangle& triangle) {
     // the texture's for the first span the depth test leaves any pixel of.
     ScreenPlane nearness{};
     bool nearness_ready = false;
-    TextureSetup texture{};
+    // Under perspective the depth stage's plane is the texture's 1/w plane: set up once.
+    const bool depth_one_w = m.depth != nullptr &&
+                             m.scene.camera.projection == Projection::perspective;
+    TextureSetup texture; // its planes not zeroed (TextureSetup::planes)
     bool texture_ready = false;
     std::array<bool, 5> mapper_used{};
     double shading_seconds = 0.0;
@@ -599,7 +618,7 @@ void draw_triangle_lean(MeshContext& m, const ScreenTriangle& triangle) {
             return;
         }
         if (!texture_ready) { // the rasterizer's time, as on the plain path
-            texture = texture_setup(m, tv, p);
+            texture = texture_setup(m, tv, p, depth_one_w ? &nearness : nullptr);
             texture_ready = true;
         }
         const Clock::time_point t0 = m.clock.now();
@@ -1195,13 +1214,16 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
         m.full_chain = &full_chain;
         try {
             // Stage times: the mesh's drawing is timed whole, and split among the stages
-            // as on the timed sample of its triangles (timed_triangle_interval).
+            // as on the timed sample of its triangles (timed_triangles_per_mesh).
             const RenderReport before = report;
             const Clock::time_point t0 = Clock::now();
             const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
             const bool lean = fast.lean_spans && lean_drawable(m);
+            const std::size_t interval = timed_triangle_interval(triangles.size());
+            std::size_t until_timed = 0; // triangles before the next timed one
             for (std::size_t k = 0; k < triangles.size(); ++k) {
-                m.clock.on = k % timed_triangle_interval == 0;
+                m.clock.on = until_timed == 0;
+                until_timed = m.clock.on ? interval - 1 : until_timed - 1;
                 if (lean) {
                     draw_triangle_lean(m, triangles[k]);
                 } else {

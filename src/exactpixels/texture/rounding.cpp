@@ -7,22 +7,26 @@ namespace {
 
 /// 1/w, u/w and v/w at the three vertices, and their screen gradients.
 struct ProjectedPlanes {
-    std::array<double, 3> q, pu, pv;
+    CornerQuotients at_corners;
     Gradient<double> dq, dpu, dpv;
 };
 
-ProjectedPlanes projected_planes(const std::array<TexturedVertex, 3>& v) {
+ProjectedPlanes projected_planes(const std::array<TexturedVertex, 3>& v,
+                                 const CornerQuotients& q) {
     const std::array<glm::dvec2, 3> p{v[0].position, v[1].position, v[2].position};
-    ProjectedPlanes planes{};
-    for (int i = 0; i < 3; ++i) {
-        planes.q[i] = 1.0 / v[i].w;
-        planes.pu[i] = v[i].uv.x / v[i].w;
-        planes.pv[i] = v[i].uv.y / v[i].w;
-    }
-    planes.dq = gradient_closed_form(p, planes.q);
-    planes.dpu = gradient_closed_form(p, planes.pu);
-    planes.dpv = gradient_closed_form(p, planes.pv);
-    return planes;
+    return {q, gradient_closed_form(p, q.one_w), gradient_closed_form(p, q.u_w),
+            gradient_closed_form(p, q.v_w)};
+}
+
+/// The two coordinates at the screen point `at` from the planes.
+std::array<ProjectedCoordinate<double>, 2> coordinates_at(const ProjectedPlanes& planes,
+                                                         const std::array<TexturedVertex, 3>& v,
+                                                         Point2 at) {
+    const CornerQuotients& q = planes.at_corners;
+    const Point2 d = at - v[0].position; // move from vertex 0 to `at`
+    const ProjectedCoordinate<double> u0{q.u_w[0], q.one_w[0], planes.dpu, planes.dq};
+    const ProjectedCoordinate<double> v0{q.v_w[0], q.one_w[0], planes.dpv, planes.dq};
+    return {moved_by(u0, d.x, d.y), moved_by(v0, d.x, d.y)};
 }
 
 /// The rule on the row through the point of c. When the x numerator is zero the row is
@@ -37,13 +41,7 @@ RoundingRule rule_on_row(const ProjectedCoordinate<double>& c) {
 
 std::array<ProjectedCoordinate<double>, 2>
 projected_coordinates(const std::array<TexturedVertex, 3>& v, Point2 at) {
-    const ProjectedPlanes planes = projected_planes(v);
-    const Point2 d = at - v[0].position; // move from vertex 0 to `at`
-    const ProjectedCoordinate<double> u0{planes.pu[0], planes.q[0], planes.dpu,
-                                         planes.dq};
-    const ProjectedCoordinate<double> v0{planes.pv[0], planes.q[0], planes.dpv,
-                                         planes.dq};
-    return {moved_by(u0, d.x, d.y), moved_by(v0, d.x, d.y)};
+    return coordinates_at(projected_planes(v, corner_quotients(v)), v, at);
 }
 
 TexelRounding choose_rounding(const Gradient<double>& du, const Gradient<double>& dv) {
@@ -52,8 +50,13 @@ TexelRounding choose_rounding(const Gradient<double>& du, const Gradient<double>
 
 //> choose-rounding
 TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v) {
+    return choose_rounding(v, corner_quotients(v));
+}
+
+TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v,
+                              const CornerQuotients& q) {
     const Point2 centroid = (v[0].position + v[1].position + v[2].position) / 3.0;
-    const auto [u, t] = projected_coordinates(v, centroid);
+    const auto [u, t] = coordinates_at(projected_planes(v, q), v, centroid);
     return texel_rounding(choose_rule(u), choose_rule(t));
 }
 

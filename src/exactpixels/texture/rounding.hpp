@@ -160,6 +160,11 @@ TexelRounding choose_rounding(const Gradient<double>& du, const Gradient<double>
 /// triangle (always when w is constant); see choose_rounding_on_row otherwise.
 TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v);
 
+/// The same from the corners' quotients q = corner_quotients(v), for a caller that has
+/// them already (the scene renderer's texture planes divide by the same w).
+TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v,
+                              const CornerQuotients& q);
+
 /// The rounding a mapper of `kind` needs for the triangle: the affine gradients of u
 /// and v for MapperKind::affine (it interpolates u and v themselves), the perspective
 /// numerators for the others (they follow u = (u/w) / (1/w)).
