@@ -8,6 +8,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/lab/model_generator.hpp"
+#include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 #include "exactpixels/texture/rounding.hpp"
@@ -126,7 +127,18 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
     std::filesystem::remove_all(folder);
     REQUIRE(scene.meshes.size() == 1);
     CHECK(scene.meshes[0].triangles.size() == 102400);
+    // A closed grid of 400 x 128 quads: each position is shared by six corners, and
+    // unlit_geometry moves each once.
+    CHECK(scene.meshes[0].positions.size() == 400 * 128);
     check_fast_is_plain(scene);
+    // Corners changed after loading no longer match their shared positions: those
+    // triangles are moved corner by corner, and the picture is still the plain one.
+    Scene changed = scene;
+    for (std::size_t t = 0; t < changed.meshes[0].triangles.size(); t += 97) {
+        glm::dvec3& p = changed.meshes[0].triangles[t][t % 3].position;
+        p = p * 1.001;
+    }
+    check_fast_is_plain(changed);
     // Each fast path alone (as big_scene.sh counts their instructions), on the torus and
     // on it without depth, where every pixel a triangle covers is written: the same
     // pixels and counts as the plain path. All of them together is the check above.
@@ -145,6 +157,36 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
             check_same_report(fast.report, plain.report);
         }
     }
+}
+
+TEST_CASE("share_positions lists each distinct position once, bit for bit") {
+    SceneMesh mesh;
+    const auto vertex = [](double x, double y, double z) {
+        SceneVertex v;
+        v.position = {x, y, z};
+        return v;
+    };
+    // Two triangles of a quad share two corners; 0 and -0 are different positions (a
+    // sign of zero can survive into view space), and equal positions with different
+    // texture coordinates are one position.
+    SceneVertex uv_seam = vertex(1, 1, 0);
+    uv_seam.uv = {5.0, 5.0};
+    mesh.triangles = {{vertex(0, 0, 0), vertex(1, 0, 0), vertex(1, 1, 0)},
+                      {vertex(0, 0, 0), uv_seam, vertex(0, 1, 0)},
+                      {vertex(-0.0, 0, 0), vertex(1, 0, 0), vertex(0, 1, 0)}};
+    share_positions(mesh);
+    REQUIRE(mesh.corner_positions.size() == 3);
+    CHECK(mesh.positions.size() == 5);
+    CHECK(mesh.corner_positions[0] == std::array<std::uint32_t, 3>{0, 1, 2});
+    CHECK(mesh.corner_positions[1] == std::array<std::uint32_t, 3>{0, 2, 3});
+    CHECK(mesh.corner_positions[2] == std::array<std::uint32_t, 3>{4, 1, 3});
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            CHECK(same_bits(mesh.positions[mesh.corner_positions[t][k]],
+                            mesh.triangles[t][k].position));
+        }
+    }
+    CHECK(!same_bits({0.0, 0.0, 0.0}, {-0.0, 0.0, 0.0}));
 }
 
 TEST_CASE("screen_accept decides as the view volume's planes on triangles at its edges") {

@@ -1,7 +1,10 @@
 #include "exactpixels/scene/mesh_transform.hpp"
 
+#include <bit>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <unordered_map>
 
 namespace exactpixels {
 
@@ -50,5 +53,49 @@ void transform_mesh(SceneMesh& mesh, const MeshTransform& t) {
     }
 }
 //< transform
+
+namespace {
+
+/// A position's three doubles as bits: the key under which share_positions finds it.
+using PositionBits = std::array<std::uint64_t, 3>;
+
+PositionBits bits_of(const glm::dvec3& p) {
+    return {std::bit_cast<std::uint64_t>(p.x), std::bit_cast<std::uint64_t>(p.y),
+            std::bit_cast<std::uint64_t>(p.z)};
+}
+
+struct PositionBitsHash {
+    std::size_t operator()(const PositionBits& b) const {
+        std::uint64_t h = b[0];
+        for (const std::uint64_t word : {b[1], b[2]}) {
+            h = (h ^ (h >> 29)) * 0x9e3779b97f4a7c15u + word; // mixes, nothing exact
+        }
+        return static_cast<std::size_t>(h ^ (h >> 32));
+    }
+};
+
+} // namespace
+
+void share_positions(SceneMesh& mesh) {
+    mesh.positions.clear();
+    mesh.corner_positions.clear();
+    if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max() / 3) {
+        return; // beyond 32-bit indices (the loader stops at 2^20): moved corner by corner
+    }
+    mesh.corner_positions.assign(mesh.triangles.size(), {});
+    std::unordered_map<PositionBits, std::uint32_t, PositionBitsHash> index;
+    index.reserve(mesh.triangles.size()); // a closed mesh has about half as many
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            const glm::dvec3& p = mesh.triangles[t][k].position;
+            const auto next = static_cast<std::uint32_t>(mesh.positions.size());
+            const auto [at, added] = index.try_emplace(bits_of(p), next);
+            if (added) {
+                mesh.positions.push_back(p);
+            }
+            mesh.corner_positions[t][k] = at->second;
+        }
+    }
+}
 
 } // namespace exactpixels

@@ -7,6 +7,7 @@
 //   t.rotate_degrees = {0.0, 90.0, 0.0};
 //   t.translate = {0.0, 0.0, 5.0};    // world units
 //   transform_mesh(mesh, t);          // positions and normals, in place
+//   share_positions(mesh);            // each distinct position listed once
 //
 // The order is fixed: scale, then rotate about x, then about y, then about z, then
 // translate: p' = translate + Rz Ry Rx (scale * p) (@eq:scene-transform). Angles are in
@@ -16,6 +17,9 @@
 #pragma once
 
 #include "exactpixels/scene/scene.hpp"
+
+#include <bit>
+#include <cstdint>
 
 namespace exactpixels {
 
@@ -35,5 +39,17 @@ glm::dvec3 transform_point(const MeshTransform& t, const glm::dvec3& p);
 /// Moves every vertex of `mesh` by `t`; normals by the inverse transpose, normalised
 /// (a zero normal stays zero).
 void transform_mesh(SceneMesh& mesh, const MeshTransform& t);
+
+/// Fills mesh.positions with the distinct corner positions of mesh.triangles (equal bit
+/// for bit: 0 and -0 differ), in the order they first appear, and mesh.corner_positions
+/// with each corner's index into it. The loader calls it once a mesh is placed.
+void share_positions(SceneMesh& mesh);
+
+/// Whether two positions are the same bit for bit (0 and -0 are not).
+inline bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
+    return std::bit_cast<std::uint64_t>(a.x) == std::bit_cast<std::uint64_t>(b.x) &&
+           std::bit_cast<std::uint64_t>(a.y) == std::bit_cast<std::uint64_t>(b.y) &&
+           std::bit_cast<std::uint64_t>(a.z) == std::bit_cast<std::uint64_t>(b.z);
+}
 
 } // namespace exactpixels

@@ -20,6 +20,7 @@
 #include "exactpixels/texture/texture_mapper.hpp"
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -143,6 +144,12 @@ struct SceneTexture {
 struct SceneMesh {
     std::string name;                                  ///< for messages and reports
     std::vector<std::array<SceneVertex, 3>> triangles; ///< world space, none degenerate
+    /// The distinct corner positions of `triangles`, each once (share_positions), and
+    /// for each triangle the index of each corner's position: the geometry stage moves
+    /// a position shared by several corners once. Empty for a mesh made in code; a
+    /// corner whose position no longer equals its entry bit for bit is moved on its own.
+    std::vector<glm::dvec3> positions;
+    std::vector<std::array<std::uint32_t, 3>> corner_positions; ///< into `positions`
     std::optional<std::size_t> texture;                ///< index into Scene::textures
     Wrap wrap = Wrap::repeat;                          ///< how its texture repeats
     bool vertex_colours = false;     ///< interpolate SceneVertex::colour

@@ -716,6 +716,7 @@ void place_and_check(const Context& c, const toml::table& table, const std::stri
                                k));
         }
     }
+    share_positions(mesh); // the geometry stage moves each distinct position once
 }
 //< read-transform
 

@@ -6,6 +6,7 @@
 #include "exactpixels/raster/screen_plane.hpp"
 #include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/lighting.hpp"
+#include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/scene_pipeline.hpp"
 #include "exactpixels/texture/clipping.hpp"
 #include "exactpixels/texture/filter.hpp"
@@ -827,6 +828,44 @@ bool screen_accept(const Scene& scene, const Pinhole& lens,
 }
 //< screen-accept
 
+/// A mesh position as unlit_geometry moves it once for all the corners at it: in view
+/// space, projected, whether PerspectiveAccept::corner accepts it, and 1/w.
+struct MovedPosition {
+    glm::dvec3 view;       ///< view space
+    Point2 at;             ///< on screen (meaningful where `inside`)
+    double nearness = 0.0; ///< 1 / view.z
+    bool inside = false;   ///< between the planes and within the band
+};
+
+/// screen_accept_perspective's two tests: on each corner, and on the box of the three.
+struct PerspectiveAccept {
+    double near, far;          ///< the camera's planes (far at most the largest double)
+    double margin, band;       ///< screen_accept_margin_px; the guard band less it
+    double width, height;      ///< the screen
+    const Pinhole& lens;       ///< the projection
+    PerspectiveAccept(const Scene& scene, const Pinhole& pinhole)
+        : near(scene.camera.near),
+          far(std::min(scene.camera.far, std::numeric_limits<double>::max())),
+          margin(screen_accept_margin_px), band(guard_band_px - screen_accept_margin_px),
+          width(scene.width), height(scene.height), lens(pinhole) {}
+    /// Whether the view-space point p lies between the planes and projects to `at`
+    /// within the band (false for anything not finite).
+    bool corner(const glm::dvec3& p, Point2& at) const {
+        if (!(p.z >= near && p.z <= far)) {
+            return false;
+        }
+        at = {lens.centre.x + lens.focal * p.x / p.z, // as project()
+              lens.centre.y - lens.focal * p.y / p.z};
+        return std::abs(at.x) <= band && std::abs(at.y) <= band;
+    }
+    /// Whether the box from (lo_x, lo_y) to (hi_x, hi_y) overlaps the screen by more
+    /// than the margin.
+    bool box(double lo_x, double lo_y, double hi_x, double hi_y) const {
+        return hi_x >= margin && lo_x <= width - margin && hi_y >= margin &&
+               lo_y <= height - margin;
+    }
+};
+
 /// screen_accept under a perspective camera in fewer instructions, for
 /// FastPaths::unlit_geometry: the same compares on the same values in the same
 /// precision, with each finite test folded into a compare (false for NaN and infinity:
@@ -837,29 +876,21 @@ bool screen_accept(const Scene& scene, const Pinhole& lens,
 bool screen_accept_perspective(const Scene& scene, const Pinhole& lens,
                                const std::array<ViewVertex, 3>& view,
                                std::array<TexturedVertex, 3>& corners) {
-    const double near = scene.camera.near;
-    const double far = std::min(scene.camera.far, std::numeric_limits<double>::max());
-    const double margin = screen_accept_margin_px;
-    const double band = guard_band_px - margin;
-    double lo_x = band, lo_y = band, hi_x = -band, hi_y = -band;
+    const PerspectiveAccept accept(scene, lens);
+    double lo_x = accept.band, lo_y = accept.band, hi_x = -accept.band, hi_y = -accept.band;
     for (std::size_t k = 0; k < 3; ++k) {
         const glm::dvec3 p = view[k].position;
-        if (!(p.z >= near && p.z <= far)) {
+        Point2 at{};
+        if (!accept.corner(p, at)) {
             return false;
         }
-        const double x = lens.centre.x + lens.focal * p.x / p.z; // as project()
-        const double y = lens.centre.y - lens.focal * p.y / p.z;
-        if (!(std::abs(x) <= band && std::abs(y) <= band)) {
-            return false;
-        }
-        corners[k] = {{x, y}, p.z, view[k].uv};
-        lo_x = std::min(lo_x, x);
-        lo_y = std::min(lo_y, y);
-        hi_x = std::max(hi_x, x);
-        hi_y = std::max(hi_y, y);
+        corners[k] = {at, p.z, view[k].uv};
+        lo_x = std::min(lo_x, at.x);
+        lo_y = std::min(lo_y, at.y);
+        hi_x = std::max(hi_x, at.x);
+        hi_y = std::max(hi_y, at.y);
     }
-    return hi_x >= margin && lo_x <= scene.width - margin && hi_y >= margin &&
-           lo_y <= scene.height - margin;
+    return accept.box(lo_x, lo_y, hi_x, hi_y);
 }
 
 /// Twice the signed screen area of the triangle; negative when it faces the camera
@@ -926,6 +957,7 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
     // lands.
     geometry.meshes.resize(scene.meshes.size());
     geometry.footprints.resize(scene.meshes.size());
+    std::vector<MovedPosition> moved; // unlit_geometry's positions, mesh by mesh
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& mesh = scene.meshes[i];
         std::vector<ScreenTriangle>& out = geometry.meshes[i];
@@ -1075,17 +1107,12 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
                               dx * up.x + dy * up.y + dz * up.z,
                               dx * forward.x + dy * forward.y + dz * forward.z};
         };
-        const auto unlit_triangle = [&](std::size_t index) {
+        // After the accept test: the finite check, culling and the stored triangle, of
+        // corners whose view-space positions are `at` and whose 1/w is nearness(k).
+        const auto keep_unlit = [&](std::size_t index, const std::array<glm::dvec3, 3>& at,
+                                    std::array<TexturedVertex, 3>& corners,
+                                    const auto& nearness) {
             const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
-            std::array<ViewVertex, 3> view{};
-            for (std::size_t k = 0; k < 3; ++k) {
-                view[k] = {point_to_view(triangle[k].position), triangle[k].uv};
-            }
-            std::array<TexturedVertex, 3> corners{};
-            if (!screen_accept_perspective(scene, lens, view, corners)) {
-                plain_triangle_call(index); // near a plane or off screen: plane tests
-                return;
-            }
             report.geometry.triangles += 1;
             bool within = most_inverse_w <= limit; // each compare false for NaN
             for (const TexturedVertex& c : corners) {
@@ -1105,18 +1132,78 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
             ScreenTriangle& t = out.emplace_back();
             for (std::size_t k = 0; k < 3; ++k) {
                 t.corners[k] = corners[k];
-                t.nearness[k] = 1.0 / corners[k].w;
-                t.points[k] = view[k].position;
+                t.nearness[k] = nearness(k);
+                t.points[k] = at[k];
                 t.colours[k] = triangle[k].colour;
                 footprint.box.add(corners[k].position);
             }
+        };
+        const auto unlit_triangle = [&](std::size_t index) {
+            const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
+            std::array<ViewVertex, 3> view{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                view[k] = {point_to_view(triangle[k].position), triangle[k].uv};
+            }
+            std::array<TexturedVertex, 3> corners{};
+            if (!screen_accept_perspective(scene, lens, view, corners)) {
+                plain_triangle_call(index); // near a plane or off screen: plane tests
+                return;
+            }
+            keep_unlit(index, {view[0].position, view[1].position, view[2].position},
+                       corners, [&](std::size_t k) { return 1.0 / corners[k].w; });
+        };
+        // Where the mesh lists its distinct positions (SceneMesh::positions), each is
+        // moved, projected, tested and divided into 1/w once, not once per corner (six
+        // corners share a position of a closed grid), with the same arithmetic.
+        const PerspectiveAccept accept(scene, lens);
+        const auto move_positions = [&] {
+            moved.resize(mesh.positions.size());
+            for (std::size_t i = 0; i < moved.size(); ++i) {
+                MovedPosition& m = moved[i];
+                m.view = point_to_view(mesh.positions[i]);
+                m.inside = accept.corner(m.view, m.at);
+                m.nearness = 1.0 / m.view.z;
+            }
+        };
+        const auto unlit_shared = [&](std::size_t index) {
+            const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
+            const std::array<std::uint32_t, 3>& ids = mesh.corner_positions[index];
+            for (std::size_t k = 0; k < 3; ++k) { // a corner changed since: on its own
+                if (!same_bits(triangle[k].position, mesh.positions[ids[k]])) {
+                    unlit_triangle(index);
+                    return;
+                }
+            }
+            const MovedPosition &a = moved[ids[0]], &b = moved[ids[1]], &c = moved[ids[2]];
+            if (!(a.inside && b.inside && c.inside &&
+                  accept.box(std::min({a.at.x, b.at.x, c.at.x}),
+                             std::min({a.at.y, b.at.y, c.at.y}),
+                             std::max({a.at.x, b.at.x, c.at.x}),
+                             std::max({a.at.y, b.at.y, c.at.y})))) {
+                plain_triangle_call(index); // near a plane or off screen: plane tests
+                return;
+            }
+            std::array<TexturedVertex, 3> corners{{{a.at, a.view.z, triangle[0].uv},
+                                                   {b.at, b.view.z, triangle[1].uv},
+                                                   {c.at, c.view.z, triangle[2].uv}}};
+            const std::array<const MovedPosition*, 3> from{&a, &b, &c};
+            keep_unlit(index, {a.view, b.view, c.view}, corners,
+                       [&](std::size_t k) { return from[k]->nearness; });
         };
         //< unlit-geometry
         const Clock::time_point t0 = Clock::now(); // the whole mesh: clocks cost time
         if (fast.unlit_geometry && perspective && !lit) {
             out.reserve(mesh.triangles.size() / 2); // about half face the camera
-            for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
-                unlit_triangle(index);
+            if (mesh.corner_positions.size() == mesh.triangles.size() &&
+                !mesh.triangles.empty()) {
+                move_positions();
+                for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
+                    unlit_shared(index);
+                }
+            } else {
+                for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
+                    unlit_triangle(index);
+                }
             }
         } else {
             for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
