@@ -59,10 +59,12 @@ struct FastPaths {
     /// wrapped by a bit mask (fetch_texel_masked) instead of two integer remainders.
     bool masked_fetch = true;
     /// Geometry: an unlit mesh under a perspective camera goes through one short loop
-    /// (unlit_mesh_geometry): each triangle moved to view space, accepted by
+    /// (run_geometry's unlit_triangle): each triangle moved to view space, accepted by
     /// screen_accept's compares, checked for finite values with one bound per triangle
     /// instead of check_finite's six per corner, culled, and stored; a triangle the
-    /// compares do not accept takes the plain steps.
+    /// compares do not accept takes the plain steps. Where the mesh lists its distinct
+    /// positions (SceneMesh::positions), each is moved and projected once for all the
+    /// corners at it.
     bool unlit_geometry = true;
     /// Drawing: a mesh whose only stages are nearest texels (or its flat colour) and
     /// depth is drawn by draw_triangle_lean, which writes each visible pixel straight to
