@@ -8,6 +8,8 @@
 #   median   Google Benchmark's _median row (needs --benchmark_repetitions >= 2). For
 #            runs whose time a busy neighbour can also shorten (llvmpipe's waiting
 #            thread, two threads on two cores), where the fastest is not the truest.
+#            A last column, time_cv, gives the spread: the coefficient of variation of
+#            the repetitions' time (the _cv row; 0.02 is 2 %).
 # Usage: bench/repeated_csv.sh fastest|median RUN.csv > ONE_ROW_EACH.csv
 # Exits 2 when RUN.csv holds no benchmark repeated at least twice (no _median row).
 set -eu
@@ -21,6 +23,10 @@ esac
 awk -F, -v mode="$mode" 'BEGIN { OFS = "," }
     /^name,/ { header = $0; next }
     !header { next }
+    mode == "median" && $1 ~ /_cv"?$/ {
+        sub(/_cv/, "", $1)
+        cv[$1] = ($1 ~ /real_time"?$/) ? $3 : $4; next
+    }
     mode == "median" && $1 ~ /_median"?$/ {
         sub(/_median/, "", $1)
         if (!($1 in row)) order[++n] = $1
@@ -37,6 +43,11 @@ awk -F, -v mode="$mode" 'BEGIN { OFS = "," }
         repeated = 0
         for (k = 1; k <= n; ++k) repeated += seen[order[k]] >= 2
         if (!repeated) { print "repeated_csv.sh: no benchmark repeated in the run" > "/dev/stderr"; exit 2 }
-        print header
-        for (k = 1; k <= n; ++k) print row[order[k]]
+        if (mode == "median") {
+            print header ",time_cv"
+            for (k = 1; k <= n; ++k) print row[order[k]] "," (order[k] in cv ? cv[order[k]] : 0)
+        } else {
+            print header
+            for (k = 1; k <= n; ++k) print row[order[k]]
+        }
     }' "$csv"
