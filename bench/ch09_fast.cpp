@@ -733,6 +733,15 @@ int draw_once(const std::string& name) {
     return 0;
 }
 
+/// llvmpipe's run name: "llvmpipe", or "llvmpipe_CAPS" when GALLIUM_OVERRIDE_CPU_CAPS
+/// limits the instructions it may generate to CAPS (Mesa reads it once per process, so
+/// full_run.sh measures llvmpipe restricted to SSE4.1, 128-bit vectors, in a process of
+/// its own, beside its default: the difference is what its wider vectors give it).
+std::string peer_name() {
+    const char* caps = std::getenv("GALLIUM_OVERRIDE_CPU_CAPS");
+    return caps != nullptr ? std::string("llvmpipe_") + caps : std::string("llvmpipe");
+}
+
 void register_all() {
     const std::pair<const char*, Variant> variants[] = {
         {"walk", Variant::walk},   {"blocks", Variant::blocks},
@@ -758,7 +767,7 @@ void register_all() {
         }
         for (const int area : timed_areas) {
             benchmark::RegisterBenchmark(
-                (mode + "llvmpipe").c_str(),
+                (mode + peer_name()).c_str(),
                 [depth](benchmark::State& s) { llvmpipe(s, depth); })
                 ->Args({area, peer_threads})
                 ->MeasureProcessCPUTime();

@@ -25,7 +25,9 @@ awk -F, -v mode="$mode" 'BEGIN { OFS = "," }
     !header { next }
     mode == "median" && $1 ~ /_cv"?$/ {
         sub(/_cv/, "", $1)
-        cv[$1] = ($1 ~ /real_time"?$/) ? $3 : $4; next
+        # Google Benchmark writes the ratio in the time columns scaled like a time
+        unit = ($5 == "ns") ? 1e9 : ($5 == "us") ? 1e6 : ($5 == "ms") ? 1e3 : 1
+        cv[$1] = (($1 ~ /real_time"?$/) ? $3 : $4) / unit; next
     }
     mode == "median" && $1 ~ /_median"?$/ {
         sub(/_median/, "", $1)

@@ -36,7 +36,8 @@ end=$(date -u +%H:%M)
 load_end=$(cut -d ' ' -f 1-3 /proc/loadavg)
 {
     echo "# bench_ch09_fast --textured full run, measured $start-$end UTC: every benchmark repeated"
-    echo "# three times in random order, the median of each kept under the run's name (as full_run.sh)"
+    echo "# three times in random order, the median of each kept under the run's name (as full_run.sh),"
+    echo "# with the spread of the three in time_cv (their times' coefficient of variation)"
     echo "# machine: $cpu, $(nproc --all) cores at $mhz MHz, load average (1, 5, 15 min) $load_start at the start, $load_end at the end"
     echo "# software: $(c++ --version | head -n 1), Mesa $mesa llvmpipe via OSMesa, ${type:-unknown} build, commit $commit"
     echo "# command: chapters/09-fast-pixels/textured_run.sh build (LP_NUM_THREADS=1 bench_ch09_fast --textured --benchmark_repetitions=3 --benchmark_enable_random_interleaving=true)"
