@@ -55,10 +55,10 @@
 // frame covers differ in coverage.
 // Precision: ours moves and projects in double; GL gets the matrices in double
 // (glLoadMatrixd, rounded to float by Mesa) and the positions and texture coordinates
-// as floats, and llvmpipe transforms, clips and sets up in float. So a corner may land
-// a float's spacing (2^-13 px between 1024 and 2048 px) from ours and snap to the
-// neighbouring 1/256 px, a triangle almost edge-on may be culled on one side only, and
-// a pixel near a texel edge may take the neighbouring texel (as it may where our auto
+// as floats, and llvmpipe transforms, clips and sets up its planes in float. So a corner
+// may land a float's spacing (2^-13 px between 1024 and 2048 px) from ours and snap to
+// the neighbouring 1/256 px, a triangle almost edge-on may be culled on one side only,
+// and a pixel near a texel edge may take the neighbouring texel (as it may where our auto
 // mapper's approximation, within its budget, crosses the edge): the frame check counts
 // what that changes.
 // If OSMesa cannot make a context, the llvmpipe runs report an error and are skipped.
