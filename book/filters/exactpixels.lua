@@ -473,6 +473,15 @@ local function render_block(block, counters, state)
       out:insert(raw("latex", "\\end{eperratum}"))
       return out
     end
+    -- ::: summary: the chapter's "In short", a box with a rule down its left side headed
+    -- "In short" in both formats (style.css; the epsummary environment of header.tex,
+    -- which may break across a page). teaching() checks where it stands.
+    if block.t == "Div" and block.classes:includes("summary") and not html then
+      local out = pandoc.List({ raw("latex", "\\begin{epsummary}") })
+      out:extend(block.content)
+      out:insert(raw("latex", "\\end{epsummary}"))
+      return out
+    end
     return { block }
   elseif block.t == "BulletList" or block.t == "OrderedList" then
     for i, item in ipairs(block.content) do
