@@ -201,7 +201,6 @@ int main(int argc, char** argv) try {
     const std::vector<double> ratio = span_ratio_map(floor_scene);
     TexelMap reference(floor_scene.width, floor_scene.height);
     map_with(reference, floor_scene, reference_mapper());
-    const double bins[][2] = {{1.0, 2.0}, {2.0, 5.0}, {5.0, 10.0}, {10.0, 30.0}};
     std::vector<TexelMap> maps;
     for (const MapperConfig& m : mappers) {
         maps.emplace_back(floor_scene.width, floor_scene.height);
@@ -210,7 +209,7 @@ int main(int argc, char** argv) try {
     std::string picks =
         "| span depth ratio | pixels | cheapest under 1/2 texel | × affine "
         "| its worst (texels) |\n|:--|--:|:--|--:|--:|\n";
-    for (const auto& bin : bins) {
+    for (const auto& bin : picks_ratio_bands) {
         std::vector<char> include(ratio.size());
         for (std::size_t k = 0; k < ratio.size(); ++k) {
             include[k] = ratio[k] >= bin[0] && ratio[k] < bin[1];

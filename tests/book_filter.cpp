@@ -282,6 +282,41 @@ TEST_CASE("the contents page lists every chapter and numbered section with links
           std::string::npos);
 }
 
+TEST_CASE("a chapter's summary stands before its exercises, a box in HTML and LaTeX") {
+    FixtureBook book;
+    const std::string summary = "::: summary\n- what was derived\n:::\n\n";
+    const std::string body = "## Part\n\nText.\n\n";
+    const std::string exercises = "## Exercises\n\nDo.\n";
+    // HTML: a div the stylesheet heads "In short"; LaTeX: the epsummary environment.
+    const auto html = book.render(title + body + summary + exercises);
+    REQUIRE(html.exit_code == 0);
+    CHECK(html.out.find("<div class=\"summary\">") != std::string::npos);
+    book.write("chapters/07-demo/chapter.md", title + body + summary + exercises);
+    const auto latex =
+        book.run_filter("chapters/07-demo/chapter.md", "latex", "EP_CHAPTERS=07-demo");
+    REQUIRE(latex.exit_code == 0);
+    const auto begin = latex.out.find("\\begin{epsummary}");
+    const auto item = latex.out.find("what was derived");
+    const auto end = latex.out.find("\\end{epsummary}");
+    CHECK(begin < item);
+    CHECK(item < end);
+    CHECK(end < latex.out.find("Exercises"));
+    // Missing, misplaced or doubled, it fails naming the chapter file and line.
+    const auto missing = book.render(title + body + exercises);
+    CHECK(missing.exit_code != 0);
+    CHECK(missing.err.find("chapters/07-demo/chapter.md:13: error:") !=
+          std::string::npos);
+    CHECK(missing.err.find("::: summary") != std::string::npos);
+    const auto early = book.render(title + summary + body + exercises);
+    CHECK(early.exit_code != 0);
+    CHECK(early.err.find("directly before") != std::string::npos);
+    CHECK(book.render(title + body + summary + summary + exercises).exit_code != 0);
+    CHECK(book.render(title + body + exercises + summary).exit_code != 0);
+    CHECK(book.render(title + body + summary).exit_code != 0);
+    // A chapter without exercises (a fixture, a draft) needs none.
+    CHECK(book.render(title + body).exit_code == 0);
+}
+
 TEST_CASE("a page that is not a chapter reports errors with its own file name") {
     FixtureBook book;
     book.write("page.md", "# A page\n\nSee @sec:nowhere.\n");
@@ -296,7 +331,8 @@ TEST_CASE("headings without an explicit label may repeat from chapter to chapter
     FixtureBook book;
     fs::create_directories(book.root / "chapters" / "08-more");
     book.write("chapters/08-more/chapter.md", "# More\n\n## Exercises\n\nDo.\n");
-    book.write("chapters/07-demo/chapter.md", title + "## Exercises\n\nDo.\n");
+    book.write("chapters/07-demo/chapter.md",
+               title + "::: summary\n- it is a demo\n:::\n\n## Exercises\n\nDo.\n");
     const auto result = book.run_filter("chapters/07-demo/chapter.md", "html",
                                         "EP_CHAPTERS=07-demo", "07-demo 08-more");
     CHECK(result.exit_code == 0);

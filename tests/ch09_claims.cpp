@@ -207,6 +207,13 @@ TEST_CASE("claim: a 3 px triangle costs the pixel walk 400 to 500 instructions")
     CHECK(instructions("flat/walk/3") < 500);
 }
 
+TEST_CASE("claim: on a 3 px triangle llvmpipe executes over 5x the walk's instructions") {
+    for (const std::string mode : {"flat", "depth"}) {
+        INFO(mode);
+        CHECK(instructions(mode + "/llvmpipe/3") > 5.0 * instructions(mode + "/walk/3"));
+    }
+}
+
 TEST_CASE("claim: at 1000 px runs take under a third of the walk's instructions") {
     CHECK(instructions("flat/runs/1000") < instructions("flat/walk/1000") / 3.0);
 }

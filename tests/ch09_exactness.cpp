@@ -592,6 +592,68 @@ TEST_CASE("the tiled renderer draws the teaching path's picture with 1 to 4 thre
     }
 }
 
+TEST_CASE("a depth tie goes to the triangle drawn first, as GL_LESS gives it") {
+    // Two overlapping triangles on one depth plane: every pixel both cover is a tie.
+    // The depth test here is "less" (plot's !(z < d) refuses a tie), OpenGL's default
+    // GL_LESS, which bench_ch09_fast sets for llvmpipe, so the earlier triangle keeps the
+    // pixel on every path; chapter 7's DepthBuffer gives a tie to the later one instead
+    // (tests/ch07_scenes.cpp). Without a depth buffer the later triangle paints over.
+    constexpr int width = 80, height = 60;
+    const auto a = ch02::snap3({2.5, 3.25}, {70.75, 8.5}, {20.125, 55.5});
+    const auto b = ch02::snap3({10.5, 50.25}, {75.25, 40.5}, {30.75, 1.5});
+    const std::array<float, 3> depth = {0.25f, 0.25f, 0.25f};
+    const Rgba8 red = rgba(255, 0, 0), blue = rgba(0, 0, 255), ground = rgba(0, 0, 0);
+    for (const bool with_depth : {true, false}) {
+        for (const bool a_first : {true, false}) {
+            INFO("depth test: " << with_depth << ", red first: " << a_first);
+            const FlatTriangle first{a_first ? a : b, depth_plane(a_first ? a : b, depth),
+                                     a_first ? red : blue};
+            const FlatTriangle second{a_first ? b : a,
+                                      depth_plane(a_first ? b : a, depth),
+                                      a_first ? blue : red};
+            const std::vector<FlatTriangle> tris = {first, second};
+            const auto draw = [&](auto&& how) {
+                std::vector<Rgba8> colour(width * height, ground);
+                std::vector<float> z(width * height, 1.0f);
+                how(RenderTarget{colour.data(), with_depth ? z.data() : nullptr, width,
+                                 height});
+                return colour;
+            };
+            // What each triangle covers alone, to find the pixels both cover.
+            const auto alone = [&](const FlatTriangle& t) {
+                return draw([&](const RenderTarget& target) {
+                    draw_reference(target, std::span(&t, 1));
+                });
+            };
+            const std::vector<Rgba8> only_first = alone(first),
+                                     only_second = alone(second);
+            const std::vector<Rgba8> reference =
+                draw([&](const RenderTarget& t) { draw_reference(t, tris); });
+            int shared = 0;
+            for (std::size_t i = 0; i < reference.size(); ++i) {
+                if (only_first[i] != ground && only_second[i] != ground) {
+                    ++shared;
+                    CHECK(reference[i] == (with_depth ? first.colour : second.colour));
+                }
+            }
+            CHECK(shared > 300);
+            for (int threads = 1; threads <= 2; ++threads) {
+                CHECK(draw([&](const RenderTarget& t) {
+                          draw_tiled(t, tris, threads);
+                      }) == reference);
+            }
+            CHECK(draw([&](const RenderTarget& t) {
+                      draw_runs(t, first);
+                      draw_runs(t, second);
+                  }) == reference);
+            CHECK(draw([&](const RenderTarget& t) {
+                      draw_masks(t, first);
+                      draw_masks(t, second);
+                  }) == reference);
+        }
+    }
+}
+
 TEST_CASE("bad thread counts and vertices are rejected before any pixel is drawn") {
     std::vector<Rgba8> colour(64 * 64, rgba(1, 2, 3));
     const RenderTarget t{colour.data(), nullptr, 64, 64};

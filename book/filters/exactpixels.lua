@@ -473,6 +473,15 @@ local function render_block(block, counters, state)
       out:insert(raw("latex", "\\end{eperratum}"))
       return out
     end
+    -- ::: summary: the chapter's "In short", a box with a rule down its left side headed
+    -- "In short" in both formats (style.css; the epsummary environment of header.tex,
+    -- which may break across a page). teaching() checks where it stands.
+    if block.t == "Div" and block.classes:includes("summary") and not html then
+      local out = pandoc.List({ raw("latex", "\\begin{epsummary}") })
+      out:extend(block.content)
+      out:insert(raw("latex", "\\end{epsummary}"))
+      return out
+    end
     return { block }
   elseif block.t == "BulletList" or block.t == "OrderedList" then
     for i, item in ipairs(block.content) do
@@ -878,27 +887,52 @@ local function solution_blocks(div)
   return { pandoc.Div(content, { class = "solution" }) }
 end
 
--- Checks and renders the objectives, the exercises' tags and the solutions of every
--- chapter in `blocks` (top level, level-1 headings start chapters).
+-- Checks and renders the objectives, the summary, the exercises' tags and the solutions
+-- of every chapter in `blocks` (top level, level-1 headings start chapters). The summary
+-- (`::: summary`, "In short") stands directly before `## Exercises`: a chapter with
+-- exercises has exactly one, and a summary anywhere else is an error.
 local function teaching(blocks, dirs)
   local out, h1, dir = pandoc.List(), 0, nil
   local objectives, in_sections, in_exercises = 0, false, false
+  local summary_waiting = false -- the block before this one was the summary
   local function finish()
     if dir and objectives ~= 1 then
       fail(dir, "# ", string.format("the chapter needs exactly one `::: objectives` block "
         .. "(what the reader will be able to do) before its first section, found %d",
         objectives))
     end
+    if dir and summary_waiting then
+      fail(dir, "::: summary", "the `::: summary` block must stand directly before "
+        .. "`## Exercises`")
+    end
   end
   for _, block in ipairs(blocks) do
     local keep = { block }
+    local is_exercises = block.t == "Header" and block.level == 2
+      and pandoc.utils.stringify(block.content) == "Exercises"
+    if summary_waiting and not is_exercises then
+      fail(dir, "::: summary", "the `::: summary` block must stand directly before "
+        .. "`## Exercises`")
+    end
+    if is_exercises and not summary_waiting then
+      fail(dir, "## Exercises", "the chapter needs a `::: summary` block (\"In short\": "
+        .. "what was derived, the tests that prove it, the numbers that matter) directly "
+        .. "before `## Exercises`")
+    end
+    summary_waiting = false
     if block.t == "Header" and block.level == 1 then
       finish()
       h1 = h1 + 1
       dir, objectives, in_sections, in_exercises = dirs[h1], 0, false, false
     elseif block.t == "Header" and block.level == 2 then
       in_sections = true
-      in_exercises = pandoc.utils.stringify(block.content) == "Exercises"
+      in_exercises = is_exercises
+    elseif block.t == "Div" and block.classes:includes("summary") then
+      if in_exercises then
+        fail(dir, "::: summary", "the `::: summary` block must stand directly before "
+          .. "`## Exercises`")
+      end
+      summary_waiting = true
     elseif block.t == "Div" and block.classes:includes("objectives") then
       if in_sections then
         fail(dir, "::: objectives", "the objectives block must come before the first section")
