@@ -5,7 +5,8 @@
 // ch09_speed_textured.dat (the same for the textured run: teaching path, runs, llvmpipe),
 // ch09_table.md (the same numbers and the ratio to llvmpipe), ch09_fixed.md (the fixed
 // cost of an empty frame on each side, subtracted from every rate: chapter 9's
-// measurement protocol), ch09_targets.md (each
+// measurement protocol), ch09_speed_facts.txt (the main run's ratios for the
+// chapter's sentences), ch09_targets.md (each
 // target of the chapter, met or not, with the numbers that decide it) and
 // ch09_instructions.md (instructions per triangle from data/ch09_instructions.csv),
 // ch09_textured.md (the textured run, data/ch09_textured.csv: the teaching path, the
@@ -61,6 +62,14 @@ std::pair<std::string, double> best(const BenchmarkRuns& r, const std::string& m
         }
     }
     return b;
+}
+
+/// Triangles per second of wall/VARIANT/AREA/THREADS (wall clock).
+double wall_rate(const BenchmarkRuns& r, const std::string& variant, int area,
+                 int threads) {
+    return r.net_rate(fmt::format("wall/{}/{}/{}/real_time", variant, area, threads),
+                      fmt::format("wall/{}/0/{}/real_time", variant, threads),
+                      "tri_per_s", "real_time");
 }
 
 /// Pixels per second of MODE/VARIANT/AREA (one core).
@@ -239,8 +248,8 @@ std::string targets(const BenchmarkRuns& r, const BenchmarkRuns& t) {
         "- At least 3x llvmpipe with perspective-correct nearest texturing, "
         "one thread each: {} (textured runs, {}; the separate textured run).\n",
         met(three), textured_detail);
-    const double one = r.value("wall/tiled/1000/1/real_time", "tri_per_s");
-    const double two = r.value("wall/tiled/1000/2/real_time", "tri_per_s");
+    const double one = wall_rate(r, "tiled", 1000, 1);
+    const double two = wall_rate(r, "tiled", 1000, 2);
     md += fmt::format("- Two threads at least 1.8x one thread at 1000 px: {} ({:.2f}x, "
                       "wall clock).\n",
                       met(two >= 1.8 * one), two / one);
@@ -272,14 +281,6 @@ std::string instruction_table(const BenchmarkRuns& r) {
 /// renderer's rate over llvmpipe's with one thread each (process CPU time), in both
 /// modes; the tiled renderer's wall-clock rate with two threads over one; and the
 /// instructions per triangle of runs, masks and llvmpipe at 1000 px (callgrind).
-/// Triangles per second of wall/VARIANT/AREA/THREADS (wall clock).
-double wall_rate(const BenchmarkRuns& r, const std::string& variant, int area,
-                 int threads) {
-    return r.net_rate(fmt::format("wall/{}/{}/{}/real_time", variant, area, threads),
-                      fmt::format("wall/{}/0/{}/real_time", variant, threads),
-                      "tri_per_s", "real_time");
-}
-
 std::string thread_facts(const BenchmarkRuns& r, const BenchmarkRuns& instructions) {
     std::string facts = "# chapter 9, Exercise 4: what the committed runs can say\n";
     for (const std::string mode : {"flat", "depth"}) {
@@ -338,6 +339,51 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
     write_figure_file(path, text);
 }
 
+/// The main run's facts, one "NAME VALUE" per line, for the chapter's sentences: the
+/// best variant's rate over llvmpipe's (MODE_AREA), the walk's and the runs' over
+/// llvmpipe's, the runs' share of a plain fill at 65536 px, the fixed cost's share of
+/// each side's 3 px frame, and llvmpipe's default (AVX) rate over its rate held to
+/// SSE4.1 at 80 and 1000 px. Every rate is net of the frame's fixed cost.
+std::string speed_facts(const BenchmarkRuns& r) {
+    std::string facts = "# chapter 9: the committed main run (net rates)\n";
+    const auto frame_time = [&](const std::string& mode, const std::string& v, int area) {
+        return r.value(fmt::format("{}/{}/{}/1/process_time", mode, v, area), "cpu_time");
+    };
+    for (const std::string mode : {"flat", "depth"}) {
+        for (const int area : areas) {
+            const double peer = rate(r, mode, "llvmpipe", area);
+            facts += fmt::format("best_over_llvmpipe_{}_{} {:.4f}\n", mode, area,
+                                 best(r, mode, area).second / peer);
+            for (const char* v : project_variants) {
+                facts += fmt::format("{}_over_llvmpipe_{}_{} {:.4f}\n", v, mode, area,
+                                     rate(r, mode, v, area) / peer);
+                facts +=
+                    fmt::format("{}_over_walk_{}_{} {:.4f}\n", v, mode, area,
+                                rate(r, mode, v, area) / rate(r, mode, "walk", area));
+            }
+        }
+        for (const char* v : {"runs", "llvmpipe"}) {
+            facts += fmt::format("fixed_share_{}_{}_3 {:.4f}\n", v, mode,
+                                 frame_time(mode, v, 0) / frame_time(mode, v, 3));
+            facts += fmt::format("fixed_us_{}_{} {:.2f}\n", v, mode,
+                                 frame_time(mode, v, 0) / 1e3);
+        }
+        for (const int area : {80, 1000}) {
+            facts += fmt::format("llvmpipe_avx_over_sse41_{}_{} {:.4f}\n", mode, area,
+                                 rate(r, mode, "llvmpipe", area) /
+                                     rate(r, mode, "llvmpipe_sse4.1", area));
+        }
+    }
+    facts +=
+        fmt::format("runs_over_plain_65536 {:.4f}\n",
+                    rate(r, "flat", "runs", 65536) / rate(r, "flat", "plain", 65536));
+    facts +=
+        fmt::format("blocks_over_plain_65536 {:.4f}\n",
+                    rate(r, "flat", "blocks", 65536) / rate(r, "flat", "plain", 65536));
+    facts += fmt::format("best_flat_3_mtri {:.2f}\n", best(r, "flat", 3).second / 1e6);
+    return facts;
+}
+
 /// The fixed costs table: microseconds of a frame with nothing in it (area 0) for each
 /// side and mode, and its share of the 3 px set's frame, which every rate of the
 /// chapter has subtracted.
@@ -382,6 +428,7 @@ int main(int argc, char** argv) {
                                "chapters/09-fast-pixels/data/ch09_textured.csv");
         write_text(folder / "ch09_targets.md", targets(r, textured));
         write_text(folder / "ch09_fixed.md", fixed_table(r, textured));
+        write_text(folder / "ch09_speed_facts.txt", speed_facts(r));
         write_text(folder / "ch09_textured.md", textured_table(textured));
         write_textured_dat(textured, folder / "ch09_speed_textured.dat");
         const BenchmarkRuns compare =
