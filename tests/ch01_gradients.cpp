@@ -70,8 +70,8 @@ double shape_factor(const PlaneSamples<double>& s) {
         const int j = (i + 1) % 3;
         longest = std::max(longest, std::hypot(s.x[j] - s.x[i], s.y[j] - s.y[i]));
     }
-    const double area2 =
-        (s.x[2] - s.x[0]) * (s.y[1] - s.y[0]) - (s.x[1] - s.x[0]) * (s.y[2] - s.y[0]);
+    const double area2 = // 2A (@eq:split-denominator); its sign does not matter here
+        (s.x[1] - s.x[0]) * (s.y[2] - s.y[0]) - (s.x[2] - s.x[0]) * (s.y[1] - s.y[0]);
     return longest * longest / std::abs(area2);
 }
 
