@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Chapters 3, 4 and 7, re-derived with SymPy (run by CTest, label book): the exact
 fraction and the affine error along a span (eq:exact-fraction, eq:affine-error), where
-it peaks and how large it is (eq:affine-worst-t, eq:affine-bound), the exact midpoint
+it peaks and how large it is (eq:affine-worst-t, eq:affine-bound), the error when the
+span's ends are off (eq:affine-plane-error), the exact midpoint
 (eq:midpoint), Pursey's and Thellier's coefficients (eq:pursey, eq:thellier), forward
 differences (eq:forward-differences), chapter 4's numerator (eq:numerator,
 eq:numerator-constant, eq:step-difference) and chapter 7's two bounds behind
@@ -28,6 +29,12 @@ t_star = (r - sp.sqrt(r)) / (r - 1)
 same("affine error peaks at t*", sp.diff(e, t).subs(t, t_star), 0)
 same("t* second form", t_star, sp.sqrt(r) / (sp.sqrt(r) + 1))
 same("affine bound", e.subs(t, t_star), (sp.sqrt(r) - 1) / (sp.sqrt(r) + 1))
+# The affine mapper with its ends off by d0 and d1 (taken from the triangle's plane):
+# a straight line from u0 + d0 to u2 + d1 against the exact u (eq:affine-plane-error).
+d0, d1 = sp.symbols("d0 d1")
+line = (u0 + d0) + t * ((u2 + d1) - (u0 + d0))
+same("affine error with plane ends",
+     (line - u_exact).subs(w2, r * w0), (1 - t) * d0 + t * d1 + (u2 - u0) * e)
 same("midpoint", u_exact.subs(t, sp.Rational(1, 2)), u0 + w0 * (u2 - u0) / (w0 + w2))
 # Pursey's parabola over n pixel steps, and Thellier's form of its coefficients.
 u1 = u0 + w0 * (u2 - u0) / (w0 + w2)
