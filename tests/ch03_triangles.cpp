@@ -273,17 +273,18 @@ TEST_CASE("the scenes' affine mapper errs by its end errors plus the exact-ends 
     // with d0, d1 its errors at the first and last pixel, dU the exact extent and e the
     // exact-ends error of @eq:affine-error at the span's own depth ratio r; at most
     // max(|d0|, |d1|) + |dU| (sqrt r - 1) / (sqrt r + 1) (@eq:affine-plane-bound).
-    // Checked at every pixel of every span of both scenes, against the exact u in long
-    // double, to 1e-9 texel (the double stepping drifts by under 1e-10 here). Spans whose
-    // error exceeds the exact-ends bound alone are counted: they are why the end terms
-    // are there.
-    constexpr long double tolerance = 1e-9L;
+    // Checked at every pixel of every span of both scenes, against the exact u of the
+    // exact mapper in double (a divide and a few products: a few units in the last place
+    // of u, far below the tolerance), to 1e-9 texel, which also covers the affine
+    // mapper's own stepping. Spans whose error exceeds the exact-ends bound alone are
+    // counted: they are why the end terms are there.
+    constexpr double tolerance = 1e-9;
     for (const auto& [name, scene] :
          {std::pair{std::string("floor"), floor_scene(320, 240)},
           std::pair{std::string("wall"), wall_scene(320, 240)}}) {
         int spans = 0, beyond_exact_ends = 0;
-        long double worst_excess = 0; // the largest error beyond the exact-ends bound
-        long double closest = 0;      // the largest share of its bound a span reaches
+        double worst_excess = 0; // the largest error beyond the exact-ends bound
+        double closest = 0;      // the largest share of its bound a span reaches
         for (const auto& v : scene.triangles) {
             std::array<FixedPoint2, 3> snapped{};
             std::array<Point2, 3> p{};
@@ -297,28 +298,27 @@ TEST_CASE("the scenes' affine mapper errs by its end errors plus the exact-ends 
                 if (count < 2) {
                     return;
                 }
-                const PerspectiveSpan<long double> exact =
-                    converted<long double>(perspective_span(planes, s));
-                std::vector<long double> affine;
+                const PerspectiveSpan<double> exact = perspective_span(planes, s);
+                std::vector<double> affine;
                 map_span_affine(affine_span(planes, s),
                                 [&](int, double u, double) { affine.push_back(u); });
                 const int n = count - 1;
-                const long double u0 = exact_at(exact, 0).u, u1 = exact_at(exact, n).u;
-                const long double d0 = affine[0] - u0, d1 = affine[std::size_t(n)] - u1;
-                const long double r = (exact.one_w) / (exact.one_w + n * exact.done_w);
-                long double worst = 0;
+                const double u0 = exact_at(exact, 0).u, u1 = exact_at(exact, n).u;
+                const double d0 = affine[0] - u0, d1 = affine[std::size_t(n)] - u1;
+                const double r = (exact.one_w) / (exact.one_w + n * exact.done_w);
+                double worst = 0;
                 for (int k = 0; k <= n; ++k) {
-                    const long double t = static_cast<long double>(k) / n;
-                    const long double e = t - t / (r - (r - 1) * t); // @eq:affine-error
-                    const long double error = affine[std::size_t(k)] - exact_at(exact, k).u;
+                    const double t = static_cast<double>(k) / n;
+                    const double e = t - t / (r - (r - 1) * t); // @eq:affine-error
+                    const double error = affine[std::size_t(k)] - exact_at(exact, k).u;
                     INFO(name << ", row " << s.y << ", pixel " << k << " of " << count);
                     REQUIRE(std::abs(error - ((1 - t) * d0 + t * d1 + (u1 - u0) * e)) <=
                             tolerance);
                     worst = std::max(worst, std::abs(error));
                 }
-                const long double ends = std::max(std::abs(d0), std::abs(d1));
-                const long double inside =
-                    std::abs(u1 - u0) * affine_error_bound(static_cast<double>(r));
+                const double ends = std::max(std::abs(d0), std::abs(d1));
+                const double inside =
+                    std::abs(u1 - u0) * affine_error_bound(r);
                 CHECK(worst <= ends + inside + tolerance);
                 closest = std::max(closest, worst / (ends + inside));
                 ++spans;
@@ -330,14 +330,14 @@ TEST_CASE("the scenes' affine mapper errs by its end errors plus the exact-ends 
         }
         MESSAGE(name << ": " << beyond_exact_ends << " of " << spans
                      << " spans beyond the exact-ends bound, by up to "
-                     << static_cast<double>(worst_excess) << " texels; the closest span reaches "
-                     << static_cast<double>(closest) << " of its bound");
+                     << worst_excess << " texels; the closest span reaches "
+                     << closest << " of its bound");
         CHECK(spans > 100);
         CHECK(beyond_exact_ends > 0);
         record_fact("ch03_affine_spans_" + name, spans);
         record_fact("ch03_affine_spans_beyond_" + name, beyond_exact_ends);
-        record_fact("ch03_affine_excess_" + name, static_cast<double>(worst_excess));
-        record_fact("ch03_affine_bound_reached_" + name, static_cast<double>(closest));
+        record_fact("ch03_affine_excess_" + name, worst_excess);
+        record_fact("ch03_affine_bound_reached_" + name, closest);
     }
 }
 
