@@ -49,16 +49,23 @@ same("Thellier b", b, (kk - delta) / n)
 same("first difference", parabola.subs(T, T + 1) - parabola, 2 * a * T + a + b)
 same("second difference",
      parabola.subs(T, T + 2) - 2 * parabola.subs(T, T + 1) + parabola, 2 * a)
-# Chapter 4: c = (p + t px) / (q + t qx) along a row.
+# Chapter 4: u = (p + t px) / (q + t qx) along a row (p = u/w, q = 1/w).
 p, px, q, qx = sp.symbols("p p_x q q_x")
 cc = (p + t * px) / (q + t * qx)
 numerator = px * q - p * qx
 same("numerator", sp.diff(cc, t), numerator / (q + t * qx)**2)
+# c = u - 1/2 changes as u does, and interpolating c/w = p - q/2 gives the same numerator.
+same("c steps as u", sp.diff(cc - sp.Rational(1, 2), t), sp.diff(cc, t))
+same("numerator of c/w", (px - qx / 2) * q - (p - q / 2) * qx, numerator)
+# From row to row (s pixels down) the numerator is n + s (px qy - py qx), not constant.
+py_, qy, s_ = sp.symbols("p_y q_y s")
+same("numerator down the rows", px * (q + s_ * qy) - (p + s_ * py_) * qx,
+     numerator + s_ * (px * qy - py_ * qx))
 same("numerator constant",
      sp.Matrix([[px, p + t * px], [qx, q + t * qx]]).det(), numerator)
 same("step difference", cc.subs(t, t + 1) - cc,
      numerator / ((q + t * qx) * (q + (t + 1) * qx)))
-# Seed 004's equation 14 (erratum): with A = p, B = px, C = q, D = qx, the step is
+# Seed 004's equation 14 (erratum): in its letters A = p, B = px, C = q, D = qx, the step is
 # (A + B)/(C + D) - A/C = (BC - AD)/(C (C + D)); subtracting A/B is not.
 A, B, C, Dd = p, px, q, qx
 same("seed 004 eq. 14, corrected", (A + B) / (C + Dd) - A / C,
