@@ -4,6 +4,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/raster/gradients.hpp"
 #include "exactpixels/raster/scanline.hpp"
+#include "support/measured_facts.hpp"
 
 #include <doctest/doctest.h>
 
@@ -18,6 +19,7 @@
 #include <vector>
 
 using namespace exactpixels;
+using exactpixels::testing::record_fact;
 
 namespace {
 
@@ -370,6 +372,7 @@ TEST_CASE("floating-point spans agree with the exact coverage except at rounding
         }
     }
     MESSAGE("pixels decided differently by rounding: " << ties_seen);
+    record_fact("ch01_float_span_ties", ties_seen);
 }
 
 TEST_CASE("zero-area triangles draw nothing") {
@@ -574,6 +577,8 @@ TEST_CASE("stepped attributes lie on the plane at every pixel centre" *
     }
     MESSAGE("worst |stepped - plane| / (eps S): " << worst << " over " << drawn_total
                                                   << " pixels");
+    record_fact("ch01_stepping_worst", worst);
+    record_fact("ch01_stepping_bound", 2.0 * (h + w + 4));
     CHECK(drawn_total > 0);
 }
 
