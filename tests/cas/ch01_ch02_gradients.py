@@ -42,6 +42,18 @@ same("split denominator", x4 - x2, -A2 / (y3 - y1))
 same("split c_x", (c4 - c2) / (x4 - x2), plane[cx])
 same("split c_y", (c3 - c1) / (y3 - y1) - plane[cx] * (x3 - x1) / (y3 - y1), plane[cy])
 
+# Exercise 1.4: c_x off by delta. Stepped down the edge by the gradient form
+# (eq:edge-slope-gradient) and along the row by eq:prestep, the value is a plane; with the
+# direct edge slope (eq:edge-slope-direct) it is off by delta times the distance from the
+# edge.
+xa, ya, ca, m, dl, X, Y = sp.symbols("x_a y_a c_a m delta X Y")
+exact_plane = ca + cx * (X - xa) + cy * (Y - ya)
+x_edge = xa + m * (Y - ya)
+by_gradient = ca + (Y - ya) * ((cx + dl) * m + cy) + (X - x_edge) * (cx + dl)
+by_direct = ca + (Y - ya) * (cx * m + cy) + (X - x_edge) * (cx + dl)
+same("exercise 1.4: gradient slope error", by_gradient - exact_plane, dl * (X - xa))
+same("exercise 1.4: direct slope error", by_direct - exact_plane, dl * (X - xa - m * (Y - ya)))
+
 # Chapter 2: vertices v0, v1, v2 = (x1, y1), (x2, y2), (x3, y3); E_i is the edge opposite
 # v_i, from v_{i+1} to v_{i+2}.
 v = [(x1, y1), (x2, y2), (x3, y3)]

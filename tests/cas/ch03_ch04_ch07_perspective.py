@@ -65,6 +65,31 @@ same("numerator constant",
      sp.Matrix([[px, p + t * px], [qx, q + t * qx]]).det(), numerator)
 same("step difference", cc.subs(t, t + 1) - cc,
      numerator / ((q + t * qx) * (q + (t + 1) * qx)))
+# Exercise 4.4: the wall of the test, corners (10, 10.5), (74, 34.5), (10, 74.5) with
+# w = 1, 4, 1 and v = 0, 0, 64: the planes of q = 1/w and p = v/w, the point P where both
+# vanish, and the change of the x numerator per row.
+X, Y = sp.symbols("X Y")
+corners = [(10, sp.Rational(21, 2)), (74, sp.Rational(69, 2)), (10, sp.Rational(149, 2))]
+w_wall, v_wall = [1, 4, 1], [0, 0, 64]
+
+
+def plane_through(values):
+    a0, a1, a2 = sp.symbols("a0 a1 a2")
+    solution = sp.solve([a0 + a1 * cx_ + a2 * cy_ - value
+                         for (cx_, cy_), value in zip(corners, values)], [a0, a1, a2])
+    return solution[a0] + solution[a1] * X + solution[a2] * Y
+
+
+q_wall = plane_through([sp.Integer(1) / w for w in w_wall])
+p_wall = plane_through([sp.Integer(v) / w for v, w in zip(v_wall, w_wall)])
+same("exercise 4.4: q", q_wall, sp.Rational(143, 128) - sp.Rational(3, 256) * X)
+same("exercise 4.4: p", p_wall, Y - sp.Rational(27, 4) - sp.Rational(3, 8) * X)
+P = sp.solve([q_wall, p_wall], [X, Y])
+same("exercise 4.4: P x", P[X], sp.Rational(286, 3))
+same("exercise 4.4: P y", P[Y], sp.Rational(85, 2))
+same("exercise 4.4: numerator change per row",
+     sp.diff(p_wall, X) * sp.diff(q_wall, Y) - sp.diff(p_wall, Y) * sp.diff(q_wall, X),
+     sp.Rational(3, 256))
 # Seed 004's equation 14 (erratum): in its letters A = p, B = px, C = q, D = qx, the step is
 # (A + B)/(C + D) - A/C = (BC - AD)/(C (C + D)); subtracting A/B is not.
 A, B, C, Dd = p, px, q, qx
