@@ -19,6 +19,16 @@ t, r, n, k = sp.symbols("t r n k", positive=True)
 u0, u2, w0, w2, T = sp.symbols("u0 u2 w0 w2 T")
 
 
+# eq:linear-in-screen: a point (x, y, z) of the plane n . (x, y, z) = d seen at
+# X = ox + f x / z, Y = oy - f y / z; u = ax x + ay y + az z on the plane.
+xv, yv, zv, f_, ox, oy, ax, ay, az, nx, ny, nz, dd = sp.symbols(
+    "x y z f o_x o_y a_x a_y a_z n_x n_y n_z d", nonzero=True)
+Xs, Ys = ox + f_ * xv / zv, oy - f_ * yv / zv
+same("u/w is affine in X, Y", (ax * xv + ay * yv + az * zv) / zv,
+     ax * (Xs - ox) / f_ + ay * (oy - Ys) / f_ + az)
+on_plane = {zv: (dd - nx * xv - ny * yv) / nz}
+same("1/w is affine in X, Y", (1 / zv).subs(on_plane),
+     ((nx * (Xs - ox) / f_ + ny * (oy - Ys) / f_ + nz) / dd).subs(on_plane))
 # A span with u0 at depth w0 and u2 at w2 = r w0: u/w and 1/w linear in t.
 u_exact = ((1 - t) * u0 / w0 + t * u2 / w2) / ((1 - t) / w0 + t / w2)
 s = sp.simplify(((u_exact - u0) / (u2 - u0)).subs(w2, r * w0))
