@@ -282,7 +282,8 @@ TEST_CASE("the contents page lists every chapter and numbered section with links
           std::string::npos);
 }
 
-TEST_CASE("fence text that would reach the page fails naming its lines, in both editions") {
+TEST_CASE(
+    "fence text that would reach the page fails naming its lines, in both editions") {
     FixtureBook book;
     const auto has = [](const std::string& text, const std::string& what) {
         return text.find(what) != std::string::npos;
@@ -299,8 +300,9 @@ TEST_CASE("fence text that would reach the page fails naming its lines, in both 
     CHECK(has(broken.err, "chapters/07-demo/chapter.md:11: error: fence text reaches the "
                           "page: '::: The parabola'"));
     // Closed on a line of its own, the same box is a box and no fence shows.
-    const auto fixed = book.render(title + "::: erratum\nThe source is wrong here.\n:::\n\n"
-                                           "The parabola $u$ through\nthree points.\n");
+    const auto fixed =
+        book.render(title + "::: erratum\nThe source is wrong here.\n:::\n\n"
+                            "The parabola $u$ through\nthree points.\n");
     REQUIRE(fixed.exit_code == 0);
     CHECK(has(fixed.out, "class=\"erratum\""));
     CHECK_FALSE(has(fixed.out, ":::"));
@@ -308,14 +310,17 @@ TEST_CASE("fence text that would reach the page fails naming its lines, in both 
     // the student book drops, the teacher's edition shows): both fail.
     const auto stray = book.render(title + "A stray ```{.text} fence.\n");
     CHECK(stray.exit_code != 0);
-    CHECK(has(stray.err, "chapter.md:9: error: fence text reaches the page: '```{.text}"));
-    const auto in_solution = book.render(title + "## Exercises\n\n"
-                                                 "1. []{.exercise kind=derive marks=1} Do.\n\n"
-                                                 "   ::: solution\n"
-                                                 "   Done.\n"
-                                                 "   ::: Then more.\n");
+    CHECK(
+        has(stray.err, "chapter.md:9: error: fence text reaches the page: '```{.text}"));
+    const auto in_solution =
+        book.render(title + "## Exercises\n\n"
+                            "1. []{.exercise kind=derive marks=1} Do.\n\n"
+                            "   ::: solution\n"
+                            "   Done.\n"
+                            "   ::: Then more.\n");
     CHECK(in_solution.exit_code != 0);
-    CHECK(has(in_solution.err, "chapter.md:15: error: fence text reaches the page: '::: Then"));
+    CHECK(has(in_solution.err,
+              "chapter.md:15: error: fence text reaches the page: '::: Then"));
     // Fences in code are code, not fence text.
     const auto code = book.render(title + "Open one with `::: solution`.\n\n"
                                           "```{.text}\n::: shown as typed\n```\n");

@@ -151,7 +151,8 @@ BookReport check_html_book(const fs::path& book, const fs::path& screenshots) {
             }
             for (const auto& line : r["fences"].array) {
                 report.problems.push_back(
-                    name + ": fence text on the page (a ::: or ``` fence not read as one): " +
+                    name +
+                    ": fence text on the page (a ::: or ``` fence not read as one): " +
                     line.str());
             }
             auto& ids = ids_of[page];

@@ -333,16 +333,18 @@ TEST_CASE("the stability study's reference is the exact gradient to three roundi
           doctest::description("points: 1; exercise: ch01-closed-form")) {
     // exact_gradient computes @eq:closed-form in 128-bit integers and rounds three times:
     // numerator and denominator to long double, then their quotient; each rounding is at
-    // most u = 2^-digits relative, so it lies within about 3u of the exact gradient. Check
-    // it against the library's closed form run in Rational arithmetic on the same inputs
-    // (also for the triangles moved to about 4000 px, Exercise 5, in double and rounded
-    // to float), whose conversion to long double rounds three times too: the two agree
-    // within 6u, and 8u allows for the products of the small terms. The study measures
-    // double to fractions of 2^-52, so a long double no wider than a double (MSVC, Apple
-    // Silicon) is no reference at all: there this test fails.
+    // most u = 2^-digits relative, so it lies within about 3u of the exact gradient.
+    // Check it against the library's closed form run in Rational arithmetic on the same
+    // inputs (also for the triangles moved to about 4000 px, Exercise 5, in double and
+    // rounded to float), whose conversion to long double rounds three times too: the two
+    // agree within 6u, and 8u allows for the products of the small terms. The study
+    // measures double to fractions of 2^-52, so a long double no wider than a double
+    // (MSVC, Apple Silicon) is no reference at all: there this test fails.
     constexpr int digits = std::numeric_limits<long double>::digits;
-    REQUIRE_MESSAGE(digits >= 64, "long double has " << digits << " significand bits: "
-                                  "no wider than the double it should measure");
+    REQUIRE_MESSAGE(digits >= 64, "long double has "
+                                      << digits
+                                      << " significand bits: "
+                                         "no wider than the double it should measure");
     const long double u = std::ldexp(1.0L, -digits);
     for (const auto& [delta, origin, as_float] :
          {std::tuple{1e-2, 0.0, false}, std::tuple{1e-9, 0.0, false},

@@ -244,7 +244,8 @@ TEST_CASE("a triangle thinner than a pixel row covers what its centres say") {
 }
 // clang-format on
 
-TEST_CASE("a vertex on a pixel centre is drawn exactly when both its edges are top or left") {
+TEST_CASE(
+    "a vertex on a pixel centre is drawn exactly when both its edges are top or left") {
     // A vertex on a centre lies on two edges at once, so the rule for edges decides it
     // twice. Every kind of tip occurs here: a top edge meeting a left or a right edge, a
     // bottom edge meeting a left or a right edge, two left edges (a tip pointing left),
@@ -259,8 +260,8 @@ TEST_CASE("a vertex on a pixel centre is drawn exactly when both its edges are t
                                        : "right";
     };
     const std::array<std::string, 8> every_kind{
-        "top+left",     "top+right",  "bottom+left",       "bottom+right",
-        "left+left",    "right+right", "left+right, up",   "left+right, down"};
+        "top+left",  "top+right",   "bottom+left",    "bottom+right",
+        "left+left", "right+right", "left+right, up", "left+right, down"};
     std::map<std::string, std::array<int, 2>> seen; // kind -> {tips, tips drawn}
     std::mt19937_64 random(24);
     std::uniform_int_distribution<int> centre(0, 11);
@@ -270,7 +271,8 @@ TEST_CASE("a vertex on a pixel centre is drawn exactly when both its edges are t
             p = {centre(random) + 0.5, centre(random) + 0.5};
         }
         const std::array<FixedPoint2, 3> f = snapped(v);
-        if ((f[1].x - f[0].x) * (f[2].y - f[0].y) == (f[1].y - f[0].y) * (f[2].x - f[0].x)) {
+        if ((f[1].x - f[0].x) * (f[2].y - f[0].y) ==
+            (f[1].y - f[0].y) * (f[2].x - f[0].x)) {
             continue; // no area: no edges to speak of
         }
         for (int k = 0; k < 3; ++k) {
@@ -281,8 +283,9 @@ TEST_CASE("a vertex on a pixel centre is drawn exactly when both its edges are t
             if (kinds[0] == EdgeKind::left && kinds[1] == EdgeKind::right) {
                 kind += a.y > tip.y ? ", up" : ", down"; // the other two: below or above
             }
-            const bool drawn = (kinds[0] == EdgeKind::top || kinds[0] == EdgeKind::left) &&
-                               (kinds[1] == EdgeKind::top || kinds[1] == EdgeKind::left);
+            const bool drawn =
+                (kinds[0] == EdgeKind::top || kinds[0] == EdgeKind::left) &&
+                (kinds[1] == EdgeKind::top || kinds[1] == EdgeKind::left);
             ++seen[kind][0];
             seen[kind][1] += drawn;
             const int px = static_cast<int>(v[k].x), py = static_cast<int>(v[k].y);

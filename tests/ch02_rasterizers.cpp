@@ -319,12 +319,13 @@ TEST_CASE("shifts below half a sub-pixel step change nothing; zero area draws no
     }
 }
 
-TEST_CASE("in float a test of the four corner centres can reject a block with a pixel in it") {
+TEST_CASE(
+    "in float a test of the four corner centres can reject a block with a pixel in it") {
     // Exercise 2.5's example. The edge v0 -> v1 is not top-left (it runs right and down,
     // the inside below it). At the centre (2513.5, 309.5), the bottom-left corner of the
-    // 8 x 8 block whose top-left pixel is (2513, 302), its exact value is positive, so the
-    // pixel is covered; `at` rounds it to 0 in float, which fails the edge, and so do the
-    // block's three other corners: a test of the four corner centres would reject the
+    // 8 x 8 block whose top-left pixel is (2513, 302), its exact value is positive, so
+    // the pixel is covered; `at` rounds it to 0 in float, which fails the edge, and so do
+    // the block's three other corners: a test of the four corner centres would reject the
     // block. classify_block (@eq:edge-block) keeps it for the pixel test.
     const std::array<Point2f, 3> v{
         {{2237.98999f, 267.386047f}, {3158.59766f, 408.108429f}, {2238.0f, 1000.0f}}};
@@ -339,7 +340,7 @@ TEST_CASE("in float a test of the four corner centres can reject a block with a 
                (r(v[1].y) - r(v[0].y)) * (px - r(v[0].x));
     };
     CHECK(exact(2513, 309) > exactpixels::testing::Rational(0)); // covered
-    CHECK(e.at(2513, 309) == 0.0f);                                // but rounded to 0
+    CHECK(e.at(2513, 309) == 0.0f);                              // but rounded to 0
     int corners_passing = 0;
     for (const auto& [x, y] : {std::pair{2513, 302}, std::pair{2520, 302},
                                std::pair{2513, 309}, std::pair{2520, 309}}) {

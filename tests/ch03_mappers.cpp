@@ -105,8 +105,8 @@ TEST_CASE("affine error between exact ends matches the formula and peaks at the 
                 span_between(3.0, 2.0, 3.0 + extent, 2.0 * r, count);
             const std::vector<double> exact =
                 run_u([&](auto emit) { map_span_exact(s, emit); }, count);
-            const std::vector<double> affine = run_u(
-                [&](auto emit) { map_span_subdivided(s, count - 1, emit); }, count);
+            const std::vector<double> affine =
+                run_u([&](auto emit) { map_span_subdivided(s, count - 1, emit); }, count);
             REQUIRE(affine.front() == exact.front()); // exact at both ends
             REQUIRE(affine.back() == exact.back());
             double worst = 0.0;

@@ -1,10 +1,10 @@
 // Chapter 3 tests: textures, and textured triangles drawn by every mapper through
 // chapter 1's scanline rasterizer.
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/base/test_pattern.hpp"
 #include "exactpixels/lab/perspective_scenes.hpp"
-#include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/texture/perspective_error.hpp"
 #include "exactpixels/texture/texture.hpp"
@@ -269,7 +269,7 @@ TEST_CASE("the scenes' affine mapper errs by its end errors plus the exact-ends 
     // the plane of u through the triangle's corners (affine_span), so it is not exact at
     // the span's ends. Along the span it is still a straight line, and the exact u is
     // u0 + dU s(t) (@eq:exact-fraction), so its error at t = k / n is
-    //   (1 - t) d0 + t d1 + dU e(t)                                    (@eq:affine-plane-error)
+    //   (1 - t) d0 + t d1 + dU e(t) (@eq:affine-plane-error)
     // with d0, d1 its errors at the first and last pixel, dU the exact extent and e the
     // exact-ends error of @eq:affine-error at the span's own depth ratio r; at most
     // max(|d0|, |d1|) + |dU| (sqrt r - 1) / (sqrt r + 1) (@eq:affine-plane-bound).
@@ -317,8 +317,7 @@ TEST_CASE("the scenes' affine mapper errs by its end errors plus the exact-ends 
                     worst = std::max(worst, std::abs(error));
                 }
                 const double ends = std::max(std::abs(d0), std::abs(d1));
-                const double inside =
-                    std::abs(u1 - u0) * affine_error_bound(r);
+                const double inside = std::abs(u1 - u0) * affine_error_bound(r);
                 CHECK(worst <= ends + inside + tolerance);
                 closest = std::max(closest, worst / (ends + inside));
                 ++spans;
@@ -329,9 +328,9 @@ TEST_CASE("the scenes' affine mapper errs by its end errors plus the exact-ends 
             });
         }
         MESSAGE(name << ": " << beyond_exact_ends << " of " << spans
-                     << " spans beyond the exact-ends bound, by up to "
-                     << worst_excess << " texels; the closest span reaches "
-                     << closest << " of its bound");
+                     << " spans beyond the exact-ends bound, by up to " << worst_excess
+                     << " texels; the closest span reaches " << closest
+                     << " of its bound");
         CHECK(spans > 100);
         CHECK(beyond_exact_ends > 0);
         record_fact("ch03_affine_spans_" + name, spans);
