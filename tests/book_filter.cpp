@@ -317,6 +317,51 @@ TEST_CASE("a chapter's summary stands before its exercises, a box in HTML and La
     CHECK(book.render(title + body).exit_code == 0);
 }
 
+TEST_CASE(
+    "fence text that would reach the page fails naming its lines, in both editions") {
+    FixtureBook book;
+    const auto has = [](const std::string& text, const std::string& what) {
+        return text.find(what) != std::string::npos;
+    };
+    // Chapter 3's erratum box as it was: its closing fence shared a line with the next
+    // paragraph, so Pandoc read no box and the page showed "::: erratum ... ::: The".
+    const auto broken = book.render(title + "::: erratum\n"               // line 9
+                                            "The source is wrong here.\n" // line 10
+                                            "::: The parabola $u$ through\n"
+                                            "three points.\n");
+    CHECK(broken.exit_code != 0);
+    CHECK(has(broken.err, "chapters/07-demo/chapter.md:9: error: fence text reaches the "
+                          "page: '::: erratum The source"));
+    CHECK(has(broken.err, "chapters/07-demo/chapter.md:11: error: fence text reaches the "
+                          "page: '::: The parabola'"));
+    // Closed on a line of its own, the same box is a box and no fence shows.
+    const auto fixed =
+        book.render(title + "::: erratum\nThe source is wrong here.\n:::\n\n"
+                            "The parabola $u$ through\nthree points.\n");
+    REQUIRE(fixed.exit_code == 0);
+    CHECK(has(fixed.out, "class=\"erratum\""));
+    CHECK_FALSE(has(fixed.out, ":::"));
+    // A code fence left in a line of text, and a broken fence inside a solution (which
+    // the student book drops, the teacher's edition shows): both fail.
+    const auto stray = book.render(title + "A stray ```{.text} fence.\n");
+    CHECK(stray.exit_code != 0);
+    CHECK(
+        has(stray.err, "chapter.md:9: error: fence text reaches the page: '```{.text}"));
+    const auto in_solution =
+        book.render(title + "## Exercises\n\n"
+                            "1. []{.exercise kind=derive marks=1} Do.\n\n"
+                            "   ::: solution\n"
+                            "   Done.\n"
+                            "   ::: Then more.\n");
+    CHECK(in_solution.exit_code != 0);
+    CHECK(has(in_solution.err,
+              "chapter.md:15: error: fence text reaches the page: '::: Then"));
+    // Fences in code are code, not fence text.
+    const auto code = book.render(title + "Open one with `::: solution`.\n\n"
+                                          "```{.text}\n::: shown as typed\n```\n");
+    CHECK(code.exit_code == 0);
+}
+
 TEST_CASE("a page that is not a chapter reports errors with its own file name") {
     FixtureBook book;
     book.write("page.md", "# A page\n\nSee @sec:nowhere.\n");
@@ -325,6 +370,12 @@ TEST_CASE("a page that is not a chapter reports errors with its own file name") 
     CHECK(result.exit_code != 0);
     CHECK(result.err.find("page.md:3: error:") != std::string::npos);
     CHECK(result.err.find("sec:nowhere") != std::string::npos);
+    book.write("page.md", "# A page\n\n::: note\nText.\n::: More text.\n");
+    const auto fence = book.run_filter(
+        "page.md", "html", "EP_PAGE='" + (book.root / "page.md").string() + "'");
+    CHECK(fence.exit_code != 0);
+    CHECK(fence.err.find("page.md:5: error: fence text reaches the page: '::: More "
+                         "text.'") != std::string::npos);
 }
 
 TEST_CASE("headings without an explicit label may repeat from chapter to chapter") {

@@ -56,9 +56,9 @@ TEST_CASE("near-zero y-deltas: both gradient setups stay finite and close to exa
 }
 
 TEST_CASE("near-zero y-delta triangles keep twice their area far from zero") {
-    // The closed form divides by twice the area D, which depends on all three vertices:
-    // two of them on almost one row leave D about (their x distance) x (the third's
-    // height). For the study's triangles, in float and double grids, |D| stays at least
+    // The closed form divides by twice the area 2A, which depends on all three vertices:
+    // two of them on almost one row leave 2A about (their x distance) x (the third's
+    // height). For the study's triangles, in float and double grids, |2A| stays at least
     // 1 px^2 whatever the y-delta, and its smallest value does not fall as the delta
     // does.
     double smallest_at_largest_delta = 0.0;
@@ -67,8 +67,8 @@ TEST_CASE("near-zero y-delta triangles keep twice their area far from zero") {
         for (const bool as_float : {false, true}) {
             for (const PlaneSamples<double>& s :
                  stability_triangles(delta, trials, 5, as_float)) {
-                const double area2 = (s.x[2] - s.x[0]) * (s.y[1] - s.y[0]) -
-                                     (s.x[1] - s.x[0]) * (s.y[2] - s.y[0]);
+                const double area2 = (s.x[1] - s.x[0]) * (s.y[2] - s.y[0]) -
+                                     (s.x[2] - s.x[0]) * (s.y[1] - s.y[0]);
                 smallest = std::min(smallest, std::abs(area2));
             }
         }

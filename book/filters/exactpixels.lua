@@ -102,6 +102,79 @@ local function plain(text)
 end
 
 ---------------------------------------------------------------------------------------
+-- Fence text. A `:::` or ``` line that Pandoc did not read as a fence (a closing `:::`
+-- sharing its line with text, a fence never closed) reaches the reader as text, as
+-- chapter 3's "::: erratum ... ::: The parabola" once did. Every such word fails the
+-- build, each reported with the line of the source it came from.
+
+local function is_fence_word(text)
+  return text:sub(1, 3) == ":::" or text:sub(1, 3) == "```"
+end
+
+-- Up to `count` words of `inlines` from position k on (Str only, smart quotes undone),
+-- stopping at the first inline that is not a word or a space.
+local function words_from(inlines, k, count)
+  local words = {}
+  for i = k, #inlines do
+    local inline = inlines[i]
+    if inline.t == "Str" then
+      words[#words + 1] = plain(inline.text)
+      if #words == count then break end
+    elseif inline.t ~= "Space" and inline.t ~= "SoftBreak" then
+      break
+    end
+  end
+  return words
+end
+
+-- The first line of `lines` whose words, read on over the next lines, begin with `words`;
+-- failing that, the first line holding the first two of them; failing that, 0.
+local function line_of_words(lines, words)
+  for n = 1, #lines do
+    local tokens = {}
+    for m = n, math.min(n + 4, #lines) do
+      for token in lines[m]:gmatch("%S+") do tokens[#tokens + 1] = token end
+    end
+    local match = #tokens >= #words and lines[n]:find("%S") ~= nil -- it starts on line n
+    for i = 1, #words do
+      if tokens[i] ~= words[i] then match = false break end
+    end
+    if match then return n end
+  end
+  local needle = table.concat(words, " ", 1, math.min(2, #words))
+  for n, line in ipairs(lines) do
+    if line:find(needle, 1, true) then return n end
+  end
+  return 0
+end
+
+-- Fails the build if any block of `blocks` shows fence text. `source_of(block)` gives the
+-- file the block came from (for the message) and the text of that file.
+local function refuse_fence_text(blocks, source_of)
+  local problems = {}
+  for _, block in ipairs(blocks) do
+    local file, text = source_of(block)
+    pandoc.Pandoc({ block }):walk({
+      Inlines = function(inlines)
+        for k, inline in ipairs(inlines) do
+          if inline.t == "Str" and is_fence_word(inline.text) then
+            local words = words_from(inlines, k, 6)
+            local line = line_of_words(lines_of(text or ""), words)
+            problems[#problems + 1] = string.format("%s:%d: error: fence text reaches the "
+              .. "page: '%s' (a ::: or ``` line Pandoc did not read as a fence; a closing "
+              .. "fence stands on a line of its own)", file, line, table.concat(words, " "))
+          end
+        end
+      end,
+    })
+  end
+  if #problems > 0 then
+    io.stderr:write(table.concat(problems, "\n") .. "\n")
+    os.exit(1)
+  end
+end
+
+---------------------------------------------------------------------------------------
 -- Recognising numbered things
 
 local function equation_label(block)
@@ -843,6 +916,8 @@ end
 -- A page that is not a chapter: references and named tests resolve, headings are not
 -- numbered, and `::: contents` is filled with the table of contents.
 local function render_page(doc)
+  local page_text = read_file(page_file) or ""
+  refuse_fence_text(doc.blocks, function() return page_file, page_text end)
   doc = render_inlines(doc, function() return nil end)
   doc = doc:walk({
     Div = function(div)
@@ -976,6 +1051,14 @@ end
 function Pandoc(doc)
   collect_labels()
   if page_file then return render_page(doc) end
+  -- Before the student book drops the solutions, so that both editions are checked.
+  local h1_seen, texts = 0, {}
+  refuse_fence_text(doc.blocks, function(block)
+    if block.t == "Header" and block.level == 1 then h1_seen = h1_seen + 1 end
+    local dir = chapters_here[math.max(h1_seen, 1)] or "??"
+    texts[dir] = texts[dir] or read_file(root .. "/" .. chapter_file(dir)) or ""
+    return chapter_file(dir), texts[dir]
+  end)
   doc.blocks = teaching(doc.blocks, chapters_here)
   -- Inline references need the chapter each block belongs to: resolve them block by
   -- block, top level, tracking level-1 headings.

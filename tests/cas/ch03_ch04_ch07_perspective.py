@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Chapters 3, 4 and 7, re-derived with SymPy (run by CTest, label book): the exact
 fraction and the affine error along a span (eq:exact-fraction, eq:affine-error), where
-it peaks and how large it is (eq:affine-worst-t, eq:affine-bound), the exact midpoint
+it peaks and how large it is (eq:affine-worst-t, eq:affine-bound), the error when the
+span's ends are off (eq:affine-plane-error), the exact midpoint
 (eq:midpoint), Pursey's and Thellier's coefficients (eq:pursey, eq:thellier), forward
 differences (eq:forward-differences), chapter 4's numerator (eq:numerator,
 eq:numerator-constant, eq:step-difference) and chapter 7's two bounds behind
@@ -18,6 +19,16 @@ t, r, n, k = sp.symbols("t r n k", positive=True)
 u0, u2, w0, w2, T = sp.symbols("u0 u2 w0 w2 T")
 
 
+# eq:linear-in-screen: a point (x, y, z) of the plane n . (x, y, z) = d seen at
+# X = ox + f x / z, Y = oy - f y / z; u = ax x + ay y + az z on the plane.
+xv, yv, zv, f_, ox, oy, ax, ay, az, nx, ny, nz, dd = sp.symbols(
+    "x y z f o_x o_y a_x a_y a_z n_x n_y n_z d", nonzero=True)
+Xs, Ys = ox + f_ * xv / zv, oy - f_ * yv / zv
+same("u/w is affine in X, Y", (ax * xv + ay * yv + az * zv) / zv,
+     ax * (Xs - ox) / f_ + ay * (oy - Ys) / f_ + az)
+on_plane = {zv: (dd - nx * xv - ny * yv) / nz}
+same("1/w is affine in X, Y", (1 / zv).subs(on_plane),
+     ((nx * (Xs - ox) / f_ + ny * (oy - Ys) / f_ + nz) / dd).subs(on_plane))
 # A span with u0 at depth w0 and u2 at w2 = r w0: u/w and 1/w linear in t.
 u_exact = ((1 - t) * u0 / w0 + t * u2 / w2) / ((1 - t) / w0 + t / w2)
 s = sp.simplify(((u_exact - u0) / (u2 - u0)).subs(w2, r * w0))
@@ -28,6 +39,12 @@ t_star = (r - sp.sqrt(r)) / (r - 1)
 same("affine error peaks at t*", sp.diff(e, t).subs(t, t_star), 0)
 same("t* second form", t_star, sp.sqrt(r) / (sp.sqrt(r) + 1))
 same("affine bound", e.subs(t, t_star), (sp.sqrt(r) - 1) / (sp.sqrt(r) + 1))
+# The affine mapper with its ends off by d0 and d1 (taken from the triangle's plane):
+# a straight line from u0 + d0 to u2 + d1 against the exact u (eq:affine-plane-error).
+d0, d1 = sp.symbols("d0 d1")
+line = (u0 + d0) + t * ((u2 + d1) - (u0 + d0))
+same("affine error with plane ends",
+     (line - u_exact).subs(w2, r * w0), (1 - t) * d0 + t * d1 + (u2 - u0) * e)
 same("midpoint", u_exact.subs(t, sp.Rational(1, 2)), u0 + w0 * (u2 - u0) / (w0 + w2))
 # Pursey's parabola over n pixel steps, and Thellier's form of its coefficients.
 u1 = u0 + w0 * (u2 - u0) / (w0 + w2)
@@ -42,16 +59,48 @@ same("Thellier b", b, (kk - delta) / n)
 same("first difference", parabola.subs(T, T + 1) - parabola, 2 * a * T + a + b)
 same("second difference",
      parabola.subs(T, T + 2) - 2 * parabola.subs(T, T + 1) + parabola, 2 * a)
-# Chapter 4: c = (p + t px) / (q + t qx) along a row.
+# Chapter 4: u = (p + t px) / (q + t qx) along a row (p = u/w, q = 1/w).
 p, px, q, qx = sp.symbols("p p_x q q_x")
 cc = (p + t * px) / (q + t * qx)
 numerator = px * q - p * qx
 same("numerator", sp.diff(cc, t), numerator / (q + t * qx)**2)
+# c = u - 1/2 changes as u does, and interpolating c/w = p - q/2 gives the same numerator.
+same("c steps as u", sp.diff(cc - sp.Rational(1, 2), t), sp.diff(cc, t))
+same("numerator of c/w", (px - qx / 2) * q - (p - q / 2) * qx, numerator)
+# From row to row (s pixels down) the numerator is n + s (px qy - py qx), not constant.
+py_, qy, s_ = sp.symbols("p_y q_y s")
+same("numerator down the rows", px * (q + s_ * qy) - (p + s_ * py_) * qx,
+     numerator + s_ * (px * qy - py_ * qx))
 same("numerator constant",
      sp.Matrix([[px, p + t * px], [qx, q + t * qx]]).det(), numerator)
 same("step difference", cc.subs(t, t + 1) - cc,
      numerator / ((q + t * qx) * (q + (t + 1) * qx)))
-# Seed 004's equation 14 (erratum): with A = p, B = px, C = q, D = qx, the step is
+# Exercise 4.4: the wall of the test, corners (10, 10.5), (74, 34.5), (10, 74.5) with
+# w = 1, 4, 1 and v = 0, 0, 64: the planes of q = 1/w and p = v/w, the point P where both
+# vanish, and the change of the x numerator per row.
+X, Y = sp.symbols("X Y")
+corners = [(10, sp.Rational(21, 2)), (74, sp.Rational(69, 2)), (10, sp.Rational(149, 2))]
+w_wall, v_wall = [1, 4, 1], [0, 0, 64]
+
+
+def plane_through(values):
+    a0, a1, a2 = sp.symbols("a0 a1 a2")
+    solution = sp.solve([a0 + a1 * cx_ + a2 * cy_ - value
+                         for (cx_, cy_), value in zip(corners, values)], [a0, a1, a2])
+    return solution[a0] + solution[a1] * X + solution[a2] * Y
+
+
+q_wall = plane_through([sp.Integer(1) / w for w in w_wall])
+p_wall = plane_through([sp.Integer(v) / w for v, w in zip(v_wall, w_wall)])
+same("exercise 4.4: q", q_wall, sp.Rational(143, 128) - sp.Rational(3, 256) * X)
+same("exercise 4.4: p", p_wall, Y - sp.Rational(27, 4) - sp.Rational(3, 8) * X)
+P = sp.solve([q_wall, p_wall], [X, Y])
+same("exercise 4.4: P x", P[X], sp.Rational(286, 3))
+same("exercise 4.4: P y", P[Y], sp.Rational(85, 2))
+same("exercise 4.4: numerator change per row",
+     sp.diff(p_wall, X) * sp.diff(q_wall, Y) - sp.diff(p_wall, Y) * sp.diff(q_wall, X),
+     sp.Rational(3, 256))
+# Seed 004's equation 14 (erratum): in its letters A = p, B = px, C = q, D = qx, the step is
 # (A + B)/(C + D) - A/C = (BC - AD)/(C (C + D)); subtracting A/B is not.
 A, B, C, Dd = p, px, q, qx
 same("seed 004 eq. 14, corrected", (A + B) / (C + Dd) - A / C,
