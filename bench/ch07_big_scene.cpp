@@ -96,6 +96,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <unistd.h>
 #include <vector>
@@ -198,13 +199,45 @@ void report(benchmark::State& state, std::size_t triangles) {
         Counter(frames * static_cast<double>(triangles), Counter::kIsRate);
 }
 
+/// What the frame check finds (counts of pixels).
+struct FrameCheck {
+    long long covered = 0;  ///< covered in our frame
+    long long coverage = 0; ///< covered in one frame and not in the other
+    long long colour = 0;   ///< covered in both, with different colours
+};
+
+/// Puts a frame check into the run's counters: every run of this program reports the
+/// same three (Google Benchmark's CSV needs the same counters in every run).
+void report_check(benchmark::State& state, const FrameCheck& check) {
+    state.counters["covered"] = static_cast<double>(check.covered);
+    state.counters["coverage_diff"] = static_cast<double>(check.coverage);
+    state.counters["colour_diff"] = static_cast<double>(check.colour);
+}
+
+/// Our frame of `effects` over the scene's background and over another, made once.
+const std::array<std::vector<Rgba8>, 2>& our_frames(const std::string& effects);
+
+/// Which pixels a frame covers, from the same frame over two backgrounds.
+std::vector<bool> covered_pixels(const std::vector<Rgba8>& a,
+                                 const std::vector<Rgba8>& b);
+
 void ours(benchmark::State& state, const std::string& effects) {
     const Scene scene = big_scene(effects);
+    std::optional<RenderResult> last; // each frame replaces (and frees) the one before
     for (auto _ : state) {
-        const RenderResult result = render_scene(scene, nullptr, fast_paths);
-        benchmark::DoNotOptimize(result.image.pixels().data());
+        last = render_scene(scene, nullptr, fast_paths);
+        benchmark::DoNotOptimize(last->image.pixels().data());
     }
     report(state, model_triangles(scene));
+    // Checked after timing: the timed frames are the picture of an untimed render.
+    const auto& reference = our_frames(effects);
+    const std::vector<bool> covers = covered_pixels(reference[0], reference[1]);
+    FrameCheck check;
+    check.covered = std::count(covers.begin(), covers.end(), true);
+    report_check(state, check);
+    if (!last || last->image.pixels() != reference[0]) {
+        state.SkipWithError("a timed frame differs from the untimed render");
+    }
 }
 
 /// A scene's camera as OpenGL matrices, column-major for glLoadMatrixd: the modelview
@@ -437,13 +470,6 @@ void peer_frame(const PeerScene& ps) {
     glFinish();
 }
 
-/// What the frame check finds (counts of pixels).
-struct FrameCheck {
-    long long covered = 0;  ///< covered in our frame
-    long long coverage = 0; ///< covered in one frame and not in the other
-    long long colour = 0;   ///< covered in both, with different colours
-};
-
 /// A second background: each code of `c` turned into 255 - code, which differs from it
 /// in every channel (255 is odd).
 Colour other_background(const Colour& c) {
@@ -531,9 +557,7 @@ void llvmpipe(benchmark::State& state, const std::string& effects) {
     }
     const FrameCheck check = check_frames(p, ps, effects);
     report(state, model_triangles(big_scene(effects)));
-    state.counters["covered"] = static_cast<double>(check.covered);
-    state.counters["coverage_diff"] = static_cast<double>(check.coverage);
-    state.counters["colour_diff"] = static_cast<double>(check.colour);
+    report_check(state, check);
     if (static_cast<double>(check.coverage) >
         max_coverage_differences * static_cast<double>(check.covered)) {
         static std::string message; // SkipWithError keeps the pointer
@@ -594,6 +618,7 @@ void llvmpipe_frame_copy(benchmark::State& state) {
         state.SkipWithError("glFinish did not copy the whole frame");
     }
     report(state, 0);
+    report_check(state, FrameCheck{}); // nothing drawn: nothing covered
 }
 
 /// The one frame callgrind counts (see the top of the file).
