@@ -40,10 +40,11 @@ struct FixtureBook {
                               "    }\n"
                               "//< answer\n"
                               "int after;\n");
-        write("tests/ch07_demo.cpp",
-              "TEST_CASE(\"the answer is 42\") {}\n"
-              "TEST_CASE(\n"
-              "    \"a name too long for one line\" * points) {}\n");
+        write("tests/ch07_demo.cpp", "TEST_CASE(\"the answer is 42\") {}\n"
+                                     "TEST_CASE(\n"
+                                     "    \"a name too long for one line\" * points) {}\n"
+                                     "TEST_CASE(\"a name split by clang-format into \"\n"
+                                     "          \"two string literals\") {}\n");
     }
     ~FixtureBook() { fs::remove_all(root); }
 
@@ -174,6 +175,12 @@ TEST_CASE("a named test must exist in the named file") {
         title + "[a name too long for one line]{.test file=\"tests/ch07_demo.cpp\"}\n");
     CHECK(wrapped.exit_code == 0);
     CHECK(wrapped.out.find("ch07_demo.cpp.html#src-2") != std::string::npos);
+    // or split it into adjacent string literals, which C++ joins.
+    const auto split =
+        book.render(title + "[a name split by clang-format into two string "
+                            "literals]{.test file=\"tests/ch07_demo.cpp\"}\n");
+    CHECK(split.exit_code == 0);
+    CHECK(split.out.find("ch07_demo.cpp.html#src-4") != std::string::npos);
 }
 
 TEST_CASE("in LaTeX a named test is set in the lighter \\eptest face, in HTML a link") {

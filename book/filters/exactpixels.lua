@@ -630,8 +630,17 @@ local function test_reference(span, dir)
   local lines = lines_of(text)
   for n, line in ipairs(lines) do
     -- clang-format may put the name on the line after "TEST_CASE(": join them.
+    local next = n + 1
     if line:match("TEST_CASE%($") or line:match("TEST_CASE_TEMPLATE%($") then
-      line = line .. (lines[n + 1] or ""):gsub("^%s+", "")
+      line = line .. (lines[next] or ""):gsub("^%s+", "")
+      next = next + 1
+    end
+    -- and may split a long name into adjacent string literals: "abc "\n "def".
+    if line:match("TEST_CASE") then
+      while line:match('"%s*$') and (lines[next] or ""):match('^%s*"') do
+        line = line:gsub('"%s*$', "") .. lines[next]:gsub('^%s*"', "")
+        next = next + 1
+      end
     end
     if line:find('TEST_CASE("' .. name .. '"', 1, true)
         or line:find('TEST_CASE_TEMPLATE("' .. name .. '"', 1, true) then
