@@ -294,6 +294,11 @@ std::string thread_facts(const BenchmarkRuns& r, const BenchmarkRuns& instructio
                                  instructions.value(fmt::format("{}/{}/1000", mode, v),
                                                     "instructions_per_triangle"));
         }
+        for (const char* v : {"walk", "llvmpipe"}) {
+            facts += fmt::format("{}_{}_instructions_3 {:.1f}\n", mode, v,
+                                 instructions.value(fmt::format("{}/{}/3", mode, v),
+                                                    "instructions_per_triangle"));
+        }
     }
     for (const int area : {80, 1000, 65536}) {
         facts +=

@@ -68,22 +68,30 @@ double textured(const std::string& variant, int area) {
 
 } // namespace
 
-TEST_CASE("claim: on 3 and 15 px the pixel walk and 8x8 blocks beat llvmpipe 5x") {
+TEST_CASE("claim: on 3 and 15 px the best variant draws over twice llvmpipe's rate") {
     for (const std::string mode : {"flat", "depth"}) {
-        for (const char* v : {"walk", "blocks"}) {
-            for (const int area : {3, 15}) {
-                INFO(mode << " " << v << " " << area << " px");
-                CHECK(rate(mode, v, area) >= 5.0 * rate(mode, "llvmpipe", area));
-            }
+        for (const int area : {3, 15}) {
+            INFO(mode << " " << area << " px");
+            CHECK(best(mode, area) > 2.0 * rate(mode, "llvmpipe", area));
         }
     }
 }
 
-TEST_CASE("claim: flat, the best variant leads llvmpipe 2x to 3.5x at 80 and 1000 px") {
-    for (const int area : {80, 1000}) {
+TEST_CASE("claim: the lead over llvmpipe is least at 80 px, flat and depth-tested") {
+    for (const std::string mode : {"flat", "depth"}) {
+        const double at_80 = best(mode, 80) / rate(mode, "llvmpipe", 80);
+        CHECK(at_80 > 1.0); // a lead all the same
+        for (const int area : {3, 15, 1000, 65536}) {
+            INFO(mode << " " << area << " px");
+            CHECK(best(mode, area) / rate(mode, "llvmpipe", area) > at_80);
+        }
+    }
+}
+
+TEST_CASE("claim: flat from 80 px up the covered runs are the fastest variant") {
+    for (const int area : {80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(best("flat", area) > 2.0 * rate("flat", "llvmpipe", area));
-        CHECK(best("flat", area) < 3.5 * rate("flat", "llvmpipe", area));
+        CHECK(rate("flat", "runs", area) == best("flat", area));
     }
 }
 
@@ -96,17 +104,9 @@ TEST_CASE(
     }
 }
 
-TEST_CASE(
-    "claim: flat at 65536 px runs are fastest, 5x to 7x llvmpipe, over 6x the walk") {
-    CHECK(rate("flat", "runs", 65536) == best("flat", 65536));
-    CHECK(rate("flat", "runs", 65536) > 5.0 * rate("flat", "llvmpipe", 65536));
-    CHECK(rate("flat", "runs", 65536) < 7.0 * rate("flat", "llvmpipe", 65536));
-    CHECK(rate("flat", "runs", 65536) > 6.0 * rate("flat", "walk", 65536));
-}
-
-TEST_CASE("claim: runs reach between 40 and 50 % of a plain fill at 65536 px") {
+TEST_CASE("claim: runs reach between a third and a half of a plain fill at 65536 px") {
     const double share = rate("flat", "runs", 65536) / rate("flat", "plain", 65536);
-    CHECK(share > 0.40);
+    CHECK(share > 1.0 / 3.0);
     CHECK(share < 0.50);
 }
 
@@ -124,22 +124,14 @@ TEST_CASE("claim: flat 8x8 blocks reach under a fifth of a plain fill at 65536 p
     CHECK(share < 0.20);
 }
 
-TEST_CASE(
-    "claim: depth-tested, the best variant leads llvmpipe 2x to 3.5x from 80 px up") {
-    for (const int area : {80, 1000, 65536}) {
+TEST_CASE("claim: depth-tested, the best variant leads llvmpipe at every size") {
+    for (const int area : {3, 15, 80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(best("depth", area) > 2.0 * rate("depth", "llvmpipe", area));
-        CHECK(best("depth", area) < 3.5 * rate("depth", "llvmpipe", area));
+        CHECK(best("depth", area) > rate("depth", "llvmpipe", area));
     }
 }
 
-TEST_CASE("claim: flat 8x8 masks beat the walk from 15 px up, by under 1 % at 15 px") {
-    CHECK(rate("flat", "masks", 15) < 1.01 * rate("flat", "walk", 15));
-    for (const int area : {15, 80, 1000, 65536}) {
-        INFO(area << " px");
-        CHECK(rate("flat", "masks", area) > rate("flat", "walk", area));
-    }
-}
+MASKS_TEST
 
 namespace {
 
@@ -197,20 +189,15 @@ TEST_CASE(
     CHECK(rate("flat", "tiled", 1000) < rate("flat", "runs", 1000));
 }
 
-TEST_CASE("claim: the fastest 3 px rate is between 40 and 50 Mtri/s") {
-    CHECK(best("flat", 3) > 40e6);
-    CHECK(best("flat", 3) < 50e6);
+TEST_CASE("claim: a 3 px triangle costs the pixel walk 600 to 800 instructions") {
+    CHECK(instructions("flat/walk/3") > 600);
+    CHECK(instructions("flat/walk/3") < 800);
 }
 
-TEST_CASE("claim: a 3 px triangle costs the pixel walk 400 to 500 instructions") {
-    CHECK(instructions("flat/walk/3") > 400);
-    CHECK(instructions("flat/walk/3") < 500);
-}
-
-TEST_CASE("claim: on a 3 px triangle llvmpipe executes over 5x the walk's instructions") {
+TEST_CASE("claim: on a 3 px triangle llvmpipe executes over twice the walk's instructions") {
     for (const std::string mode : {"flat", "depth"}) {
         INFO(mode);
-        CHECK(instructions(mode + "/llvmpipe/3") > 5.0 * instructions(mode + "/walk/3"));
+        CHECK(instructions(mode + "/llvmpipe/3") > 2.0 * instructions(mode + "/walk/3"));
     }
 }
 
