@@ -106,9 +106,7 @@ TEST_CASE("a wrong texel at a tie is a differing texel where the exact u or v is
     CHECK(e.differing_share == 0.75);
 }
 
-TEST_CASE(
-    "the exact mapper with the rule picks no wrong texel at a tie; without it, half "
-    "the wall") {
+TEST_CASE("the exact mapper errs at no tie with the rule and at half the wall without") {
     // With chapter 4's rule the exact mappers agree with the reference at every tie of
     // every scene (exact fixed rounds its quotient to 16.16 first, and a whole u stays
     // whole). Without it, rule 1 sends the wall's ties in u, which falls to the right,
