@@ -84,6 +84,63 @@ TEST_CASE("on the facing wall only the rounding rule decides, at exactly the tie
     }
 }
 
+TEST_CASE("a wrong texel at a tie is a differing texel where the exact u or v is whole") {
+    // Four pixels, the reference's (u, v) and the candidate's texel at each:
+    //   0: u whole (a tie), the candidate's i differs        -> wrong at a tie
+    //   1: v whole (a tie), the candidate agrees              -> a tie, not wrong
+    //   2: no tie, the candidate's i differs                  -> differs, not at a tie
+    //   3: u and v whole, the candidate's j only differs      -> wrong at a tie
+    TexelMap reference(4, 1), candidate(4, 1);
+    reference.covered = {true, true, true, true};
+    reference.u = {3.0, 0.25, 5.5, -2.0};
+    reference.v = {0.5, 7.0, 1.75, 4.0};
+    reference.i = {2, 0, 5, -3};
+    reference.j = {0, 7, 1, 4};
+    candidate = reference;
+    candidate.i[0] = 3;
+    candidate.u[2] = 6.0;
+    candidate.i[2] = 6;
+    candidate.j[3] = 3;
+    const TexelError e = compare_texel_maps(reference, candidate);
+    CHECK(e.pixels == 4);
+    CHECK(e.ties == 3);
+    CHECK(e.wrong_at_ties == 2);
+    CHECK(e.differing_share == 0.75);
+}
+
+TEST_CASE("the exact mapper errs at no tie with the rule and at half the wall without") {
+    // With chapter 4's rule the exact mappers agree with the reference at every tie of
+    // every scene (exact fixed rounds its quotient to 16.16 first, and a whole u stays
+    // whole). Without it, rule 1 sends the wall's ties in u, which falls to the right,
+    // to the other texel: every pixel of every second column. The floor and the field
+    // have no ties at all: there the rule can change no texel the reference picks.
+    const std::vector<AccuracyScene> scenes = accuracy_scenes();
+    for (const AccuracyScene& scene : scenes) {
+        for (const char* name : {"exact double +rule", "exact fixed +rule"}) {
+            INFO(scene.name << " " << name);
+            CHECK(measure_mapper_error(scene, find(name)).wrong_at_ties == 0);
+        }
+    }
+    const AccuracyScene& wall = scenes[0];
+    const TexelError with = measure_mapper_error(wall, find("exact double +rule"));
+    const TexelError without = measure_mapper_error(wall, find("exact double"));
+    const TexelError affine = measure_mapper_error(wall, find("affine fixed"));
+    CHECK(with.ties == without.ties);
+    CHECK(4 * with.ties == 3 * with.pixels); // every second column or row
+    CHECK(without.wrong_at_ties > 0);
+    CHECK(2 * without.wrong_at_ties == without.pixels); // every second column
+    CHECK(affine.wrong_at_ties == without.wrong_at_ties);
+    record_fact("ch05_wall_pixels", double(without.pixels));
+    record_fact("ch05_wall_ties", double(without.ties));
+    record_fact("ch05_wall_wrong_at_ties_rule_1", double(without.wrong_at_ties));
+    for (const AccuracyScene* scene : {&scenes[1], &scenes[2]}) {
+        INFO(scene->name);
+        const TexelError e = measure_mapper_error(*scene, find("exact double"));
+        CHECK(e.ties == 0);
+        record_fact("ch05_" + scene->name + "_ties", double(e.ties));
+    }
+}
+
 TEST_CASE("the grazing floor spans depth ratios from 1.1 to 20") {
     const auto r = span_depth_ratios(grazing_floor_scene());
     record_fact("ch05_floor_ratio_low", r[0]);

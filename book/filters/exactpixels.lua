@@ -760,8 +760,10 @@ local function claim(span, dir)
     local number = tonumber(token)
     if number then return number end
     if facts[token] ~= nil then return facts[token] end
-    local factor, rest = token:match("^([%d%.]+)%*(.+)$") -- e.g. 1.5*floor/affine_fixed#2
-    if factor then return tonumber(factor) * value_of(rest) end
+    -- A product, e.g. 1.5*floor/affine_fixed#2, or tie_factor*floor/exact_double#2 (a
+    -- factor that is itself a fact); what follows the * may be a sum.
+    local factor, rest = token:match("^([^*+]+)%*(.+)$")
+    if factor then return value_of(factor) * value_of(rest) end
     for at in token:gmatch("()%+") do -- a sum of facts, e.g. a#2+b#2
       local left, right = token:sub(1, at - 1), token:sub(at + 1)
       if (tonumber(left) or facts[left] ~= nil or left:find("[*+]"))
