@@ -131,7 +131,12 @@ TEST_CASE("claim: depth-tested, the best variant leads llvmpipe at every size") 
     }
 }
 
-MASKS_TEST
+TEST_CASE("claim: flat 8x8 masks beat the walk from 1000 px up") {
+    for (const int area : {1000, 65536}) {
+        INFO(area << " px");
+        CHECK(rate("flat", "masks", area) > rate("flat", "walk", area));
+    }
+}
 
 namespace {
 
