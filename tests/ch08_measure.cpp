@@ -29,7 +29,52 @@ std::map<std::string, double> errors_on(const AccuracyScene& scene, bool all = f
     return e;
 }
 
+/// The configuration of filter_configs() named `name`.
+FilterConfig config_named(const std::string& name) {
+    for (const FilterConfig& c : filter_configs()) {
+        if (c.name == name) {
+            return c;
+        }
+    }
+    FAIL("no configuration named " << name);
+    return {};
+}
+
 } // namespace
+
+TEST_CASE("nearest from the 8-bit texels draws the same pixels as nearest through linear "
+          "light") {
+    // The baseline copies the texel floor(u), floor(v) as stored; the linear-light chain
+    // picks the same texel, decodes it and encodes it again, which gives back every code
+    // (the round-trip test of ch08_bilinear.cpp). So the two frames agree at every pixel
+    // of every scene, not just on average.
+    const FilterConfig stored = config_named("nearest");
+    const FilterConfig light = config_named("nearest linear-light");
+    CHECK(stored.path == TexelPath::as_stored);
+    CHECK(light.path == TexelPath::linear_light);
+    std::vector<AccuracyScene> scenes = filter_scenes();
+    scenes.push_back(oblique_wall_scene());
+    for (const AccuracyScene& scene : scenes) {
+        const FilterScene fs = prepare_filter_scene(scene);
+        Framebuffer a(scene.width, scene.height, rgba(1, 2, 3));
+        Framebuffer b(scene.width, scene.height, rgba(1, 2, 3));
+        filter_frame(a, fs, stored);
+        filter_frame(b, fs, light);
+        long differ = 0, dark = 0;
+        for (const FilterPixel& p : fs.pixels) {
+            differ += a.at(p.x, p.y) == b.at(p.x, p.y) ? 0 : 1;
+            dark += a.at(p.x, p.y).r < 128 ? 1 : 0;
+        }
+        MESSAGE(scene.name << ": " << fs.pixels.size() << " pixels, " << dark
+                           << " on dark texels, " << differ << " differ");
+        CHECK(differ == 0);
+        // Not a blank frame: both colours of the pattern appear.
+        CHECK(dark > 0);
+        CHECK(dark < static_cast<long>(fs.pixels.size()));
+        // And the images the errors are computed from agree too.
+        CHECK(filter_image(fs, stored) == filter_image(fs, light));
+    }
+}
 
 TEST_CASE("the reference of a pixel inside one texel is that texel, exactly") {
     // On the facing wall a pixel covers half a texel each way; where its centre is a

@@ -125,7 +125,8 @@ std::vector<FilterConfig> filter_configs() {
         return FilterSettings{.filter = f, .wrap = Wrap::repeat, .max_probes = probes};
     };
     return {
-        {"nearest", with(Filter::nearest)},
+        {"nearest", with(Filter::nearest), Derivatives::per_pixel, TexelPath::as_stored},
+        {"nearest linear-light", with(Filter::nearest)},
         {"bilinear", with(Filter::bilinear)},
         {"mip-nearest", with(Filter::mip_nearest)},
         {"trilinear", with(Filter::trilinear)},
@@ -138,12 +139,34 @@ std::vector<FilterConfig> filter_configs() {
 }
 //< filter-configs
 
+//> bench-loop
+void filter_frame(Framebuffer& frame, const FilterScene& fs, const FilterConfig& config) {
+    if (config.path == TexelPath::as_stored) { // nearest as a renderer samples
+        assert(config.settings.filter == Filter::nearest);
+        for (const FilterPixel& p : fs.pixels) {
+            frame.at(p.x, p.y) =
+                sample_nearest(fs.scene->texture, p.uv, config.settings.wrap);
+        }
+        return;
+    }
+    for (const FilterPixel& p : fs.pixels) {
+        const TexelDerivatives& d = derivatives_of(p, config.derivatives);
+        frame.at(p.x, p.y) =
+            encode_linear_fast(sample_filtered(fs.chain, p.uv, d, config.settings));
+    }
+}
+//< bench-loop
+
 std::vector<LinearTexel> filter_image(const FilterScene& fs, const FilterConfig& config) {
     std::vector<LinearTexel> image;
     image.reserve(fs.pixels.size());
     for (const FilterPixel& p : fs.pixels) {
-        image.push_back(sample_filtered(
-            fs.chain, p.uv, derivatives_of(p, config.derivatives), config.settings));
+        image.push_back(config.path == TexelPath::as_stored
+                            ? decode_texel(sample_nearest(fs.scene->texture, p.uv,
+                                                          config.settings.wrap))
+                            : sample_filtered(fs.chain, p.uv,
+                                              derivatives_of(p, config.derivatives),
+                                              config.settings));
     }
     return image;
 }

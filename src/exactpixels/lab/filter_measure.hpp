@@ -79,17 +79,33 @@ enum class Derivatives {
 /// The derivatives of pixel p under the choice `which`.
 const TexelDerivatives& derivatives_of(const FilterPixel& p, Derivatives which);
 
+/// How a configuration's texels reach the frame.
+enum class TexelPath {
+    linear_light, ///< decoded to linear light, filtered there, encoded once (srgb.hpp)
+    as_stored     ///< nearest only: the 8-bit texel fetched and written as it is stored
+};
+
 /// One filter configuration the chapter measures.
 struct FilterConfig {
     std::string name;        ///< short, unique, no commas: "trilinear"
     FilterSettings settings; ///< the filter, wrap, probes
     Derivatives derivatives = Derivatives::per_pixel; ///< where the level comes from
+    TexelPath path = TexelPath::linear_light;         ///< as_stored: nearest only
 };
 
-/// The configurations of the chapter; the first, nearest, is the time baseline.
+/// The configurations of the chapter. The first, "nearest", samples as a renderer does
+/// (the 8-bit texel, no light involved) and is the time baseline; the second, "nearest
+/// linear-light", picks the same texel through the linear-light chain every filter
+/// uses (decode, encode), and gives the same pixels.
 std::vector<FilterConfig> filter_configs();
 
-/// Every pixel of the scene (same order as fs.pixels) through the configuration.
+/// Every pixel of the scene through the configuration, written into `frame`
+/// (scene-sized) as 8-bit codes: what the benchmark times. Linear-light paths encode
+/// with encode_linear_fast; the as-stored path copies the texel.
+void filter_frame(Framebuffer& frame, const FilterScene& fs, const FilterConfig& config);
+
+/// Every pixel of the scene (same order as fs.pixels) through the configuration, in
+/// linear light (the as-stored path's texel decoded, so that errors compare alike).
 std::vector<LinearTexel> filter_image(const FilterScene& fs, const FilterConfig& config);
 
 /// The reference of every pixel (same order as fs.pixels): the box over the pixel.
