@@ -8,8 +8,13 @@
 //   ch08_levels.md        per scene: minified pixels, the level errors of the per-span
 //                         and per-triangle derivatives (worst, mean, pixels whose
 //                         mip level changes) and the largest per-span bound
-//   ch08_facts.txt        the same as facts (SCENE_span_worst 0.01 ...) and every
-//                         filter's error (SCENE_error_FILTER, minified pixels) for claims
+//   ch08_facts.txt        the same as facts (SCENE_span_worst 0.01 ...), every
+//                         filter's error (SCENE_error_FILTER, minified pixels) for
+//                         claims, and, on scenes with minified pixels, how far the book's
+//                         first reference (a regular 32 x 32 grid of samples) is from the
+//                         exact one there: its worst pixel (SCENE_grid_worst_pixel,
+//                         codes) and the largest change of a filter's error
+//                         (SCENE_grid_shift)
 //   ch08_table_SCENE.dat  ratio, error, front flag, name (for gnuplot)
 // The reference images are computed here, once per build (filter_measure.hpp); every
 // error is deterministic, only the times move from run to run.
@@ -21,6 +26,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -123,6 +129,7 @@ int main(int argc, char** argv) try {
         const std::vector<bool> minified = minified_pixels(fs);
         const auto n_minified = std::count(minified.begin(), minified.end(), true);
         std::vector<Row> rows;
+        std::vector<std::vector<LinearTexel>> images;
         for (const FilterConfig& c : filter_configs()) {
             std::string name = scene.name + "/" + c.name;
             std::replace(name.begin(), name.end(), ' ', '_');
@@ -130,7 +137,8 @@ int main(int argc, char** argv) try {
             if (at == times.end()) {
                 throw Error(fmt::format("bench_ch08_filters.csv: no run named {}", name));
             }
-            const std::vector<LinearTexel> image = filter_image(fs, c);
+            const std::vector<LinearTexel>& image =
+                images.emplace_back(filter_image(fs, c));
             const double all = rms_code_error(image, reference);
             rows.push_back(
                 {c.name, at->second, 0,
@@ -139,6 +147,26 @@ int main(int argc, char** argv) try {
         }
         for (Row& r : rows) {
             r.ratio = r.ns_per_px / rows.front().ns_per_px; // nearest, same run
+        }
+        if (n_minified > 0) { // the first edition's reference against the exact one
+            const std::vector<LinearTexel> grid =
+                sampled_reference_image(fs, 32, SamplePattern::grid, minified);
+            int worst = 0;
+            for (std::size_t k = 0; k < grid.size(); ++k) {
+                const Rgba8 a = encode_linear(grid[k]), b = encode_linear(reference[k]);
+                if (minified[k]) {
+                    worst = std::max({worst, std::abs(a.r - b.r), std::abs(a.g - b.g),
+                                      std::abs(a.b - b.b)});
+                }
+            }
+            double shift = 0.0;
+            for (std::size_t c = 0; c < rows.size(); ++c) {
+                shift =
+                    std::max(shift, std::abs(rms_code_error(images[c], grid, minified) -
+                                             rows[c].error));
+            }
+            facts += fmt::format("{0}_grid_worst_pixel {1}\n{0}_grid_shift {2:.6g}\n",
+                                 scene.name, worst, shift);
         }
         mark_front(rows);
         table +=

@@ -4,18 +4,20 @@
 // Usage:
 //   const AccuracyScene scene = grazing_floor_scene();
 //   const FilterScene fs = prepare_filter_scene(scene);     // pixels, uv, derivatives
-//   const std::vector<LinearTexel> ref = reference_image(fs);  // slow, deterministic
+//   const std::vector<LinearTexel> ref = reference_image(fs);  // exact, deterministic
 //   const std::vector<LinearTexel> img = filter_image(fs, {.filter = Filter::trilinear});
 //   double e = rms_code_error(img, ref);                     // in 8-bit sRGB codes
 //
 // Every pixel a triangle covers (chapter 1's coverage, the last triangle wins) is
 // sampled at its centre: uv of the exact perspective mapping there and its exact
 // derivatives (level_of_detail.hpp). A span is a run of consecutive pixels of one row
-// that one triangle owns; its derivatives are taken at its middle. The reference
-// integrates the texture (level 0, nearest texel, linear light) over the pixel's square
-// [x, x+1) x [y, y+1) with reference_samples_per_side^2 stratified samples of the same
-// triangle's mapping (its plane extended where the square reaches past an edge). Scenes
-// wrap with repeat.
+// that one triangle owns; its derivatives are taken at its middle. The reference is the
+// mean of the texture (level 0, each texel a uniform square, linear light) over the
+// pixel's square [x, x+1) x [y, y+1) under the same triangle's mapping (its planes
+// extended where the square reaches past an edge), computed exactly: the texel edges
+// are straight lines on screen, and each texel is weighted by the area of the piece of
+// the square it covers. sampled_reference_image estimates the same mean from n x n
+// samples, to check the exact one against. Scenes wrap with repeat.
 #pragma once
 
 #include "exactpixels/lab/accuracy_scenes.hpp"
@@ -43,9 +45,6 @@ AccuracyScene oblique_wall_scene();
 
 /// The scenes chapter 8 measures: chapter 5's wall, floor and field, then the horizon.
 std::vector<AccuracyScene> filter_scenes();
-
-/// Samples per side of each pixel's reference grid (32 x 32 = 1024 per pixel).
-inline constexpr int reference_samples_per_side = 32;
 
 /// One covered pixel of a scene with what every filter needs there.
 struct FilterPixel {
@@ -108,8 +107,25 @@ void filter_frame(Framebuffer& frame, const FilterScene& fs, const FilterConfig&
 /// linear light (the as-stored path's texel decoded, so that errors compare alike).
 std::vector<LinearTexel> filter_image(const FilterScene& fs, const FilterConfig& config);
 
-/// The reference of every pixel (same order as fs.pixels): the box over the pixel.
+/// The reference of every pixel (same order as fs.pixels): the mean of the texture over
+/// the pixel's square, exact up to rounding. Each texel counts with the area of the
+/// piece of the square it covers (the pieces are convex polygons: the perspective
+/// mapping takes texel edges to straight lines). Throws Error when 1/w is not positive
+/// over a pixel's square.
 std::vector<LinearTexel> reference_image(const FilterScene& fs);
+
+/// Where a sampled reference puts its n x n samples in a pixel.
+enum class SamplePattern {
+    grid,    ///< at the centres of the n x n cells (the book's first edition's reference)
+    jittered ///< one uniformly random point in each cell, seeded per pixel: deterministic
+};
+
+/// An estimate of reference_image from per_side^2 samples of the nearest texel of level
+/// 0 per pixel, for the pixels k with selected[k] (all when `selected` is empty); the
+/// other pixels are 0.
+std::vector<LinearTexel> sampled_reference_image(const FilterScene& fs, int per_side,
+                                                 SamplePattern pattern,
+                                                 const std::vector<bool>& selected = {});
 
 /// Root mean square over pixels and the r, g, b channels of the difference between the
 /// 8-bit sRGB codes of two images (same size), over the pixels k with selected[k] (all
