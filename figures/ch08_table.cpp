@@ -16,6 +16,7 @@
 //                         codes) and the largest change of a filter's error
 //                         (SCENE_grid_shift)
 //   ch08_table_SCENE.dat  ratio, error, front flag, name (for gnuplot)
+//   ch08_table_SCENE_front.dat  ratio and error of the front's filters, by ratio
 // The reference images are computed here, once per build (filter_measure.hpp); every
 // error is deterministic, only the times move from run to run.
 #include "exactpixels/base/error.hpp"
@@ -29,6 +30,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -189,6 +191,16 @@ int main(int argc, char** argv) try {
                                int(r.front), r.filter);
         }
         write(folder / ("ch08_table_" + scene.name + ".dat"), dat);
+        std::vector<Row> front;
+        std::copy_if(rows.begin(), rows.end(), std::back_inserter(front),
+                     [](const Row& r) { return r.front; });
+        std::sort(front.begin(), front.end(),
+                  [](const Row& a, const Row& b) { return a.ratio < b.ratio; });
+        std::string front_dat = "# ratio error (the Pareto front, by time)\n";
+        for (const Row& r : front) {
+            front_dat += fmt::format("{:.4f} {:.4f}\n", r.ratio, r.error);
+        }
+        write(folder / ("ch08_table_" + scene.name + "_front.dat"), front_dat);
         const LevelErrors span = level_errors(fs, Derivatives::per_span);
         const LevelErrors tri = level_errors(fs, Derivatives::per_triangle);
         levels += fmt::format(
