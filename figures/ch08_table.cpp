@@ -162,13 +162,21 @@ int main(int argc, char** argv) try {
                 }
             }
             double shift = 0.0;
+            std::vector<double> on_grid;
             for (std::size_t c = 0; c < rows.size(); ++c) {
-                shift =
-                    std::max(shift, std::abs(rms_code_error(images[c], grid, minified) -
-                                             rows[c].error));
+                on_grid.push_back(rms_code_error(images[c], grid, minified));
+                shift = std::max(shift, std::abs(on_grid.back() - rows[c].error));
             }
-            facts += fmt::format("{0}_grid_worst_pixel {1}\n{0}_grid_shift {2:.6g}\n",
-                                 scene.name, worst, shift);
+            int reversed = 0; // pairs of filters in another order against the grid
+            for (std::size_t a = 0; a < rows.size(); ++a) {
+                for (std::size_t b = 0; b < rows.size(); ++b) {
+                    reversed +=
+                        rows[a].error < rows[b].error && !(on_grid[a] < on_grid[b]);
+                }
+            }
+            facts += fmt::format("{0}_grid_worst_pixel {1}\n{0}_grid_shift {2:.6g}\n"
+                                 "{0}_grid_reversed {3}\n",
+                                 scene.name, worst, shift, reversed);
         }
         mark_front(rows);
         table +=

@@ -64,8 +64,8 @@ FilterConfig config_named(const std::string& name) {
 
 } // namespace
 
-TEST_CASE("nearest from the 8-bit texels draws the same pixels as nearest through linear "
-          "light") {
+TEST_CASE(
+    "nearest from 8-bit texels draws the same pixels as nearest through linear light") {
     // The baseline copies the texel floor(u), floor(v) as stored; the linear-light chain
     // picks the same texel, decodes it and encodes it again, which gives back every code
     // (the round-trip test of ch08_bilinear.cpp). So the two frames agree at every pixel
@@ -147,8 +147,7 @@ TEST_CASE("the exact reference weights each texel by the area of the pixel it co
 }
 
 // The stub of ch08-error (every error 0) breaks it: no gap is left.
-TEST_CASE("jittered sampling converges on the exact reference, well within the gaps "
-          "between the filters" *
+TEST_CASE("jittered sampling converges on the exact reference within the filters' gaps" *
           doctest::description("points: 1; exercise: ch08-error")) {
     // The reference has no samples to add: it is exact up to rounding, and what could be
     // wrong is its bookkeeping of the pieces. So it is checked against an independent

@@ -5,8 +5,10 @@
 //   const AccuracyScene scene = grazing_floor_scene();
 //   const FilterScene fs = prepare_filter_scene(scene);     // pixels, uv, derivatives
 //   const std::vector<LinearTexel> ref = reference_image(fs);  // exact, deterministic
-//   const std::vector<LinearTexel> img = filter_image(fs, {.filter = Filter::trilinear});
+//   const FilterConfig trilinear{"trilinear", {.filter = Filter::trilinear}};
+//   const std::vector<LinearTexel> img = filter_image(fs, trilinear);
 //   double e = rms_code_error(img, ref);                     // in 8-bit sRGB codes
+//   filter_frame(frame, fs, trilinear);  // the same pixels as 8-bit codes (the bench)
 //
 // Every pixel a triangle covers (chapter 1's coverage, the last triangle wins) is
 // sampled at its centre: uv of the exact perspective mapping there and its exact
