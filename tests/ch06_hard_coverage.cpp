@@ -211,8 +211,8 @@ TEST_CASE("NaN and infinite vertex input is rejected with an Error and draws not
                     for (const auto precision :
                          {CoveragePrecision::fixed, CoveragePrecision::floating}) {
                         std::vector<int> counts(32 * 32, 0);
-                        CHECK_THROWS_WITH_AS(
-                            add_coverage(counts, vp, v, kind, precision), names_it, Error);
+                        CHECK_THROWS_WITH_AS(add_coverage(counts, vp, v, kind, precision),
+                                             names_it, Error);
                         CHECK(std::count(counts.begin(), counts.end(), 0) == 32 * 32);
                     }
                 }

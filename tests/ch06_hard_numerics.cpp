@@ -223,8 +223,9 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
     }
     MESSAGE("edge-on, " << pixels << " pixels, 1/w ratio along a row up to " << ratio
                         << ", worst texel error: double " << worst[0] << ", 16.16 "
-                        << worst[1] << ", float " << worst[2] << "; float picks another texel at "
-                        << float_wrong_texels << " pixels, 1/w at most " << double(wrong_q));
+                        << worst[1] << ", float " << worst[2]
+                        << "; float picks another texel at " << float_wrong_texels
+                        << " pixels, 1/w at most " << double(wrong_q));
     record_fact("ch06_edge_on_pixels", pixels);
     record_fact("ch06_edge_on_ratio", ratio);
     record_fact("ch06_edge_on_double", worst[0]);
