@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Chapter 6, re-derived with SymPy (run by CTest, label book): the float spacing near
-10^6 px, the limit of the fixed-point range, the edge-on error of the divide
-(eq:edge-on-error), the near-plane crossing (eq:clip-t) with Exercise 2's error bound and
-its example in doubles, the drift of stepping (eq:drift-bound) and of the 16.16 loop.
-Exits non-zero on any mismatch."""
+10^6 px, the limit of the fixed-point range and how far past it an edge product
+overflows, the edge-on error of the divide (eq:edge-on-error), the near-plane crossing
+(eq:clip-t) with Exercise 2's error bound and its example in doubles, the drift of
+stepping (eq:drift-bound) and of the 16.16 loop. Exits non-zero on any mismatch."""
 import pathlib
 import sys
 
@@ -18,6 +18,17 @@ from derivation import holds, same, finish  # noqa: E402
 same("2^28 units are 2^20 px", sp.Integer(2)**28 / 256, sp.Integer(2)**20)
 holds("one unit past the limit prints as 1048576.00390625",
       sp.Integer(2)**20 + sp.Rational(1, 256) == sp.Rational("1048576.00390625"))
+# Within it every edge value is below 2^60 (chapter 2's eq:edge-range, L = 2^28 units), far
+# from 2^63; a product of two differences reaches 2^63 only when each is 2^31.5 units,
+# 2^23.5 px, that is with coordinates of about 2^22.5 px, some six million pixels.
+L_units = sp.Integer(2)**28
+holds("edge values below 2^60 at the limit", 8 * L_units**2 + 2**14 * L_units < sp.Integer(2)**60)
+same("differences of 2^31.5 units multiply to 2^63", (sp.Integer(2)**sp.Rational(63, 2))**2,
+     sp.Integer(2)**63)
+same("2^31.5 units are 2^23.5 px", sp.Integer(2)**sp.Rational(63, 2) / 256,
+     sp.Integer(2)**sp.Rational(47, 2))
+holds("coordinates of 2^22.5 px are some six million pixels",
+      5.5e6 < float(sp.Integer(2)**sp.Rational(45, 2)) < 6.5e6)
 
 # @sec:far: a float has 24 significant bits; in [2^e, 2^(e+1)) its spacing is 2^(e-23).
 # Near 2^20 the spacing is 1/8 px; 10^6 lies in [2^19, 2^20), spacing 1/16, so rounding
