@@ -5,8 +5,10 @@ it peaks and how large it is (eq:affine-worst-t, eq:affine-bound), the error whe
 span's ends are off (eq:affine-plane-error), the exact midpoint
 (eq:midpoint), Pursey's and Thellier's coefficients (eq:pursey, eq:thellier), forward
 differences (eq:forward-differences), chapter 4's numerator (eq:numerator,
-eq:numerator-constant, eq:step-difference) and chapter 7's two bounds behind
-eq:scene-quadratic-bound. Exits non-zero on any mismatch."""
+eq:numerator-constant, eq:step-difference), and chapter 7's quadratic bound
+(eq:scene-quadratic-bound, from its two bounds and the symmetry in r and 1/r), the texel
+extent of a piece behind eq:scene-worst-piece, exercises 3, 4 and 6 and the slope bound
+of the sRGB encode behind eq:scene-referee-lit. Exits non-zero on any mismatch."""
 import pathlib
 import sys
 
@@ -117,4 +119,70 @@ sv = sp.symbols("s", positive=True)
 gap = (sv * (1 - t) + t) - 2 * sp.sqrt(sv * t * (1 - t))
 same("AM-GM gap is a square", gap,
      (sp.sqrt(sv * (1 - t)) - sp.sqrt(t))**2)
+# eq:scene-quadratic-bound assembled from eq:quadratic-error: the error is the same for r
+# and 1/r read from the other end (t -> 1 - t, up to its sign), so with s = max(r, 1/r)
+# and k = s - 1 it is 2 k^2 |cubic| / ((s + 1)(s - k t)); the two bounds above give
+# k^2/(s + 1) times sqrt(3)/18 and times 1/(4 sqrt s).
+quadratic_error = 2 * (r - 1)**2 * cubic / ((r + 1) * (r - (r - 1) * t))
+same("quadratic error: r and 1/r read backwards",
+     quadratic_error.subs({r: 1 / r, t: 1 - t}, simultaneous=True), -quadratic_error)
+kv = sv - 1
+with_s = 2 * kv**2 * cubic / ((sv + 1) * (sv - kv * t))
+same("quadratic error in s", with_s, quadratic_error.subs(r, sv))
+same("first bound", 2 * kv**2 / (sv + 1) * sp.sqrt(3) / 36,
+     kv**2 / (sv + 1) * sp.sqrt(3) / 18)
+same("second bound", 2 * kv**2 / (sv + 1) * sp.Rational(1, 2) / (4 * sp.sqrt(sv)),
+     kv**2 / (sv + 1) / (4 * sp.sqrt(sv)))
+# Both bounds grow with s > 1 (each derivative is a product of positive factors), so the
+# bound is largest where a piece's ratio is: the worst piece lies at an end of the span
+# (eq:scene-worst-piece).
+same("first bound grows", sp.diff(kv**2 / (sv + 1), sv),
+     (sv - 1) * (sv + 3) / (sv + 1)**2)
+same("second bound grows", sp.diff(kv**2 / ((sv + 1) * sp.sqrt(sv)), sv),
+     (sv - 1) * (sv**2 + 6 * sv + 1) / (2 * sv**sp.Rational(3, 2) * (sv + 1)**2))
+# eq:scene-worst-piece: u = p/q with p = p_0 + k p_x and q = q_0 + k q_x changes over a
+# piece of N pixels by N (p_x q - p q_x) / (q(k) q(k + N)), chapter 4's numerator
+# (eq:numerator), the same at every k, over the product of the end values of q.
+kk_, NN = sp.symbols("k N", positive=True)
+u_of_k = (p + kk_ * px) / (q + kk_ * qx)
+same("texel extent of a piece", u_of_k.subs(kk_, kk_ + NN) - u_of_k,
+     NN * (px * q - p * qx) / ((q + kk_ * qx) * (q + (kk_ + NN) * qx)))
+# Chapter 7, exercise 3: with u(k) = (a + b k)/(c + d k), the change over k0..k1 is
+# (k1 - k0)(b c - a d)/(q0 q1); exercise 4: t (1 - t)/(s - (s - 1) t) peaks at
+# t* = sqrt s/(sqrt s + 1) with 1/(sqrt s + 1)^2, and (s - 1)/(sqrt s + 1)^2 is chapter
+# 3's (sqrt s - 1)/(sqrt s + 1); 1/(4 sqrt s) overestimates it by (sqrt s + 1)^2/(4 sqrt s).
+a3, b3, c3, d3, k0, k1 = sp.symbols("a b c d k0 k1")
+u3 = lambda kv_: (a3 + b3 * kv_) / (c3 + d3 * kv_)  # noqa: E731
+same("exercise 3: change over a piece", u3(k1) - u3(k0),
+     (k1 - k0) * (b3 * c3 - a3 * d3) / ((c3 + d3 * k0) * (c3 + d3 * k1)))
+g4 = t * (1 - t) / (sv - (sv - 1) * t)
+t4 = sp.sqrt(sv) / (sp.sqrt(sv) + 1)
+same("exercise 4: stationary point", sp.numer(sp.together(sp.diff(g4, t))).subs(t, t4), 0)
+same("exercise 4: maximum", g4.subs(t, t4), 1 / (sp.sqrt(sv) + 1)**2)
+same("exercise 3: affine maximum", (sv - 1) / (sp.sqrt(sv) + 1)**2,
+     (sp.sqrt(sv) - 1) / (sp.sqrt(sv) + 1))
+same("exercise 4: overestimate", (1 / (4 * sp.sqrt(sv))) / g4.subs(t, t4),
+     (sp.sqrt(sv) + 1)**2 / (4 * sp.sqrt(sv)))
+# Exercise 6: with m = b + t (c - b), (m - a) x (b - a) + (c - a) x (m - a) = (c - a) x (b - a).
+av, bv, cv = (sp.Matrix(sp.symbols(f"{n}0:3")) for n in ("a", "b", "c"))
+mv = bv + t * (cv - bv)
+same("exercise 6: the split keeps the weighted sum at a",
+     ((mv - av).cross(bv - av) + (cv - av).cross(mv - av) - (cv - av).cross(bv - av)).norm(), 0)
+# eq:scene-referee-lit: the sRGB encode E (12.92 x up to 0.0031308, then
+# 1.055 x^(1/2.4) - 0.055) has a slope that never grows (the power piece starts below
+# 12.92), x E'(x) <= 0.45 x^(5/12) on both pieces, and 255 * 0.45 <= 115.
+xe = sp.Symbol("x", positive=True)
+power_piece = sp.Rational(1055, 1000) * xe**(1 / sp.Rational(24, 10)) - sp.Rational(55, 1000)
+knee = sp.Rational(31308, 10**7)
+if not sp.diff(power_piece, xe).subs(xe, knee) < sp.Rational(1292, 100):
+    failures.append("the encode's slope grows at the knee")
+same("x E'(x) on the power piece", xe * sp.diff(power_piece, xe),
+     sp.Rational(1055, 2400) * xe**sp.Rational(5, 12))
+if not sp.Rational(1055, 2400) <= sp.Rational(45, 100):
+    failures.append("0.45 does not bound the power piece")
+# On the straight piece x E'(x) = 12.92 x, at most 0.45 x^(5/12) while x^(7/12) <= 0.45/12.92.
+if not knee**7 <= (sp.Rational(45, 100) / sp.Rational(1292, 100))**12:
+    failures.append("0.45 x^(5/12) does not bound the straight piece up to the knee")
+if not 255 * sp.Rational(45, 100) <= 115:
+    failures.append("255 * 0.45 > 115")
 finish("ch03_ch04_ch07_perspective.py")
