@@ -142,6 +142,28 @@ bool read_fast_paths(const std::string& names) {
     return true;
 }
 
+/// The side of the id texture: texel (i, j) is triangle j * id_texture_side + i's.
+constexpr int id_texture_side = 512;
+
+/// A texture with one texel for each of `triangles` triangles, texel n's colour its
+/// 24-bit id n + 1 (red the low byte): the "ids" run draws every triangle of the torus
+/// with its corners' texture coordinates at its own texel's centre, so that both sides'
+/// frames show which triangle won each pixel.
+Texture id_texture(std::size_t triangles) {
+    const int rows = static_cast<int>((triangles + id_texture_side - 1) / id_texture_side);
+    int height = 1;
+    while (height < rows) {
+        height *= 2; // a power of two, as the torus's own texture is
+    }
+    std::vector<Rgba8> texels(static_cast<std::size_t>(id_texture_side) * height);
+    for (std::size_t n = 0; n < texels.size(); ++n) {
+        const std::size_t id = n + 1;
+        texels[n] = rgba(static_cast<std::uint8_t>(id), static_cast<std::uint8_t>(id >> 8),
+                         static_cast<std::uint8_t>(id >> 16));
+    }
+    return Texture(id_texture_side, height, std::move(texels));
+}
+
 /// The big torus scene as written by the generator and read back through the OBJ
 /// reader, with the effects `effects` asks for.
 Scene big_scene(const std::string& effects) {
@@ -171,6 +193,21 @@ Scene big_scene(const std::string& effects) {
             mesh.positions.clear();
             mesh.corner_positions.clear();
         }
+    }
+    if (effects == "ids") { // every triangle in a colour of its own (id_texture)
+        std::size_t n = 0;
+        for (SceneMesh& mesh : scene.meshes) {
+            mesh.colour = {1.0, 1.0, 1.0};
+            for (auto& triangle : mesh.triangles) {
+                for (SceneVertex& corner : triangle) {
+                    corner.uv = {static_cast<double>(n % id_texture_side) + 0.5,
+                                 static_cast<double>(n / id_texture_side) + 0.5};
+                }
+                ++n;
+            }
+            mesh.texture = 0;
+        }
+        scene.textures.at(0).texture = id_texture(n);
     }
     return scene;
 }
@@ -739,6 +776,15 @@ int main(int argc, char** argv) {
                 ->ComputeStatistics("max", largest);
         }
     }
+    // Checked after timing with every triangle's 24-bit id as its colour: the frame
+    // check's colour differences are pixels another triangle won on one side.
+    benchmark::RegisterBenchmark("llvmpipe/ids", [](benchmark::State& s) {
+        llvmpipe(s, "ids");
+    })
+        ->Unit(benchmark::kMillisecond)
+        ->MeasureProcessCPUTime()
+        ->ComputeStatistics("min", smallest)
+        ->ComputeStatistics("max", largest);
     benchmark::RegisterBenchmark("llvmpipe/frame_copy", llvmpipe_frame_copy)
         ->Unit(benchmark::kMillisecond)
         ->MeasureProcessCPUTime()

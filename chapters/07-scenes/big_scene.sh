@@ -142,11 +142,14 @@ instructions() {
          "it keeps its colour over a second background. Pixels our frame covers, pixels" \
          "covered in one frame and not the other (a run fails above one in ten" \
          "thousand of the covered), and pixels covered in both whose colour differs" \
-         "(the two took a different texel or a different triangle there):"
+         "(the two took a different texel or a different triangle there). The run" \
+         "ids draws the full scene with every triangle in a colour of its own, its" \
+         "24-bit id (a texture of ids, each triangle's corners at its own texel's" \
+         "centre), so that its colour differences are pixels another triangle won:"
     echo
     echo "| frame check | pixels |"
     echo "|:--|--:|"
-    for effects in full no_depth no_texture flat empty empty_no_depth; do
+    for effects in full no_depth no_texture flat empty empty_no_depth ids; do
         echo "| pixels covered $effects | $(check $effects covered) |"
         echo "| coverage differences $effects | $(check $effects coverage_diff) |"
         echo "| colour differences $effects | $(check $effects colour_diff) |"
