@@ -187,6 +187,51 @@ TEST_CASE("covered runs by exact division are the pixel walk's runs on every set
     CHECK(mismatches(hard, 640, 200, Fast::runs) == 0);
 }
 
+TEST_CASE("a run end stepped by quotient, remainder and carry is the exact division on "
+          "every row") {
+    // @eq:fast-step: RunEnd::step moves an edge's first column (s_x > 0) or end of run
+    // (s_x < 0) down the rows without a division. On every row its column k and its
+    // remainder e must be what run_end's exact divisions give for that row's value w,
+    // and e must stay in [0, s). Steps of both signs, from 1 to 2^37 (the largest step
+    // of a fixed-point edge), quotients Q from -4 to 4, values up to 2^59; rows with a
+    // carry and rows without are both common.
+    std::mt19937_64 rng(102);
+    const auto between = [&](std::int64_t lo, std::int64_t hi) {
+        return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng);
+    };
+    const std::int64_t s_max[] = {8, std::int64_t{1} << 20, std::int64_t{1} << 37};
+    const std::int64_t w_max[] = {200, std::int64_t{1} << 40, std::int64_t{1} << 59};
+    long carries = 0, plain = 0, negative_q = 0;
+    for (int trial = 0; trial < 30000; ++trial) {
+        const std::size_t scale = static_cast<std::size_t>(trial % 3);
+        const std::int64_t s = between(1, s_max[scale]);
+        const std::int64_t s_x = trial % 2 ? s : -s;
+        const std::int64_t s_y = between(-4 * s, 4 * s);
+        std::int64_t w = between(-w_max[scale], w_max[scale]);
+        RunEnd end = run_end(w, s_x, s_y);
+        negative_q += end.q < 0;
+        for (int row = 0; row < 64; ++row) {
+            // The exact end on this row, and the edge's value there (s_x > 0) or at the
+            // last column that passes (s_x < 0), as run_end divides them out.
+            const std::int64_t k = s_x > 0 ? ceil_div(-w, s) : floor_div(w, s) + 1;
+            const std::int64_t e = s_x > 0 ? w + k * s : w - (k - 1) * s;
+            CAPTURE(s_x);
+            CAPTURE(s_y);
+            CAPTURE(w);
+            CAPTURE(row);
+            REQUIRE(end.k == k);
+            REQUIRE(end.e == e);
+            REQUIRE((0 <= end.e && end.e < s));
+            (end.e + end.r >= s ? carries : plain) += 1;
+            end.step(s_x > 0 ? -1 : 1);
+            w += s_y;
+        }
+    }
+    CHECK(carries > 500000); // rows where the end moves by Q + 1
+    CHECK(plain > 500000);   // and by Q
+    CHECK(negative_q > 10000);
+}
+
 TEST_CASE(
     "the double estimate of a run's end is one column off below 2^52, two up to 2^60") {
     // Exercise 2 of chapter 9: run_of_row_fast starts each edge's end from the double
