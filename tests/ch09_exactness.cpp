@@ -318,19 +318,31 @@ template <class T> unsigned defined_bits(const T (&w)[3], const T (&s)[3], int l
 } // namespace
 
 TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes") {
+    // Rows of values near zero (mixed masks), values across the 2^60 of @eq:edge-range
+    // and beyond, and values anywhere in int64, the extremes themselves included, whose
+    // steps point towards zero so that no lane's sum leaves int64.
+    using Limits = std::numeric_limits<std::int64_t>;
     std::mt19937_64 rng(93);
-    const std::int64_t big = std::numeric_limits<std::int64_t>::max() / 16;
-    std::uniform_int_distribution<std::int64_t> value(-big, big);
+    std::uniform_int_distribution<std::int64_t> value(-(std::int64_t{1} << 61),
+                                                      std::int64_t{1} << 61);
+    std::uniform_int_distribution<std::int64_t> anywhere(Limits::min(), Limits::max());
     std::uniform_int_distribution<std::int64_t> step(-(std::int64_t{1} << 40),
                                                      std::int64_t{1} << 40);
-    int all_mixed = 0;
+    int all_mixed = 0, extremes = 0;
     for (int trial = 0; trial < 20000; ++trial) {
-        // Values near zero half the time, so that masks come out mixed.
-        const std::int64_t w[3] = {trial % 2 ? value(rng) : value(rng) >> 40,
-                                   trial % 2 ? value(rng) : value(rng) >> 40,
-                                   trial % 2 ? value(rng) : value(rng) >> 40};
-        const std::int64_t s[3] = {step(rng) >> (trial % 40), step(rng) >> (trial % 40),
-                                   step(rng) >> (trial % 40)};
+        std::int64_t w[3], s[3];
+        for (std::size_t k = 0; k < 3; ++k) {
+            s[k] = step(rng) >> (trial % 40);
+            if (trial % 4 == 3) { // anywhere; every eighth row starts at min, max, any
+                const std::int64_t first[] = {Limits::min(), Limits::max(),
+                                              anywhere(rng)};
+                w[k] = trial % 8 == 3 ? first[k] : anywhere(rng);
+                s[k] = w[k] < 0 ? std::abs(s[k]) : -std::abs(s[k]);
+            } else { // near zero half the time, so that masks come out mixed
+                w[k] = trial % 2 ? value(rng) : value(rng) >> 40;
+            }
+        }
+        extremes += w[0] == Limits::min() && w[1] == Limits::max();
         const unsigned portable = lane_bits<lanes::Portable>(w, s);
         REQUIRE(portable == defined_bits(w, s, 8));
 #if defined(__SSE2__)
@@ -339,6 +351,7 @@ TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes
         all_mixed += portable != 0 && portable != 0xff;
     }
     CHECK(all_mixed > 1000); // the test saw many partly covered rows
+    CHECK(extremes == 2500); // and rows that start at both extremes of int64
 }
 
 TEST_CASE("depth lanes write plot's depth bits and colours, four pixels at a time") {
