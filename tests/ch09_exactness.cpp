@@ -357,17 +357,18 @@ TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes
 TEST_CASE("depth lanes write plot's depth bits and colours, four pixels at a time") {
     // Random depth planes over rows of 40 pixels of stored depths (many of them exactly
     // the plane's own z, so that ties, which must not draw, are common; some +-0, some
-    // infinities, some the largest finite float), every run [x_begin, x_end) and every
-    // 8-pixel mask row of each, drawn by both implementations and by plot's definition
-    // one pixel at a time (z = plane.at(x, y), drawn when z < stored): the same depth
-    // bits and colours.
+    // infinities, some the largest finite float, some NaN, which never draws), every run
+    // [x_begin, x_end) and every 8-pixel mask row of each, drawn by both implementations
+    // and by plot's definition one pixel at a time (z = plane.at(x, y), drawn when z <
+    // stored): the same depth bits and colours.
     std::mt19937_64 rng(95);
     constexpr int width = 40;
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
     std::uniform_int_distribution<int> kind(0, 9), column(0, width), row_of(0, 4095);
     const float big = std::numeric_limits<float>::max();
     const float inf = std::numeric_limits<float>::infinity();
-    const float edge_values[] = {0.0f, -0.0f, inf, -inf, big, -big, 1.0f, 0.5f};
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float edge_values[] = {0.0f, -0.0f, inf, -inf, big, -big, 1.0f, 0.5f, nan};
     const Rgba8 paint = rgba(10, 200, 30, 77), ground = rgba(1, 2, 3, 4);
     const auto bits_of = [](const std::vector<float>& d) {
         std::vector<std::uint32_t> b;
@@ -387,7 +388,7 @@ TEST_CASE("depth lanes write plot's depth bits and colours, four pixels at a tim
             const int k = kind(rng);
             stored[static_cast<std::size_t>(x)] =
                 k < 3   ? plane.at(x, y)
-                : k < 5 ? edge_values[static_cast<std::size_t>(trial + x) % 8]
+                : k < 5 ? edge_values[static_cast<std::size_t>(trial + x) % 9]
                         : plane.at(x, y) + unit(rng) * scale;
         }
         // One case: a run [b, e) or a mask row (8 pixels from a multiple of 8, random
