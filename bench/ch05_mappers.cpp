@@ -11,8 +11,12 @@
 // draw_textured_triangle (coverage, setup, the mapper's inner loop and the texel fetch:
 // everything a caller pays). Counters: pixels (writes per drawing), ns_per_px, and the
 // deterministic error of that mapper on that scene against the reference
-// (mapper_error.hpp): worst and mean texel error (texels) and the share of pixels whose
-// texel differs.
+// (texel_error.hpp): worst and mean texel error (texels), the share of pixels whose
+// texel differs, and the wrong texels at ties (pixels whose exact u or v is whole and
+// whose texel differs).
+// Chapter 5's full run and the book's quick run both repeat every benchmark three times,
+// interleaved; fig_ch05_table keeps each one's fastest repetition and takes the run's
+// noise from the spread of the repetitions.
 // --once draws one run's scene once inside the function ch05_render_once, so that
 //   valgrind --tool=callgrind --toggle-collect=ch05_render_once bench_ch05_mappers
 //   --once=NAME
@@ -65,6 +69,7 @@ void register_all(const std::vector<AccuracyScene>& scenes,
                     state.counters["worst_texels"] = C((*error)->worst);
                     state.counters["mean_texels"] = C((*error)->mean);
                     state.counters["differing_share"] = C((*error)->differing_share);
+                    state.counters["wrong_at_ties"] = C(double((*error)->wrong_at_ties));
                 })
                 ->Unit(benchmark::kMicrosecond);
         }

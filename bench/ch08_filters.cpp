@@ -10,10 +10,13 @@
 //
 // Each benchmark "scene/filter" samples every covered pixel of the scene once per
 // iteration, given its texture coordinate and derivatives (computed beforehand, as a
-// mapper would hand them over), and writes the encoded colour into a frame: the filter,
-// the level of detail, the mip fetches and the sRGB encode (its fast variant), not
-// coverage or mapping (chapter 5 timed those). Counters: pixels and ns_per_px. The
-// errors are computed by fig_ch08_table against the reference (too slow to repeat per
+// mapper would hand them over), and writes the colour into a frame (filter_frame in
+// filter_measure.hpp): the filter, the level of detail, the mip fetches and the sRGB
+// encode (its fast variant), not coverage or mapping (chapter 5 timed those). The
+// baseline "nearest" fetches the 8-bit texel and writes it as it is, as a renderer
+// does; "nearest linear-light" takes the same texel through linear light and back.
+// Counters: pixels and ns_per_px, in CPU time (one thread: the process's). The errors are
+// computed by fig_ch08_table against the reference (deterministic, not repeated per
 // benchmark run).
 // --oblique times chapter 8's exercise scene instead, the wall at 60 degrees
 //   (oblique_wall_scene), and adds the counter `error`: the run's RMS error in 8-bit
@@ -45,24 +48,13 @@ std::string run_name(const AccuracyScene& scene, const FilterConfig& config) {
     return name;
 }
 
-//> bench-loop
-/// Every pixel of the scene through the configuration, into the frame.
-void filter_into(Framebuffer& frame, const FilterScene& fs, const FilterConfig& config) {
-    for (const FilterPixel& p : fs.pixels) {
-        const TexelDerivatives& d = derivatives_of(p, config.derivatives);
-        frame.at(p.x, p.y) =
-            encode_linear_fast(sample_filtered(fs.chain, p.uv, d, config.settings));
-    }
-}
-//< bench-loop
-
 } // namespace
 
 /// One pass of the filter over the scene: the only function callgrind collects in --once
 /// mode.
 extern "C" [[gnu::noinline]] void
 ch08_filter_once(Framebuffer* frame, const FilterScene* fs, const FilterConfig* config) {
-    filter_into(*frame, *fs, *config);
+    filter_frame(*frame, *fs, *config);
 }
 
 int main(int argc, char** argv) {
@@ -81,7 +73,8 @@ int main(int argc, char** argv) {
                 const FilterScene fs = prepare_filter_scene(scene);
                 if (once) {
                     Framebuffer frame(scene.width, scene.height);
-                    filter_into(frame, fs, config); // warm up: one-time tables built here
+                    filter_frame(frame, fs,
+                                 config); // warm up: one-time tables built here
                     ch08_filter_once(&frame, &fs, &config);
                 }
                 std::printf("%s %zu\n", name.c_str(), fs.pixels.size());
@@ -134,7 +127,7 @@ int main(int argc, char** argv) {
                 [fs, &config, oblique, error, minified_count](benchmark::State& state) {
                     Framebuffer frame(fs->scene->width, fs->scene->height);
                     for (auto _ : state) {
-                        filter_into(frame, *fs, config);
+                        filter_frame(frame, *fs, config);
                         benchmark::DoNotOptimize(frame.pixels().data());
                         benchmark::ClobberMemory();
                     }

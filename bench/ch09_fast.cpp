@@ -23,20 +23,34 @@
 //                    reads it once, when the process makes its first context, so one
 //                    process measures one count (full_run.sh runs LP_NUM_THREADS=2 too).
 //
-// One iteration draws a whole set: the same 1024 triangles of one area
-// (triangle_sets.hpp, the set of chapter 2's benchmark) into a 1024 x 1024 frame, each
-// triangle with its own colour and depth plane. llvmpipe gets them in one glDrawArrays
-// (float vertices, exact for 1/256 px below 2^15 px) with an orthographic projection that
-// puts vertex (x, y) on the project's pixel (x, y), flat shading, then glFinish. The
-// depth buffer is cleared once: after the first pass every fragment is tested and fails
-// (the buffer already holds the nearest depth), the same work on both sides.
+// One iteration is one frame: the same 1024 triangles of one area (triangle_sets.hpp,
+// the set of chapter 2's benchmark) drawn into a 1024 x 1024 frame, each triangle with
+// its own colour, a 24-bit id (so that a compared frame shows order as well as
+// coverage), and its own depth plane. The measurement protocol of chapter 9
+// (@sec:fast-protocol) holds on both sides:
+//   the same input   both sides start every frame from the same vertex arrays: per
+//                    vertex x, y in pixels and window depth z as floats (x and y exact
+//                    multiples of 1/256 px) and RGBA8. Ours snaps each vertex, sets up
+//                    its depth plane and its edges inside the frame (setup_triangle);
+//                    llvmpipe gets the arrays in one glDrawArrays with an orthographic
+//                    projection that puts vertex (x, y, z) on the project's pixel (x, y)
+//                    at window depth z, flat shading, then glFinish.
+//   the same state   with depth, the depth buffer is cleared at the start of every frame
+//                    on both sides (std::fill, glClear), so every frame tests and writes.
+//   fixed costs      AREA 0 is a frame with no triangle in it (for llvmpipe one triangle
+//     apart          of zero area, so that glFinish still copies its frame to ours): the
+//                    clear, llvmpipe's frame copy, the tiled renderer's thread wake-up.
+//                    Readers of the run subtract it (net_rate in figures/ch09_speed.cpp).
+//   checked after    after the timed loop each run compares its frame with the teaching
+//     timing         path's frame of the same set (counters coverage_differ: pixels
+//                    drawn in one frame only, colour_differ: pixels drawn in both with
+//                    another id); a project variant that differs at all is an error.
 // If OSMesa cannot make a context, the llvmpipe runs report an error and are skipped.
 //
 // Instruction counts (chapters/09-fast-pixels/callgrind.sh): `--once=MODE/VARIANT/AREA`
 // draws the set once untimed, then once more inside ch09_draw_once, the function that
 // valgrind --tool=callgrind --toggle-collect=ch09_draw_once counts; `--list` prints the
 // names. Run it with LP_NUM_THREADS=0 so that llvmpipe rasterizes in the counted thread.
-// `--compare=AREA` checks that both sides draw the same pixels (see compare()).
 //
 // Textured (issue 19's third target), only with `--textured`, so that the default run
 // (data/ch09_fast.csv) is unchanged: names textured/VARIANT/AREA/1, VARIANT one of
@@ -83,21 +97,89 @@ namespace {
 constexpr int frame_side = 1024;
 constexpr int triangle_count = 1024;
 constexpr int areas[] = {3, 15, 80, 1000, 65536};
+/// The areas timed: each set, and 0 for the frame with nothing in it (its fixed cost).
+constexpr int timed_areas[] = {0, 3, 15, 80, 1000, 65536};
 
-/// One area's triangles as the project draws them: snapped, coloured, with depth.
+constexpr int empty_set = 0; ///< the "area" of a frame with no triangle in it
+
+/// The input both sides draw a set from: three vertices per triangle, each as x, y in
+/// pixels and window depth z (floats; x and y exact multiples of 1/256 px, z in [0, 1])
+/// and its triangle's colour (RGBA8, the same at all three vertices).
+struct VertexArrays {
+    std::vector<float> xyz;         ///< 3 floats per vertex
+    std::vector<std::uint8_t> rgba; ///< 4 bytes per vertex
+    std::size_t triangles() const { return xyz.size() / 9; }
+};
+
+/// Triangle n's colour: its 24-bit id n + 1 (0 is the background), red the low byte.
+Rgba8 id_colour(std::size_t n) {
+    const std::size_t id = n + 1;
+    return rgba(static_cast<std::uint8_t>(id), static_cast<std::uint8_t>(id >> 8),
+                static_cast<std::uint8_t>(id >> 16));
+}
+
+/// One area's set as vertex arrays (for empty_set, one triangle of zero area): the
+/// triangles of chapter 2's benchmark, triangle n with id colour n + 1 and depths (z, 1 -
+/// z, 1/2) at its three vertices, z = (n mod 97) / 97.
+const VertexArrays& vertex_arrays(int area) {
+    static std::map<int, VertexArrays> cache;
+    auto [it, inserted] = cache.try_emplace(area);
+    if (inserted && area == empty_set) { // one triangle of zero area: no pixel
+        it->second.xyz.assign(9, 0.5f);
+        it->second.rgba.assign(12, 255);
+    } else if (inserted) {
+        const bench::TriangleSet set =
+            bench::make_triangles(area, triangle_count, frame_side);
+        for (std::size_t n = 0; n < set.fixed.size(); ++n) {
+            const float z = static_cast<float>(n % 97) / 97.0f; // any spread will do
+            const float depths[3] = {z, 1.0f - z, 0.5f};
+            const Rgba8 c = id_colour(n);
+            for (std::size_t k = 0; k < 3; ++k) {
+                const Point2 p = to_pixels(set.fixed[n][k]);
+                it->second.xyz.insert(
+                    it->second.xyz.end(),
+                    {static_cast<float>(p.x), static_cast<float>(p.y), depths[k]});
+                it->second.rgba.insert(it->second.rgba.end(), {c.r, c.g, c.b, 255});
+            }
+        }
+    }
+    return it->second;
+}
+
+/// Triangle n of `a` as the project draws it: its vertices snapped (1/256 px), its depth
+/// plane (only `with_depth`: without a depth test neither side interpolates depth) and
+/// its colour. The per-triangle setup ours does inside every frame.
+FlatTriangle setup_triangle(const VertexArrays& a, std::size_t n, bool with_depth) {
+    FlatTriangle t;
+    std::array<float, 3> z{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        const float* v = &a.xyz[9 * n + 3 * k];
+        t.v[k] = snap_to_subpixel(Point2{v[0], v[1]});
+        z[k] = v[2];
+    }
+    if (with_depth) {
+        t.depth = depth_plane(t.v, z);
+    }
+    const std::uint8_t* c = &a.rgba[12 * n];
+    t.colour = rgba(c[0], c[1], c[2]);
+    return t;
+}
+
+/// Every triangle of `a` set up into `out` (its memory kept from frame to frame).
+void setup_set(const VertexArrays& a, bool with_depth, std::vector<FlatTriangle>& out) {
+    out.clear();
+    for (std::size_t n = 0; n < a.triangles(); ++n) {
+        out.push_back(setup_triangle(a, n, with_depth));
+    }
+}
+
+/// One area's triangles set up, outside any timed loop (the textured set and the
+/// reference frames start from them).
 const std::vector<FlatTriangle>& triangles(int area) {
     static std::map<int, std::vector<FlatTriangle>> cache;
     auto [it, inserted] = cache.try_emplace(area);
     if (inserted) {
-        const bench::TriangleSet set =
-            bench::make_triangles(area, triangle_count, frame_side);
-        for (std::size_t n = 0; n < set.fixed.size(); ++n) {
-            const auto c = static_cast<std::uint8_t>(n);
-            const float z = static_cast<float>(n % 97) / 97.0f; // any spread will do
-            it->second.push_back({set.fixed[n],
-                                  depth_plane(set.fixed[n], {z, 1.0f - z, 0.5f}),
-                                  rgba(c, static_cast<std::uint8_t>(255 - c), 128)});
-        }
+        setup_set(vertex_arrays(area), true, it->second);
     }
     return it->second;
 }
@@ -177,10 +259,52 @@ std::int64_t covered_pixels(int area) {
 
 void report(benchmark::State& state, int area) {
     using benchmark::Counter;
-    const double sets = static_cast<double>(state.iterations());
-    state.counters["tri_per_s"] = Counter(sets * triangle_count, Counter::kIsRate);
+    const double frames = static_cast<double>(state.iterations());
+    const double count = area == empty_set ? 0.0 : triangle_count;
+    state.counters["tri_per_s"] = Counter(frames * count, Counter::kIsRate);
     state.counters["pix_per_s"] =
-        Counter(sets * static_cast<double>(covered_pixels(area)), Counter::kIsRate);
+        Counter(frames * static_cast<double>(covered_pixels(area)), Counter::kIsRate);
+}
+
+/// The background of every compared frame: no triangle has id 0.
+constexpr Rgba8 background = rgba(0, 0, 0);
+
+/// The teaching path's frame of one area's set, with depth or without, drawn once into
+/// a cleared frame: what every run's frame must hold after its timed loop.
+const std::vector<Rgba8>& reference_frame(int area, bool with_depth) {
+    static std::map<std::pair<int, bool>, std::vector<Rgba8>> cache;
+    auto [it, inserted] = cache.try_emplace({area, with_depth});
+    if (inserted) {
+        std::vector<Rgba8> colour(std::size_t{frame_side} * frame_side, background);
+        std::vector<float> depth(colour.size(), 1.0f);
+        draw_reference(
+            {colour.data(), with_depth ? depth.data() : nullptr, frame_side, frame_side},
+            triangles(area));
+        it->second = std::move(colour);
+    }
+    return it->second;
+}
+
+/// Compares a run's frame (`pixel(i)` the colour of pixel i) with the teaching path's,
+/// `want` (pixels equal to `background` are not drawn), and puts the counts in the run's
+/// counters: coverage_differ, pixels drawn in one frame only; colour_differ, pixels
+/// drawn in both in another colour (another triangle's id, or another texel). A project
+/// variant (`exact`) must give the teaching path's pixels: any difference is an error.
+template <typename Pixel>
+void check_frame(benchmark::State& state, const std::vector<Rgba8>& want,
+                 Rgba8 background, bool exact, Pixel pixel) {
+    std::int64_t coverage = 0, colour = 0;
+    for (std::size_t i = 0; i < want.size(); ++i) {
+        const Rgba8 got = pixel(i);
+        const bool drawn = got != background, wanted = want[i] != background;
+        coverage += drawn != wanted;
+        colour += drawn && wanted && got != want[i];
+    }
+    state.counters["coverage_differ"] = static_cast<double>(coverage);
+    state.counters["colour_differ"] = static_cast<double>(colour);
+    if (exact && coverage + colour != 0) {
+        state.SkipWithError("the frame differs from the teaching path's");
+    }
 }
 
 enum class Variant { walk, blocks, runs, masks, tiled, tiled_per_call, plain };
@@ -195,18 +319,26 @@ TiledRenderer& renderer(int threads) {
     return *r;
 }
 
-/// Draws the whole set of `area` once with `variant` (threads: for tiled only).
-void draw_set(Variant variant, bool with_depth, int area, int threads) {
-    const auto& tris = triangles(area);
-    const RenderTarget target = frame().target(with_depth);
+/// One frame of `variant` (threads: for tiled only): the depth buffer cleared when the
+/// target has one, then the whole set of `area` from its vertex arrays, every triangle
+/// snapped and set up in this frame.
+void draw_set(Variant variant, const RenderTarget& target, int area, int threads) {
+    const VertexArrays& a = vertex_arrays(area);
+    const bool with_depth = target.depth != nullptr;
+    static std::vector<FlatTriangle> set_up; // its memory kept from frame to frame
+    if (target.depth != nullptr) {
+        std::fill_n(target.depth, std::size_t{frame_side} * frame_side, 1.0f);
+    }
     const Viewport vp{frame_side, frame_side};
     const int side = static_cast<int>(std::ceil(std::sqrt(area)));
     switch (variant) {
     case Variant::walk:
-        draw_reference(target, tris);
+        setup_set(a, with_depth, set_up);
+        draw_reference(target, set_up);
         break;
     case Variant::blocks:
-        for (const FlatTriangle& t : tris) {
+        for (std::size_t n = 0; n < a.triangles(); ++n) {
+            const FlatTriangle t = setup_triangle(a, n, with_depth);
             const EdgeSetup<FixedEdge> s = setup_edges(t.v);
             if (s.empty) {
                 continue;
@@ -227,28 +359,31 @@ void draw_set(Variant variant, bool with_depth, int area, int threads) {
         }
         break;
     case Variant::runs:
-        for (const FlatTriangle& t : tris) {
-            draw_runs(target, t);
+        for (std::size_t n = 0; n < a.triangles(); ++n) {
+            draw_runs(target, setup_triangle(a, n, with_depth));
         }
         break;
     case Variant::masks:
-        for (const FlatTriangle& t : tris) {
-            draw_masks(target, t);
+        for (std::size_t n = 0; n < a.triangles(); ++n) {
+            draw_masks(target, setup_triangle(a, n, with_depth));
         }
         break;
     case Variant::tiled:
-        renderer(threads).draw(target, tris);
+        setup_set(a, with_depth, set_up);
+        renderer(threads).draw(target, set_up);
         break;
     case Variant::tiled_per_call:
-        draw_tiled(target, tris, threads);
+        setup_set(a, with_depth, set_up);
+        draw_tiled(target, set_up, threads);
         break;
     case Variant::plain: // `area` pixels as a near-square rectangle per triangle
-        for (const FlatTriangle& t : tris) {
-            const int x0 = static_cast<int>(t.v[0].x >> 8) % (frame_side - side);
-            const int y0 = static_cast<int>(t.v[0].y >> 8) % (frame_side - side);
+        for (std::size_t n = 0; n < a.triangles(); ++n) {
+            const std::uint8_t* c = &a.rgba[12 * n];
+            const int x0 = static_cast<int>(a.xyz[9 * n]) % (frame_side - side);
+            const int y0 = static_cast<int>(a.xyz[9 * n + 1]) % (frame_side - side);
             for (int left = area, y = y0; left > 0; left -= side, ++y) {
                 Rgba8* row = target.colour + static_cast<std::size_t>(y) * frame_side;
-                fill_run(row + x0, std::min(left, side), t.colour);
+                fill_run(row + x0, std::min(left, side), rgba(c[0], c[1], c[2]));
             }
         }
         break;
@@ -258,12 +393,17 @@ void draw_set(Variant variant, bool with_depth, int area, int threads) {
 void project(benchmark::State& state, Variant variant, bool with_depth) {
     const int area = static_cast<int>(state.range(0));
     const int threads = static_cast<int>(state.range(1));
-    std::fill(frame().depth.begin(), frame().depth.end(), 1.0f); // as glClear does
+    Frame& f = frame();
+    std::fill(f.colour.begin(), f.colour.end(), background);
     for (auto _ : state) {
-        draw_set(variant, with_depth, area, threads);
+        draw_set(variant, f.target(with_depth), area, threads);
         benchmark::ClobberMemory();
     }
     report(state, area);
+    // A plain fill is no rasterizer: its counts (other pixels than the set's) are
+    // reported, as every run's are, and must not be zero.
+    check_frame(state, reference_frame(area, with_depth), background,
+                variant != Variant::plain, [&](std::size_t i) { return f.colour[i]; });
 }
 
 enum class TexturedVariant { teaching, runs };
@@ -285,13 +425,37 @@ void draw_textured_set(TexturedVariant variant, int area) {
     }
 }
 
+/// The background of the textured frames: transparent, where every texel is opaque.
+constexpr Rgba8 transparent = rgba(0, 0, 0, 0);
+
+/// The teaching path's frame of one area's textured set, drawn once into a cleared
+/// frame: what every textured run's frame must hold after its timed loop.
+const std::vector<Rgba8>& textured_reference(int area) {
+    static std::map<int, std::vector<Rgba8>> cache;
+    auto [it, inserted] = cache.try_emplace(area);
+    if (inserted) {
+        Framebuffer f(frame_side, frame_side, transparent);
+        for (const auto& t : textured_triangles(area)) {
+            draw_textured_triangle(f, t, texture(), MapperSettings{});
+        }
+        it->second = f.pixels();
+    }
+    return it->second;
+}
+
 void project_textured(benchmark::State& state, TexturedVariant variant) {
     const int area = static_cast<int>(state.range(0));
+    teaching_frame() = Framebuffer(frame_side, frame_side, transparent);
+    std::fill(frame().colour.begin(), frame().colour.end(), transparent);
     for (auto _ : state) {
         draw_textured_set(variant, area);
         benchmark::ClobberMemory();
     }
     report(state, area);
+    const std::vector<Rgba8>& drawn =
+        variant == TexturedVariant::teaching ? teaching_frame().pixels() : frame().colour;
+    check_frame(state, textured_reference(area), transparent, true,
+                [&](std::size_t i) { return drawn[i]; });
 }
 
 /// llvmpipe through OSMesa: one context for the whole run, made on first use.
@@ -321,7 +485,9 @@ Peer& peer() {
         glViewport(0, 0, frame_side, frame_side);
         glMatrixMode(GL_PROJECTION);
         glLoadIdentity();
-        glOrtho(0, frame_side, frame_side, 0, -1, 1); // (x, y) px, y down, as ours
+        // (x, y, z) to pixel (x, y), y down, as ours, at window depth z: near 0 and
+        // far -1 make z_ndc = 2 z - 1, so (z_ndc + 1) / 2 = z.
+        glOrtho(0, frame_side, frame_side, 0, 0, -1);
         glMatrixMode(GL_MODELVIEW);
         glLoadIdentity();
         glShadeModel(GL_FLAT);
@@ -336,43 +502,16 @@ Peer& peer() {
     return p;
 }
 
-/// The vertex and colour arrays of one area's set, for glDrawArrays.
-struct PeerArrays {
-    std::vector<float> xyz;         ///< 3 floats per vertex
-    std::vector<std::uint8_t> rgba; ///< 4 bytes per vertex (flat: the last one counts)
-};
-
-const PeerArrays& peer_arrays(int area) {
-    static std::map<int, PeerArrays> cache;
-    auto [it, inserted] = cache.try_emplace(area);
-    if (inserted) {
-        for (const FlatTriangle& t : triangles(area)) {
-            for (const FixedPoint2& p : t.v) {
-                const Point2 q = to_pixels(p);
-                // Window depth (1 - z_ndc) / 2 with glOrtho(.., -1, 1): z_ndc = -zv.
-                const float z = t.depth.at(static_cast<int>(q.x), static_cast<int>(q.y));
-                it->second.xyz.insert(it->second.xyz.end(),
-                                      {static_cast<float>(q.x), static_cast<float>(q.y),
-                                       1.0f - 2.0f * std::clamp(z, 0.0f, 1.0f)});
-                it->second.rgba.insert(it->second.rgba.end(),
-                                       {t.colour.r, t.colour.g, t.colour.b, 255});
-            }
-        }
-    }
-    return it->second;
-}
-
-/// Sets llvmpipe up to draw the set of `area` (depth test or not); returns the vertex
-/// count for glDrawArrays.
+/// Sets llvmpipe up to draw the set of `area` (depth test or not) from its vertex
+/// arrays; returns the vertex count for glDrawArrays.
 GLsizei prepare_peer(int area, bool with_depth) {
-    const PeerArrays& a = peer_arrays(area);
+    const VertexArrays& a = vertex_arrays(area);
     glDisable(GL_TEXTURE_2D); // as a textured run may have left it
     glDisableClientState(GL_TEXTURE_COORD_ARRAY);
     glEnableClientState(GL_COLOR_ARRAY);
     if (with_depth) {
         glEnable(GL_DEPTH_TEST);
         glDepthFunc(GL_LESS);
-        glClear(GL_DEPTH_BUFFER_BIT);
     } else {
         glDisable(GL_DEPTH_TEST);
     }
@@ -436,19 +575,39 @@ GLsizei prepare_textured_peer(int area) {
     return static_cast<GLsizei>(a.xyzw.size() / 4);
 }
 
-/// Times llvmpipe drawing the `vertices` prepared for `area` (one uncounted drawing
-/// first, which compiles its code for this state).
-void time_peer(benchmark::State& state, int area, GLsizei vertices) {
-    glDrawArrays(GL_TRIANGLES, 0, vertices); // compiles llvmpipe's code for this state
+/// One llvmpipe frame of `vertices`: the depth buffer cleared when the depth test is
+/// on, the draw, and glFinish, which copies the frame into Peer::pixels.
+void peer_frame(GLsizei vertices, bool with_depth) {
+    if (with_depth) {
+        glClear(GL_DEPTH_BUFFER_BIT);
+    }
+    glDrawArrays(GL_TRIANGLES, 0, vertices);
     glFinish();
+}
+
+/// Peer::pixels' pixel i as an Rgba8.
+Rgba8 peer_pixel(std::size_t i) {
+    const std::uint8_t* p = &peer().pixels[4 * i];
+    return rgba(p[0], p[1], p[2], p[3]);
+}
+
+/// Times llvmpipe drawing frames of the `vertices` prepared for `area` into a frame
+/// cleared to `clear` (one uncounted frame first, which compiles its code for this
+/// state), then compares its frame with `want`, the teaching path's.
+void time_peer(benchmark::State& state, int area, GLsizei vertices, bool with_depth,
+               Rgba8 clear, const std::vector<Rgba8>& want) {
+    glClearColor(clear.r / 255.0f, clear.g / 255.0f, clear.b / 255.0f, clear.a / 255.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    peer_frame(vertices, with_depth); // compiles llvmpipe's code for this state
     for (auto _ : state) {
-        glDrawArrays(GL_TRIANGLES, 0, vertices);
-        glFinish();
+        peer_frame(vertices, with_depth);
     }
     if (glGetError() != GL_NO_ERROR) {
         state.SkipWithError("OpenGL reported an error");
+        return;
     }
     report(state, area);
+    check_frame(state, want, clear, false, peer_pixel);
 }
 
 void llvmpipe_textured(benchmark::State& state) {
@@ -458,7 +617,8 @@ void llvmpipe_textured(benchmark::State& state) {
         state.SkipWithError(p.problem.c_str());
         return;
     }
-    time_peer(state, area, prepare_textured_peer(area));
+    time_peer(state, area, prepare_textured_peer(area), false, transparent,
+              textured_reference(area));
 }
 
 void llvmpipe(benchmark::State& state, bool with_depth) {
@@ -468,42 +628,14 @@ void llvmpipe(benchmark::State& state, bool with_depth) {
         state.SkipWithError(p.problem.c_str());
         return;
     }
-    time_peer(state, area, prepare_peer(area, with_depth));
+    time_peer(state, area, prepare_peer(area, with_depth), with_depth, background,
+              reference_frame(area, with_depth));
 }
 
 /// The one drawing callgrind counts (see the top of the file).
 extern "C" __attribute__((noinline)) void
 ch09_draw_once(const std::function<void()>& draw) {
     draw();
-}
-
-/// --compare=AREA: draws the flat set of AREA with the teaching path and with llvmpipe
-/// into cleared frames and prints how many pixels differ (the same work on both sides
-/// means nearly the same pixels: only centres exactly on an edge may go either way).
-int compare(int area) {
-    if (std::find(std::begin(areas), std::end(areas), area) == std::end(areas) ||
-        peer().context == nullptr) {
-        std::fprintf(stderr, "bench_ch09_fast: cannot compare area %d\n", area);
-        return 2;
-    }
-    std::fill(frame().colour.begin(), frame().colour.end(), rgba(0, 0, 0));
-    draw_reference(frame().target(false), triangles(area));
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    glDrawArrays(GL_TRIANGLES, 0, prepare_peer(area, false));
-    glFinish();
-    std::int64_t differ = 0, drawn = 0;
-    const auto& gl = peer().pixels;
-    for (std::size_t i = 0; i < frame().colour.size(); ++i) {
-        const Rgba8 ours = frame().colour[i];
-        drawn += ours != rgba(0, 0, 0);
-        differ +=
-            ours.r != gl[4 * i] || ours.g != gl[4 * i + 1] || ours.b != gl[4 * i + 2];
-    }
-    std::printf(
-        "area %d: %lld pixels drawn by the teaching path, %lld differ in llvmpipe's "
-        "frame\n",
-        area, static_cast<long long>(drawn), static_cast<long long>(differ));
-    return 0;
 }
 
 /// --compare-textured=AREA: draws the textured set of AREA into cleared frames (alpha 0;
@@ -570,10 +702,7 @@ int draw_once(const std::string& name) {
     if (mode == "textured") {
         if (variant == "llvmpipe" && peer().context != nullptr) {
             const GLsizei vertices = prepare_textured_peer(area);
-            draw = [vertices] {
-                glDrawArrays(GL_TRIANGLES, 0, vertices);
-                glFinish();
-            };
+            draw = [vertices] { peer_frame(vertices, false); };
         } else if (variant == "teaching" || variant == "runs") {
             draw = [=] {
                 draw_textured_set(variant == "runs" ? TexturedVariant::runs
@@ -587,21 +716,30 @@ int draw_once(const std::string& name) {
             return 2;
         }
         const GLsizei vertices = prepare_peer(area, with_depth);
-        draw = [vertices] {
-            glDrawArrays(GL_TRIANGLES, 0, vertices);
-            glFinish();
-        };
+        draw = [vertices, with_depth] { peer_frame(vertices, with_depth); };
     } else if (variants.count(variant) != 0) {
-        draw = [=, v = variants.at(variant)] { draw_set(v, with_depth, area, 1); };
+        draw = [=, v = variants.at(variant)] {
+            draw_set(v, frame().target(with_depth), area, 1);
+        };
     }
     if (!draw || (mode != "flat" && mode != "depth" && mode != "textured") ||
-        std::find(std::begin(areas), std::end(areas), area) == std::end(areas)) {
+        std::find(std::begin(timed_areas), std::end(timed_areas), area) ==
+            std::end(timed_areas)) {
         std::fprintf(stderr, "bench_ch09_fast: unknown run %s\n", name.c_str());
         return 2;
     }
-    draw(); // the first pass fills the depth buffer and compiles llvmpipe's code
+    draw(); // the first frame compiles llvmpipe's code
     ch09_draw_once(draw);
     return 0;
+}
+
+/// llvmpipe's run name: "llvmpipe", or "llvmpipe_CAPS" when GALLIUM_OVERRIDE_CPU_CAPS
+/// limits the instructions it may generate to CAPS (Mesa reads it once per process, so
+/// full_run.sh measures llvmpipe restricted to SSE4.1, 128-bit vectors, in a process of
+/// its own, beside its default: the difference is what its wider vectors give it).
+std::string peer_name() {
+    const char* caps = std::getenv("GALLIUM_OVERRIDE_CPU_CAPS");
+    return caps != nullptr ? std::string("llvmpipe_") + caps : std::string("llvmpipe");
 }
 
 void register_all() {
@@ -619,7 +757,7 @@ void register_all() {
             if (depth && variant == Variant::plain) {
                 continue;
             }
-            for (const int area : areas) {
+            for (const int area : timed_areas) {
                 benchmark::RegisterBenchmark(
                     (mode + name).c_str(),
                     [variant, depth](benchmark::State& s) { project(s, variant, depth); })
@@ -627,9 +765,9 @@ void register_all() {
                     ->MeasureProcessCPUTime();
             }
         }
-        for (const int area : areas) {
+        for (const int area : timed_areas) {
             benchmark::RegisterBenchmark(
-                (mode + "llvmpipe").c_str(),
+                (mode + peer_name()).c_str(),
                 [depth](benchmark::State& s) { llvmpipe(s, depth); })
                 ->Args({area, peer_threads})
                 ->MeasureProcessCPUTime();
@@ -637,7 +775,7 @@ void register_all() {
     }
     // Threads: wall-clock time of the tiled renderer with 1 and 2 threads, kept and
     // started per call, and of llvmpipe with this process's LP_NUM_THREADS.
-    for (const int area : areas) {
+    for (const int area : timed_areas) {
         for (const int threads : {1, 2}) {
             for (const auto& [name, variant] :
                  {std::pair{"wall/tiled", Variant::tiled},
@@ -661,7 +799,7 @@ void register_all() {
 void register_textured() {
     for (const auto& [name, variant] : {std::pair{"teaching", TexturedVariant::teaching},
                                         std::pair{"runs", TexturedVariant::runs}}) {
-        for (const int area : areas) {
+        for (const int area : timed_areas) {
             benchmark::RegisterBenchmark((std::string("textured/") + name).c_str(),
                                          [variant = variant](benchmark::State& s) {
                                              project_textured(s, variant);
@@ -672,7 +810,7 @@ void register_textured() {
     }
     const char* lp = std::getenv("LP_NUM_THREADS");
     const int peer_threads = lp != nullptr ? std::atoi(lp) : 1;
-    for (const int area : areas) {
+    for (const int area : timed_areas) {
         benchmark::RegisterBenchmark("textured/llvmpipe", llvmpipe_textured)
             ->Args({area, peer_threads})
             ->MeasureProcessCPUTime();
@@ -698,8 +836,9 @@ int main(int argc, char** argv) {
             for (const char* mode : {"flat", "depth"}) {
                 for (const char* v :
                      {"walk", "blocks", "runs", "masks", "tiled", "llvmpipe"}) {
-                    for (const int area : areas) {
-                        std::printf("%s/%s/%d %d\n", mode, v, area, triangle_count);
+                    for (const int area : timed_areas) {
+                        std::printf("%s/%s/%d %d\n", mode, v, area,
+                                    area == empty_set ? 0 : triangle_count);
                     }
                 }
             }
@@ -707,9 +846,6 @@ int main(int argc, char** argv) {
         }
         if (arg.rfind("--compare-textured=", 0) == 0) {
             return compare_textured(std::atoi(arg.c_str() + 19));
-        }
-        if (arg.rfind("--compare=", 0) == 0) {
-            return compare(std::atoi(arg.c_str() + 10));
         }
         if (arg.rfind("--once=", 0) == 0) {
             return draw_once(arg.substr(7));

@@ -194,9 +194,10 @@ void write_error_tables(const fs::path& folder) {
         table << fmt::format("| {} | {:.4f} | {:.5f} | {:.2f} | {:.3f} |\n", r, a, q,
                              64 * a, 64 * q);
     }
-    table << "\n: Worst error over one span whose ends have depth ratio $r$: affine "
-             "(@eq:affine-bound) and quadratic (@eq:quadratic-error, maximised "
-             "numerically). {#tbl:span-error}\n";
+    table
+        << "\n: Worst error over one span whose ends are exact and have depth ratio $r$: "
+           "affine (@eq:affine-bound) and quadratic (@eq:quadratic-error, maximised "
+           "numerically). {#tbl:span-error}\n";
 
     write_figure_file(folder / "ch03_error_table.md", table.str());
 
@@ -211,8 +212,10 @@ void write_error_tables(const fs::path& folder) {
                               std::isinf(q) ? std::string("any")
                                             : fmt::format("{:.3f}", q));
     }
-    limits << "\n: The largest depth ratio $r$ over one span for which each mapper stays "
-              "within half a texel of the exact coordinate. {#tbl:span-limit}\n";
+    limits
+        << "\n: The largest depth ratio $r$ over one span with exact ends for which each "
+           "mapper stays within half a texel of the exact coordinate. "
+           "{#tbl:span-limit}\n";
     write_figure_file(folder / "ch03_limit_table.md", limits.str());
 }
 } // namespace

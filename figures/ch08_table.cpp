@@ -8,9 +8,15 @@
 //   ch08_levels.md        per scene: minified pixels, the level errors of the per-span
 //                         and per-triangle derivatives (worst, mean, pixels whose
 //                         mip level changes) and the largest per-span bound
-//   ch08_facts.txt        the same as facts (SCENE_span_worst 0.01 ...) and every
-//                         filter's error (SCENE_error_FILTER, minified pixels) for claims
+//   ch08_facts.txt        the same as facts (SCENE_span_worst 0.01 ...), every
+//                         filter's error (SCENE_error_FILTER, minified pixels) for
+//                         claims, and, on scenes with minified pixels, how far the book's
+//                         first reference (a regular 32 x 32 grid of samples) is from the
+//                         exact one there: its worst pixel (SCENE_grid_worst_pixel,
+//                         codes) and the largest change of a filter's error
+//                         (SCENE_grid_shift)
 //   ch08_table_SCENE.dat  ratio, error, front flag, name (for gnuplot)
+//   ch08_table_SCENE_front.dat  ratio and error of the front's filters, by ratio
 // The reference images are computed here, once per build (filter_measure.hpp); every
 // error is deterministic, only the times move from run to run.
 #include "exactpixels/base/error.hpp"
@@ -21,8 +27,10 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -123,6 +131,7 @@ int main(int argc, char** argv) try {
         const std::vector<bool> minified = minified_pixels(fs);
         const auto n_minified = std::count(minified.begin(), minified.end(), true);
         std::vector<Row> rows;
+        std::vector<std::vector<LinearTexel>> images;
         for (const FilterConfig& c : filter_configs()) {
             std::string name = scene.name + "/" + c.name;
             std::replace(name.begin(), name.end(), ' ', '_');
@@ -130,7 +139,8 @@ int main(int argc, char** argv) try {
             if (at == times.end()) {
                 throw Error(fmt::format("bench_ch08_filters.csv: no run named {}", name));
             }
-            const std::vector<LinearTexel> image = filter_image(fs, c);
+            const std::vector<LinearTexel>& image =
+                images.emplace_back(filter_image(fs, c));
             const double all = rms_code_error(image, reference);
             rows.push_back(
                 {c.name, at->second, 0,
@@ -139,6 +149,34 @@ int main(int argc, char** argv) try {
         }
         for (Row& r : rows) {
             r.ratio = r.ns_per_px / rows.front().ns_per_px; // nearest, same run
+        }
+        if (n_minified > 0) { // the first edition's reference against the exact one
+            const std::vector<LinearTexel> grid =
+                sampled_reference_image(fs, 32, SamplePattern::grid, minified);
+            int worst = 0;
+            for (std::size_t k = 0; k < grid.size(); ++k) {
+                const Rgba8 a = encode_linear(grid[k]), b = encode_linear(reference[k]);
+                if (minified[k]) {
+                    worst = std::max({worst, std::abs(a.r - b.r), std::abs(a.g - b.g),
+                                      std::abs(a.b - b.b)});
+                }
+            }
+            double shift = 0.0;
+            std::vector<double> on_grid;
+            for (std::size_t c = 0; c < rows.size(); ++c) {
+                on_grid.push_back(rms_code_error(images[c], grid, minified));
+                shift = std::max(shift, std::abs(on_grid.back() - rows[c].error));
+            }
+            int reversed = 0; // pairs of filters in another order against the grid
+            for (std::size_t a = 0; a < rows.size(); ++a) {
+                for (std::size_t b = 0; b < rows.size(); ++b) {
+                    reversed +=
+                        rows[a].error < rows[b].error && !(on_grid[a] < on_grid[b]);
+                }
+            }
+            facts += fmt::format("{0}_grid_worst_pixel {1}\n{0}_grid_shift {2:.6g}\n"
+                                 "{0}_grid_reversed {3}\n",
+                                 scene.name, worst, shift, reversed);
         }
         mark_front(rows);
         table +=
@@ -161,6 +199,16 @@ int main(int argc, char** argv) try {
                                int(r.front), r.filter);
         }
         write(folder / ("ch08_table_" + scene.name + ".dat"), dat);
+        std::vector<Row> front;
+        std::copy_if(rows.begin(), rows.end(), std::back_inserter(front),
+                     [](const Row& r) { return r.front; });
+        std::sort(front.begin(), front.end(),
+                  [](const Row& a, const Row& b) { return a.ratio < b.ratio; });
+        std::string front_dat = "# ratio error (the Pareto front, by time)\n";
+        for (const Row& r : front) {
+            front_dat += fmt::format("{:.4f} {:.4f}\n", r.ratio, r.error);
+        }
+        write(folder / ("ch08_table_" + scene.name + "_front.dat"), front_dat);
         const LevelErrors span = level_errors(fs, Derivatives::per_span);
         const LevelErrors tri = level_errors(fs, Derivatives::per_triangle);
         levels += fmt::format(

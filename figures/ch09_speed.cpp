@@ -3,7 +3,10 @@
 // naming machine and date): ch09_speed_flat.dat and ch09_speed_depth.dat (millions of
 // pixels per second against area, one column per variant, for ch09_speed.gp),
 // ch09_speed_textured.dat (the same for the textured run: teaching path, runs, llvmpipe),
-// ch09_table.md (the same numbers and the ratio to llvmpipe), ch09_targets.md (each
+// ch09_table.md (the same numbers and the ratio to llvmpipe), ch09_fixed.md (the fixed
+// cost of an empty frame on each side, subtracted from every rate: chapter 9's
+// measurement protocol), ch09_speed_facts.txt (the main run's ratios for the
+// chapter's sentences), ch09_targets.md (each
 // target of the chapter, met or not, with the numbers that decide it) and
 // ch09_instructions.md (instructions per triangle from data/ch09_instructions.csv),
 // ch09_textured.md (the textured run, data/ch09_textured.csv: the teaching path, the
@@ -33,11 +36,19 @@ namespace {
 const int areas[] = {3, 15, 80, 1000, 65536};
 const char* const project_variants[] = {"walk", "blocks", "runs", "masks", "tiled"};
 
-/// Triangles per second of MODE/VARIANT/AREA (one core, process CPU time).
+/// `counter` of MODE/VARIANT/AREA (one core, process CPU time) net of the fixed cost of
+/// its frame: the same run at area 0, a frame with nothing in it (chapter 9's protocol).
+double net(const BenchmarkRuns& r, const std::string& mode, const std::string& variant,
+           int area, const std::string& counter) {
+    return r.net_rate(fmt::format("{}/{}/{}/1/process_time", mode, variant, area),
+                      fmt::format("{}/{}/0/1/process_time", mode, variant), counter,
+                      "cpu_time");
+}
+
+/// Triangles per second of MODE/VARIANT/AREA, the frame's fixed cost subtracted.
 double rate(const BenchmarkRuns& r, const std::string& mode, const std::string& variant,
             int area) {
-    return r.value(fmt::format("{}/{}/{}/1/process_time", mode, variant, area),
-                   "tri_per_s");
+    return net(r, mode, variant, area, "tri_per_s");
 }
 
 /// The fastest project variant at `area` and its rate.
@@ -53,11 +64,18 @@ std::pair<std::string, double> best(const BenchmarkRuns& r, const std::string& m
     return b;
 }
 
+/// Triangles per second of wall/VARIANT/AREA/THREADS (wall clock).
+double wall_rate(const BenchmarkRuns& r, const std::string& variant, int area,
+                 int threads) {
+    return r.net_rate(fmt::format("wall/{}/{}/{}/real_time", variant, area, threads),
+                      fmt::format("wall/{}/0/{}/real_time", variant, threads),
+                      "tri_per_s", "real_time");
+}
+
 /// Pixels per second of MODE/VARIANT/AREA (one core).
 double pixel_rate(const BenchmarkRuns& r, const std::string& mode,
                   const std::string& variant, int area) {
-    return r.value(fmt::format("{}/{}/{}/1/process_time", mode, variant, area),
-                   "pix_per_s");
+    return net(r, mode, variant, area, "pix_per_s");
 }
 
 void write_dat(const BenchmarkRuns& r, const std::string& mode,
@@ -108,10 +126,7 @@ void write_textured_dat(const BenchmarkRuns& t, const std::filesystem::path& pat
     for (const int area : areas) {
         out << area;
         for (const char* v : {"teaching", "runs", "llvmpipe"}) {
-            out << ' '
-                << t.value(fmt::format("textured/{}/{}/1/process_time", v, area),
-                           "pix_per_s") /
-                       1e6;
+            out << ' ' << net(t, "textured", v, area, "pix_per_s") / 1e6;
         }
         out << '\n';
     }
@@ -120,8 +135,7 @@ void write_textured_dat(const BenchmarkRuns& t, const std::filesystem::path& pat
 
 /// Triangles per second of textured/VARIANT/AREA in the textured run (one core).
 double textured_rate(const BenchmarkRuns& t, const std::string& variant, int area) {
-    return t.value(fmt::format("textured/{}/{}/1/process_time", variant, area),
-                   "tri_per_s");
+    return net(t, "textured", variant, area, "tri_per_s");
 }
 
 /// The textured run's table: Mtri/s and Mpix/s of each side, runs over llvmpipe and
@@ -136,9 +150,7 @@ std::string textured_table(const BenchmarkRuns& t) {
         const double runs = textured_rate(t, "runs", area);
         const double peer = textured_rate(t, "llvmpipe", area);
         const auto pixels = [&](const char* v) {
-            return t.value(fmt::format("textured/{}/{}/1/process_time", v, area),
-                           "pix_per_s") /
-                   1e6;
+            return net(t, "textured", v, area, "pix_per_s") / 1e6;
         };
         md += fmt::format("| {} | {:.3g} | {:.3g} | {:.3g} | {:.0f} | {:.0f} | {:.2f} | "
                           "{:.2f} |\n",
@@ -236,8 +248,8 @@ std::string targets(const BenchmarkRuns& r, const BenchmarkRuns& t) {
         "- At least 3x llvmpipe with perspective-correct nearest texturing, "
         "one thread each: {} (textured runs, {}; the separate textured run).\n",
         met(three), textured_detail);
-    const double one = r.value("wall/tiled/1000/1/real_time", "tri_per_s");
-    const double two = r.value("wall/tiled/1000/2/real_time", "tri_per_s");
+    const double one = wall_rate(r, "tiled", 1000, 1);
+    const double two = wall_rate(r, "tiled", 1000, 2);
     md += fmt::format("- Two threads at least 1.8x one thread at 1000 px: {} ({:.2f}x, "
                       "wall clock).\n",
                       met(two >= 1.8 * one), two / one);
@@ -269,12 +281,6 @@ std::string instruction_table(const BenchmarkRuns& r) {
 /// renderer's rate over llvmpipe's with one thread each (process CPU time), in both
 /// modes; the tiled renderer's wall-clock rate with two threads over one; and the
 /// instructions per triangle of runs, masks and llvmpipe at 1000 px (callgrind).
-/// Triangles per second of wall/VARIANT/AREA/THREADS (wall clock).
-double wall_rate(const BenchmarkRuns& r, const std::string& variant, int area, int threads) {
-    return r.value(fmt::format("wall/{}/{}/{}/real_time", variant, area, threads),
-                   "tri_per_s");
-}
-
 std::string thread_facts(const BenchmarkRuns& r, const BenchmarkRuns& instructions) {
     std::string facts = "# chapter 9, Exercise 4: what the committed runs can say\n";
     for (const std::string mode : {"flat", "depth"}) {
@@ -288,10 +294,16 @@ std::string thread_facts(const BenchmarkRuns& r, const BenchmarkRuns& instructio
                                  instructions.value(fmt::format("{}/{}/1000", mode, v),
                                                     "instructions_per_triangle"));
         }
+        for (const char* v : {"walk", "llvmpipe"}) {
+            facts += fmt::format("{}_{}_instructions_3 {:.1f}\n", mode, v,
+                                 instructions.value(fmt::format("{}/{}/3", mode, v),
+                                                    "instructions_per_triangle"));
+        }
     }
     for (const int area : {80, 1000, 65536}) {
-        facts += fmt::format("wall_two_over_one_{} {:.4f}\n", area,
-                             wall_rate(r, "tiled", area, 2) / wall_rate(r, "tiled", area, 1));
+        facts +=
+            fmt::format("wall_two_over_one_{} {:.4f}\n", area,
+                        wall_rate(r, "tiled", area, 2) / wall_rate(r, "tiled", area, 1));
         facts += fmt::format("wall_llvmpipe_two_over_one_{} {:.4f}\n", area,
                              wall_rate(r, "llvmpipe", area, 2) /
                                  wall_rate(r, "llvmpipe", area, 1));
@@ -307,11 +319,13 @@ std::string thread_facts(const BenchmarkRuns& r, const BenchmarkRuns& instructio
 /// The threads table: wall-clock Mtri/s of the kept tiled renderer and of llvmpipe
 /// (its own process per thread count) on one and two threads, and the ratios.
 std::string thread_table(const BenchmarkRuns& r) {
-    std::string md = "| area (px) | tiled, 1 thread | 2 threads | 2 / 1 | llvmpipe, 1 thread "
-                     "| 2 threads | 2 / 1 | tiled / llvmpipe, 2 threads |\n"
-                     "|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+    std::string md =
+        "| area (px) | tiled, 1 thread | 2 threads | 2 / 1 | llvmpipe, 1 thread "
+        "| 2 threads | 2 / 1 | tiled / llvmpipe, 2 threads |\n"
+        "|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const int area : areas) {
-        const double t1 = wall_rate(r, "tiled", area, 1), t2 = wall_rate(r, "tiled", area, 2);
+        const double t1 = wall_rate(r, "tiled", area, 1),
+                     t2 = wall_rate(r, "tiled", area, 2);
         const double p1 = wall_rate(r, "llvmpipe", area, 1),
                      p2 = wall_rate(r, "llvmpipe", area, 2);
         md += fmt::format("| {} | {:.3g} | {:.3g} | {:.2f} | {:.3g} | {:.3g} | {:.2f} | "
@@ -330,6 +344,79 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
     write_figure_file(path, text);
 }
 
+/// The main run's facts, one "NAME VALUE" per line, for the chapter's sentences: the
+/// best variant's rate over llvmpipe's (MODE_AREA), the walk's and the runs' over
+/// llvmpipe's, the runs' share of a plain fill at 65536 px, the fixed cost's share of
+/// each side's 3 px frame, and llvmpipe's default (AVX) rate over its rate held to
+/// SSE4.1 at 80 and 1000 px. Every rate is net of the frame's fixed cost.
+std::string speed_facts(const BenchmarkRuns& r) {
+    std::string facts = "# chapter 9: the committed main run (net rates)\n";
+    const auto frame_time = [&](const std::string& mode, const std::string& v, int area) {
+        return r.value(fmt::format("{}/{}/{}/1/process_time", mode, v, area), "cpu_time");
+    };
+    for (const std::string mode : {"flat", "depth"}) {
+        for (const int area : areas) {
+            const double peer = rate(r, mode, "llvmpipe", area);
+            facts += fmt::format("best_over_llvmpipe_{}_{} {:.4f}\n", mode, area,
+                                 best(r, mode, area).second / peer);
+            for (const char* v : project_variants) {
+                facts += fmt::format("{}_over_llvmpipe_{}_{} {:.4f}\n", v, mode, area,
+                                     rate(r, mode, v, area) / peer);
+                facts +=
+                    fmt::format("{}_over_walk_{}_{} {:.4f}\n", v, mode, area,
+                                rate(r, mode, v, area) / rate(r, mode, "walk", area));
+            }
+        }
+        for (const char* v : {"runs", "llvmpipe"}) {
+            facts += fmt::format("fixed_share_{}_{}_3 {:.4f}\n", v, mode,
+                                 frame_time(mode, v, 0) / frame_time(mode, v, 3));
+            facts += fmt::format("fixed_us_{}_{} {:.2f}\n", v, mode,
+                                 frame_time(mode, v, 0) / 1e3);
+        }
+        for (const int area : {80, 1000}) {
+            facts += fmt::format("llvmpipe_avx_over_sse41_{}_{} {:.4f}\n", mode, area,
+                                 rate(r, mode, "llvmpipe", area) /
+                                     rate(r, mode, "llvmpipe_sse4.1", area));
+        }
+    }
+    facts +=
+        fmt::format("runs_over_plain_65536 {:.4f}\n",
+                    rate(r, "flat", "runs", 65536) / rate(r, "flat", "plain", 65536));
+    facts +=
+        fmt::format("blocks_over_plain_65536 {:.4f}\n",
+                    rate(r, "flat", "blocks", 65536) / rate(r, "flat", "plain", 65536));
+    facts += fmt::format("best_flat_3_mtri {:.2f}\n", best(r, "flat", 3).second / 1e6);
+    return facts;
+}
+
+/// The fixed costs table: microseconds of a frame with nothing in it (area 0) for each
+/// side and mode, and its share of the 3 px set's frame, which every rate of the
+/// chapter has subtracted.
+std::string fixed_table(const BenchmarkRuns& r, const BenchmarkRuns& t) {
+    std::string md =
+        "| frame | ours, runs (us) | share at 3 px | llvmpipe (us) | share at "
+        "3 px |\n|:--|--:|--:|--:|--:|\n";
+    const auto row = [&](const BenchmarkRuns& runs, const std::string& mode) {
+        std::string cells = fmt::format("| {} |", mode);
+        for (const char* v : {"runs", "llvmpipe"}) {
+            const auto time = [&](int area) {
+                return runs.value(fmt::format("{}/{}/{}/1/process_time", mode, v, area),
+                                  "cpu_time");
+            };
+            cells += fmt::format(" {:.1f} | {:.0f} % |", time(0) / 1e3,
+                                 100.0 * time(0) / time(3));
+        }
+        return cells + "\n";
+    };
+    md += row(r, "flat") + row(r, "depth") + row(t, "textured");
+    md += "\n: The fixed cost of a frame in the committed runs: the CPU time of a frame "
+          "with nothing in it (ours: the depth clear; llvmpipe: the depth clear and the "
+          "copy of its frame into the caller's at glFinish), and its share of the frame "
+          "of 1024 triangles of 3 px. Every rate in this chapter has it subtracted. "
+          "{#tbl:ch09-fixed}\n";
+    return md;
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
@@ -345,6 +432,8 @@ int main(int argc, char** argv) {
             read_benchmark_csv(std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
                                "chapters/09-fast-pixels/data/ch09_textured.csv");
         write_text(folder / "ch09_targets.md", targets(r, textured));
+        write_text(folder / "ch09_fixed.md", fixed_table(r, textured));
+        write_text(folder / "ch09_speed_facts.txt", speed_facts(r));
         write_text(folder / "ch09_textured.md", textured_table(textured));
         write_textured_dat(textured, folder / "ch09_speed_textured.dat");
         const BenchmarkRuns compare =

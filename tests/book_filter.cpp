@@ -40,10 +40,11 @@ struct FixtureBook {
                               "    }\n"
                               "//< answer\n"
                               "int after;\n");
-        write("tests/ch07_demo.cpp",
-              "TEST_CASE(\"the answer is 42\") {}\n"
-              "TEST_CASE(\n"
-              "    \"a name too long for one line\" * points) {}\n");
+        write("tests/ch07_demo.cpp", "TEST_CASE(\"the answer is 42\") {}\n"
+                                     "TEST_CASE(\n"
+                                     "    \"a name too long for one line\" * points) {}\n"
+                                     "TEST_CASE(\"a name split by clang-format into \"\n"
+                                     "          \"two string literals\") {}\n");
     }
     ~FixtureBook() { fs::remove_all(root); }
 
@@ -174,6 +175,12 @@ TEST_CASE("a named test must exist in the named file") {
         title + "[a name too long for one line]{.test file=\"tests/ch07_demo.cpp\"}\n");
     CHECK(wrapped.exit_code == 0);
     CHECK(wrapped.out.find("ch07_demo.cpp.html#src-2") != std::string::npos);
+    // or split it into adjacent string literals, which C++ joins.
+    const auto split =
+        book.render(title + "[a name split by clang-format into two string "
+                            "literals]{.test file=\"tests/ch07_demo.cpp\"}\n");
+    CHECK(split.exit_code == 0);
+    CHECK(split.out.find("ch07_demo.cpp.html#src-4") != std::string::npos);
 }
 
 TEST_CASE("in LaTeX a named test is set in the lighter \\eptest face, in HTML a link") {
@@ -282,6 +289,86 @@ TEST_CASE("the contents page lists every chapter and numbered section with links
           std::string::npos);
 }
 
+TEST_CASE("a chapter's summary stands before its exercises, a box in HTML and LaTeX") {
+    FixtureBook book;
+    const std::string summary = "::: summary\n- what was derived\n:::\n\n";
+    const std::string body = "## Part\n\nText.\n\n";
+    const std::string exercises = "## Exercises\n\nDo.\n";
+    // HTML: a div the stylesheet heads "In short"; LaTeX: the epsummary environment.
+    const auto html = book.render(title + body + summary + exercises);
+    REQUIRE(html.exit_code == 0);
+    CHECK(html.out.find("<div class=\"summary\">") != std::string::npos);
+    book.write("chapters/07-demo/chapter.md", title + body + summary + exercises);
+    const auto latex =
+        book.run_filter("chapters/07-demo/chapter.md", "latex", "EP_CHAPTERS=07-demo");
+    REQUIRE(latex.exit_code == 0);
+    const auto begin = latex.out.find("\\begin{epsummary}");
+    const auto item = latex.out.find("what was derived");
+    const auto end = latex.out.find("\\end{epsummary}");
+    CHECK(begin < item);
+    CHECK(item < end);
+    CHECK(end < latex.out.find("Exercises"));
+    // Missing, misplaced or doubled, it fails naming the chapter file and line.
+    const auto missing = book.render(title + body + exercises);
+    CHECK(missing.exit_code != 0);
+    CHECK(missing.err.find("chapters/07-demo/chapter.md:13: error:") !=
+          std::string::npos);
+    CHECK(missing.err.find("::: summary") != std::string::npos);
+    const auto early = book.render(title + summary + body + exercises);
+    CHECK(early.exit_code != 0);
+    CHECK(early.err.find("directly before") != std::string::npos);
+    CHECK(book.render(title + body + summary + summary + exercises).exit_code != 0);
+    CHECK(book.render(title + body + exercises + summary).exit_code != 0);
+    CHECK(book.render(title + body + summary).exit_code != 0);
+    // A chapter without exercises (a fixture, a draft) needs none.
+    CHECK(book.render(title + body).exit_code == 0);
+}
+
+TEST_CASE(
+    "fence text that would reach the page fails naming its lines, in both editions") {
+    FixtureBook book;
+    const auto has = [](const std::string& text, const std::string& what) {
+        return text.find(what) != std::string::npos;
+    };
+    // Chapter 3's erratum box as it was: its closing fence shared a line with the next
+    // paragraph, so Pandoc read no box and the page showed "::: erratum ... ::: The".
+    const auto broken = book.render(title + "::: erratum\n"               // line 9
+                                            "The source is wrong here.\n" // line 10
+                                            "::: The parabola $u$ through\n"
+                                            "three points.\n");
+    CHECK(broken.exit_code != 0);
+    CHECK(has(broken.err, "chapters/07-demo/chapter.md:9: error: fence text reaches the "
+                          "page: '::: erratum The source"));
+    CHECK(has(broken.err, "chapters/07-demo/chapter.md:11: error: fence text reaches the "
+                          "page: '::: The parabola'"));
+    // Closed on a line of its own, the same box is a box and no fence shows.
+    const auto fixed =
+        book.render(title + "::: erratum\nThe source is wrong here.\n:::\n\n"
+                            "The parabola $u$ through\nthree points.\n");
+    REQUIRE(fixed.exit_code == 0);
+    CHECK(has(fixed.out, "class=\"erratum\""));
+    CHECK_FALSE(has(fixed.out, ":::"));
+    // A code fence left in a line of text, and a broken fence inside a solution (which
+    // the student book drops, the teacher's edition shows): both fail.
+    const auto stray = book.render(title + "A stray ```{.text} fence.\n");
+    CHECK(stray.exit_code != 0);
+    CHECK(
+        has(stray.err, "chapter.md:9: error: fence text reaches the page: '```{.text}"));
+    const auto in_solution =
+        book.render(title + "## Exercises\n\n"
+                            "1. []{.exercise kind=derive marks=1} Do.\n\n"
+                            "   ::: solution\n"
+                            "   Done.\n"
+                            "   ::: Then more.\n");
+    CHECK(in_solution.exit_code != 0);
+    CHECK(has(in_solution.err,
+              "chapter.md:15: error: fence text reaches the page: '::: Then"));
+    // Fences in code are code, not fence text.
+    const auto code = book.render(title + "Open one with `::: solution`.\n\n"
+                                          "```{.text}\n::: shown as typed\n```\n");
+    CHECK(code.exit_code == 0);
+}
+
 TEST_CASE("a page that is not a chapter reports errors with its own file name") {
     FixtureBook book;
     book.write("page.md", "# A page\n\nSee @sec:nowhere.\n");
@@ -290,13 +377,20 @@ TEST_CASE("a page that is not a chapter reports errors with its own file name") 
     CHECK(result.exit_code != 0);
     CHECK(result.err.find("page.md:3: error:") != std::string::npos);
     CHECK(result.err.find("sec:nowhere") != std::string::npos);
+    book.write("page.md", "# A page\n\n::: note\nText.\n::: More text.\n");
+    const auto fence = book.run_filter(
+        "page.md", "html", "EP_PAGE='" + (book.root / "page.md").string() + "'");
+    CHECK(fence.exit_code != 0);
+    CHECK(fence.err.find("page.md:5: error: fence text reaches the page: '::: More "
+                         "text.'") != std::string::npos);
 }
 
 TEST_CASE("headings without an explicit label may repeat from chapter to chapter") {
     FixtureBook book;
     fs::create_directories(book.root / "chapters" / "08-more");
     book.write("chapters/08-more/chapter.md", "# More\n\n## Exercises\n\nDo.\n");
-    book.write("chapters/07-demo/chapter.md", title + "## Exercises\n\nDo.\n");
+    book.write("chapters/07-demo/chapter.md",
+               title + "::: summary\n- it is a demo\n:::\n\n## Exercises\n\nDo.\n");
     const auto result = book.run_filter("chapters/07-demo/chapter.md", "html",
                                         "EP_CHAPTERS=07-demo", "07-demo 08-more");
     CHECK(result.exit_code == 0);

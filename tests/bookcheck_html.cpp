@@ -149,6 +149,12 @@ BookReport check_html_book(const fs::path& book, const fs::path& screenshots) {
                 report.problems.push_back(
                     name + ": unnumbered section heading in a chapter: " + heading.str());
             }
+            for (const auto& line : r["fences"].array) {
+                report.problems.push_back(
+                    name +
+                    ": fence text on the page (a ::: or ``` fence not read as one): " +
+                    line.str());
+            }
             auto& ids = ids_of[page];
             for (const auto& id : r["ids"].array) {
                 ids.insert(id.str());
@@ -245,6 +251,9 @@ struct BrokenBook {
                    "<mi>b</mi></mfrac></math></p><p>(1)</p></div>"
                    "<table><tr><td>subdivided-16-fixed-rule</td><td>two "
                    "words</td></tr></table>"
+                   // chapter 3's erratum box as it once reached the page
+                   "<p>::: erratum\nThe source's listing is wrong.\n::: The parabola "
+                   "<math><mi>u</mi></math> through</p>"
                    "<script>console.error('a console error')</script>"
                    "</body></html>\n";
         std::ofstream(root / "fine.html")
@@ -254,7 +263,9 @@ struct BrokenBook {
                "<h2><span class=\"secnum\">1.1</span> A section</h2>"
                "<table><tr><td>fixed</td><td>1.25</td></tr></table>"
                "<p id=\"here\">A fine page with <math><mi>x</mi></math> and "
-               "<a href=\"broken.html\">a link</a>.</p><pre>short</pre></body></html>\n";
+               "<a href=\"broken.html\">a link</a>.</p><pre>short\n::: in a listing</pre>"
+               "<p>Open a box with <code>::: erratum</code>,\n<code>:::</code> closes "
+               "it.</p></body></html>\n";
     }
     ~BrokenBook() { fs::remove_all(root); }
 };
@@ -286,6 +297,9 @@ TEST_CASE("the browser check catches each fault a reader would see") {
     CHECK(mentions(report.problems, "broken.html",
                    "unnumbered section heading in a chapter: Exercises"));
     CHECK_FALSE(mentions(report.problems, "broken.html", "chapter: 1.1"));
+    CHECK(mentions(report.problems, "broken.html", "fence text on the page"));
+    CHECK(mentions(report.problems, "broken.html", "::: erratum"));
+    CHECK(mentions(report.problems, "broken.html", "::: The parabola"));
     // The clean page has no problem, and both first screens were saved.
     CHECK_FALSE(
         std::any_of(report.problems.begin(), report.problems.end(),

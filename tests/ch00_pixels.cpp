@@ -31,7 +31,10 @@ TEST_CASE("pixel centres sit at half-integer coordinates") {
     CHECK(pixel_centre(7, 3) == Point2{7.5, 3.5});
 }
 
-TEST_CASE("an integer edge meets a centre exactly when dx, dy share their power of two") {
+TEST_CASE("an integer edge meets a centre exactly when dx and dy have equal largest "
+          "powers of two") {
+    // dx = 2^a m and dy = 2^b n with m, n odd: the edge meets a centre exactly when both
+    // are non-zero and a == b, so (4, 2) does not, though 2 divides both; (4, 12) does.
     // Every edge between integer points of [-6, 6]^2, against every pixel centre near it,
     // in doubled coordinates so that the centre (i + 1/2, j + 1/2) is the odd integer
     // point (2i + 1, 2j + 1) and every test is exact.

@@ -4,6 +4,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/raster/gradients.hpp"
 #include "exactpixels/raster/scanline.hpp"
+#include "support/measured_facts.hpp"
 
 #include <doctest/doctest.h>
 
@@ -11,12 +12,14 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <random>
 #include <string>
 #include <vector>
 
 using namespace exactpixels;
+using exactpixels::testing::record_fact;
 
 namespace {
 
@@ -108,6 +111,20 @@ int covered(const Mask& m) {
     return n;
 }
 
+// The kind of the edge a-b of a triangle whose third vertex is c, from the definitions of
+// chapter 0 in exact integers: horizontal with c below (top) or above (bottom); otherwise
+// left when c lies to its right, right when c lies to its left.
+enum class EdgeKind { top, bottom, left, right };
+
+EdgeKind edge_kind(FixedPoint2 a, FixedPoint2 b, FixedPoint2 c) {
+    if (a.y == b.y) {
+        return c.y > a.y ? EdgeKind::top : EdgeKind::bottom;
+    }
+    // c right of the edge: the edge's x at c.y is less than c.x.
+    const std::int64_t right = (c.x - a.x) * (b.y - a.y) - (b.x - a.x) * (c.y - a.y);
+    return (right > 0) == (b.y > a.y) ? EdgeKind::left : EdgeKind::right;
+}
+
 // The top-left rule straight from its definition, in exact integer arithmetic on the
 // snapped vertices: for each edge a-b with third vertex c, the pixel centre p is on c's
 // side strictly, or exactly on the edge and the edge is a top edge (horizontal, c below)
@@ -129,12 +146,8 @@ bool top_left_inside(const std::array<FixedPoint2, 3>& v, int px, int py) {
             return false;
         }
         if (s == 0) {
-            const bool top = a.y == b.y && c.y > a.y;
-            // c right of the edge: the edge's x at c.y is less than c.x.
-            const std::int64_t right =
-                (c.x - a.x) * (b.y - a.y) - (b.x - a.x) * (c.y - a.y);
-            const bool left = a.y != b.y && ((right > 0) == (b.y > a.y));
-            if (!top && !left) {
+            const EdgeKind kind = edge_kind(a, b, c);
+            if (kind != EdgeKind::top && kind != EdgeKind::left) {
                 return false;
             }
         }
@@ -231,6 +244,73 @@ TEST_CASE("a triangle thinner than a pixel row covers what its centres say") {
 }
 // clang-format on
 
+TEST_CASE(
+    "a vertex on a pixel centre is drawn exactly when both its edges are top or left") {
+    // A vertex on a centre lies on two edges at once, so the rule for edges decides it
+    // twice. Every kind of tip occurs here: a top edge meeting a left or a right edge, a
+    // bottom edge meeting a left or a right edge, two left edges (a tip pointing left),
+    // two right edges (pointing right), and a left and a right edge meeting at the top or
+    // the bottom. Random triangles with every vertex on a pixel centre, all six vertex
+    // orders, both forms: the pixel under each vertex must be drawn exactly when both of
+    // its edges, classified from their definitions (edge_kind), are top or left edges.
+    const auto name = [](EdgeKind k) {
+        return k == EdgeKind::top      ? "top"
+               : k == EdgeKind::bottom ? "bottom"
+               : k == EdgeKind::left   ? "left"
+                                       : "right";
+    };
+    const std::array<std::string, 8> every_kind{
+        "top+left",  "top+right",   "bottom+left",    "bottom+right",
+        "left+left", "right+right", "left+right, up", "left+right, down"};
+    std::map<std::string, std::array<int, 2>> seen; // kind -> {tips, tips drawn}
+    std::mt19937_64 random(24);
+    std::uniform_int_distribution<int> centre(0, 11);
+    for (int trial = 0; trial < trials; ++trial) {
+        std::array<Point2, 3> v{};
+        for (Point2& p : v) {
+            p = {centre(random) + 0.5, centre(random) + 0.5};
+        }
+        const std::array<FixedPoint2, 3> f = snapped(v);
+        if ((f[1].x - f[0].x) * (f[2].y - f[0].y) ==
+            (f[1].y - f[0].y) * (f[2].x - f[0].x)) {
+            continue; // no area: no edges to speak of
+        }
+        for (int k = 0; k < 3; ++k) {
+            const FixedPoint2 tip = f[k], a = f[(k + 1) % 3], b = f[(k + 2) % 3];
+            std::array<EdgeKind, 2> kinds{edge_kind(tip, a, b), edge_kind(tip, b, a)};
+            std::sort(kinds.begin(), kinds.end());
+            std::string kind = std::string(name(kinds[0])) + "+" + name(kinds[1]);
+            if (kinds[0] == EdgeKind::left && kinds[1] == EdgeKind::right) {
+                kind += a.y > tip.y ? ", up" : ", down"; // the other two: below or above
+            }
+            const bool drawn =
+                (kinds[0] == EdgeKind::top || kinds[0] == EdgeKind::left) &&
+                (kinds[1] == EdgeKind::top || kinds[1] == EdgeKind::left);
+            ++seen[kind][0];
+            seen[kind][1] += drawn;
+            const int px = static_cast<int>(v[k].x), py = static_cast<int>(v[k].y);
+            std::array<int, 3> order{0, 1, 2};
+            do {
+                const std::array<Point2, 3> p{v[order[0]], v[order[1]], v[order[2]]};
+                INFO("tip (" << v[k].x << ", " << v[k].y << ") of kind " << kind
+                             << " in triangle (" << p[0].x << ", " << p[0].y << "), ("
+                             << p[1].x << ", " << p[1].y << "), (" << p[2].x << ", "
+                             << p[2].y << ")");
+                const char expected = drawn ? '#' : '.';
+                CHECK(rasterize(p, 12, 12)[std::size_t(py)][std::size_t(px)] == expected);
+                CHECK(rasterize(snapped(p), 12, 12)[std::size_t(py)][std::size_t(px)] ==
+                      expected);
+            } while (std::next_permutation(order.begin(), order.end()));
+        }
+    }
+    for (const std::string& kind : every_kind) {
+        INFO("tips of kind " << kind << ": " << seen[kind][0] << ", drawn "
+                             << seen[kind][1]);
+        CHECK(seen[kind][0] > 0); // every kind of tip was tried
+    }
+    CHECK(seen.size() == every_kind.size()); // and no other kind exists
+}
+
 TEST_CASE("fixed-point spans are the exact top-left coverage of the snapped triangle") {
     std::mt19937_64 random(21);
     std::uniform_real_distribution<double> coordinate(-4.0, 36.0);
@@ -295,6 +375,7 @@ TEST_CASE("floating-point spans agree with the exact coverage except at rounding
         }
     }
     MESSAGE("pixels decided differently by rounding: " << ties_seen);
+    record_fact("ch01_float_span_ties", ties_seen);
 }
 
 TEST_CASE("zero-area triangles draw nothing") {
@@ -499,6 +580,8 @@ TEST_CASE("stepped attributes lie on the plane at every pixel centre" *
     }
     MESSAGE("worst |stepped - plane| / (eps S): " << worst << " over " << drawn_total
                                                   << " pixels");
+    record_fact("ch01_stepping_worst", worst);
+    record_fact("ch01_stepping_bound", 2.0 * (h + w + 4));
     CHECK(drawn_total > 0);
 }
 

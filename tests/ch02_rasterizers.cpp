@@ -319,6 +319,37 @@ TEST_CASE("shifts below half a sub-pixel step change nothing; zero area draws no
     }
 }
 
+TEST_CASE(
+    "in float a test of the four corner centres can reject a block with a pixel in it") {
+    // Exercise 2.5's example. The edge v0 -> v1 is not top-left (it runs right and down,
+    // the inside below it). At the centre (2513.5, 309.5), the bottom-left corner of the
+    // 8 x 8 block whose top-left pixel is (2513, 302), its exact value is positive, so
+    // the pixel is covered; `at` rounds it to 0 in float, which fails the edge, and so do
+    // the block's three other corners: a test of the four corner centres would reject the
+    // block. classify_block (@eq:edge-block) keeps it for the pixel test.
+    const std::array<Point2f, 3> v{
+        {{2237.98999f, 267.386047f}, {3158.59766f, 408.108429f}, {2238.0f, 1000.0f}}};
+    const EdgeSetup<FloatEdge> s = setup_edges(v);
+    const FloatEdge& e = s.edge[2];
+    REQUIRE_FALSE(e.top_left);
+    const auto exact = [&](int x, int y) { // the edge value at a centre, exactly
+        using exactpixels::testing::Rational;
+        const auto r = [](float f) { return Rational::from_double(f); };
+        const Rational px = Rational(2 * x + 1, 2), py = Rational(2 * y + 1, 2);
+        return (r(v[1].x) - r(v[0].x)) * (py - r(v[0].y)) -
+               (r(v[1].y) - r(v[0].y)) * (px - r(v[0].x));
+    };
+    CHECK(exact(2513, 309) > exactpixels::testing::Rational(0)); // covered
+    CHECK(e.at(2513, 309) == 0.0f);                              // but rounded to 0
+    int corners_passing = 0;
+    for (const auto& [x, y] : {std::pair{2513, 302}, std::pair{2520, 302},
+                               std::pair{2513, 309}, std::pair{2520, 309}}) {
+        corners_passing += covers(e, e.at(x, y));
+    }
+    CHECK(corners_passing == 0); // four corners: "outside"
+    CHECK(classify_block(s, PixelRect{2513, 302, 2521, 310}) != BlockClass::outside);
+}
+
 TEST_CASE("blocks are classified by their corners" *
           doctest::description("points: 2; exercise: ch02-block-classify")) {
     // The triangle (0, 0), (64, 0), (0, 64) px: the block of pixels [0, 8) x [0, 8) is

@@ -92,8 +92,11 @@ TEST_CASE("the exact mapper reproduces the perspective projection of a textured 
     }
 }
 
-TEST_CASE("affine error on a span matches the formula and peaks at the bound" *
+TEST_CASE("affine error between exact ends matches the formula and peaks at the bound" *
           doctest::description("points: 1; exercise: ch03-perspective-divide")) {
+    // An affine piece exact at both ends: the subdivided mapper with one piece of 256
+    // steps, from the exact u at pixel 0 to the exact u at pixel 256 (the scenes' affine
+    // mapper takes its ends from the triangle's plane instead; ch03_triangles.cpp).
     for (const double r : {1.25, 2.0, 4.0, 10.0, 100.0, 0.25}) {
         for (const double extent : {16.0, 64.0, 256.0}) {
             const int count = 257; // 256 steps: t = k / 256
@@ -102,9 +105,10 @@ TEST_CASE("affine error on a span matches the formula and peaks at the bound" *
                 span_between(3.0, 2.0, 3.0 + extent, 2.0 * r, count);
             const std::vector<double> exact =
                 run_u([&](auto emit) { map_span_exact(s, emit); }, count);
-            const AffineSpan<double> a{3.0, 0.0, extent / n, 0.0, count};
             const std::vector<double> affine =
-                run_u([&](auto emit) { map_span_affine(a, emit); }, count);
+                run_u([&](auto emit) { map_span_subdivided(s, count - 1, emit); }, count);
+            REQUIRE(affine.front() == exact.front()); // exact at both ends
+            REQUIRE(affine.back() == exact.back());
             double worst = 0.0;
             for (int k = 0; k < count; ++k) {
                 const double error = affine[k] - exact[k];

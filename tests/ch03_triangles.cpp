@@ -1,10 +1,12 @@
 // Chapter 3 tests: textures, and textured triangles drawn by every mapper through
 // chapter 1's scanline rasterizer.
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/base/test_pattern.hpp"
 #include "exactpixels/lab/perspective_scenes.hpp"
 #include "exactpixels/raster/scanline.hpp"
+#include "exactpixels/texture/perspective_error.hpp"
 #include "exactpixels/texture/texture.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
 #include "support/measured_facts.hpp"
@@ -12,11 +14,14 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 using namespace exactpixels;
 using exactpixels::testing::record_fact;
@@ -256,6 +261,82 @@ TEST_CASE("exact float picks exact double's texel everywhere but at counted near
         MESSAGE(name << ": " << pixels << " pixels, float error up to " << largest
                      << " texels, " << near_ties << " near-ties, " << differ
                      << " pixels where float and double differ");
+    }
+}
+
+TEST_CASE("the scenes' affine mapper errs by its end errors plus the exact-ends error") {
+    // The affine mapper the scenes run takes u at a span's first pixel and its step from
+    // the plane of u through the triangle's corners (affine_span), so it is not exact at
+    // the span's ends. Along the span it is still a straight line, and the exact u is
+    // u0 + dU s(t) (@eq:exact-fraction), so its error at t = k / n is
+    //   (1 - t) d0 + t d1 + dU e(t) (@eq:affine-plane-error)
+    // with d0, d1 its errors at the first and last pixel, dU the exact extent and e the
+    // exact-ends error of @eq:affine-error at the span's own depth ratio r; at most
+    // max(|d0|, |d1|) + |dU| (sqrt r - 1) / (sqrt r + 1) (@eq:affine-plane-bound).
+    // Checked at every pixel of every span of both scenes, against the exact u of the
+    // exact mapper in double (a divide and a few products: a few units in the last place
+    // of u, far below the tolerance), to 1e-9 texel, which also covers the affine
+    // mapper's own stepping. Spans whose error exceeds the exact-ends bound alone are
+    // counted: they are why the end terms are there.
+    constexpr double tolerance = 1e-9;
+    for (const auto& [name, scene] :
+         {std::pair{std::string("floor"), floor_scene(320, 240)},
+          std::pair{std::string("wall"), wall_scene(320, 240)}}) {
+        int spans = 0, beyond_exact_ends = 0;
+        double worst_excess = 0; // the largest error beyond the exact-ends bound
+        double closest = 0;      // the largest share of its bound a span reaches
+        for (const auto& v : scene.triangles) {
+            std::array<FixedPoint2, 3> snapped{};
+            std::array<Point2, 3> p{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                snapped[k] = snap_to_subpixel(v[k].position);
+                p[k] = to_pixels(snapped[k]);
+            }
+            const TexturePlanes planes = texture_planes(p, v);
+            scanline_spans(snapped, Viewport{320, 240}, [&](Span s) {
+                const int count = s.x_end - s.x_begin;
+                if (count < 2) {
+                    return;
+                }
+                const PerspectiveSpan<double> exact = perspective_span(planes, s);
+                std::vector<double> affine;
+                map_span_affine(affine_span(planes, s),
+                                [&](int, double u, double) { affine.push_back(u); });
+                const int n = count - 1;
+                const double u0 = exact_at(exact, 0).u, u1 = exact_at(exact, n).u;
+                const double d0 = affine[0] - u0, d1 = affine[std::size_t(n)] - u1;
+                const double r = (exact.one_w) / (exact.one_w + n * exact.done_w);
+                double worst = 0;
+                for (int k = 0; k <= n; ++k) {
+                    const double t = static_cast<double>(k) / n;
+                    const double e = t - t / (r - (r - 1) * t); // @eq:affine-error
+                    const double error = affine[std::size_t(k)] - exact_at(exact, k).u;
+                    INFO(name << ", row " << s.y << ", pixel " << k << " of " << count);
+                    REQUIRE(std::abs(error - ((1 - t) * d0 + t * d1 + (u1 - u0) * e)) <=
+                            tolerance);
+                    worst = std::max(worst, std::abs(error));
+                }
+                const double ends = std::max(std::abs(d0), std::abs(d1));
+                const double inside = std::abs(u1 - u0) * affine_error_bound(r);
+                CHECK(worst <= ends + inside + tolerance);
+                closest = std::max(closest, worst / (ends + inside));
+                ++spans;
+                if (worst > inside + tolerance) {
+                    ++beyond_exact_ends;
+                    worst_excess = std::max(worst_excess, worst - inside);
+                }
+            });
+        }
+        MESSAGE(name << ": " << beyond_exact_ends << " of " << spans
+                     << " spans beyond the exact-ends bound, by up to " << worst_excess
+                     << " texels; the closest span reaches " << closest
+                     << " of its bound");
+        CHECK(spans > 100);
+        CHECK(beyond_exact_ends > 0);
+        record_fact("ch03_affine_spans_" + name, spans);
+        record_fact("ch03_affine_spans_beyond_" + name, beyond_exact_ends);
+        record_fact("ch03_affine_excess_" + name, worst_excess);
+        record_fact("ch03_affine_bound_reached_" + name, closest);
     }
 }
 

@@ -1,7 +1,8 @@
-// Chapter 4 tests: under perspective, the numerator of dc/dx (@eq:numerator) is the same
-// at every point of a row (@eq:numerator-constant), even across 1/w = 0, and its sign is
-// the sign of dc/dx; in float it is within a stated bound; per row it can differ across a
-// triangle.
+// Chapter 4 tests: under perspective, u = p / q with p = u/w and q = 1/w, and the
+// numerator of du/dx (@eq:numerator) is the same at every point of a row
+// (@eq:numerator-constant), even across 1/w = 0, and its sign is the sign of du/dx, which
+// is that of dc/dx (c = u - 1/2 differs from u by a constant); in float it is within a
+// stated bound; per row it can differ across a triangle.
 #include "exactpixels/texture/rounding.hpp"
 #include "support/measured_facts.hpp"
 #include "support/rational.hpp"
@@ -88,7 +89,8 @@ TEST_CASE("the numerator is the same at every point of a row, exactly") {
 }
 
 TEST_CASE("one pixel step changes c by the numerator over q q', exactly") {
-    // c(t) = p(t) / q(t); c(t+1) - c(t) = n / (q(t) q(t+1)) wherever both q are non-zero.
+    // u(t) = p(t) / q(t); u(t+1) - u(t) = n / (q(t) q(t+1)) wherever both q are non-zero,
+    // and c = u - 1/2 steps by the same amount.
     std::mt19937 random(480);
     for (int i = 0; i < span_count / 4; ++i) {
         const Coordinate c = random_span(random, i).c;
@@ -99,20 +101,20 @@ TEST_CASE("one pixel step changes c by the numerator over q q', exactly") {
             if (q0 == Rational(0) || q1 == Rational(0)) {
                 continue;
             }
-            const Rational c0 = along_x(c, Rational(t), false) / q0;
-            const Rational c1 = along_x(c, Rational(t + 1), false) / q1;
+            const Rational u0 = along_x(c, Rational(t), false) / q0;
+            const Rational u1 = along_x(c, Rational(t + 1), false) / q1;
             INFO("coordinate " << i << ", pixel " << t);
-            CHECK(c1 - c0 == n / (q0 * q1));
+            CHECK(u1 - u0 == n / (q0 * q1));
         }
     }
 }
 
 TEST_CASE("the numerator's sign is the sign of dc/dx at every pixel, across 1/w = 0") {
-    // dc/dx at pixel t is measured without the numerator: the exact secant of c over a
-    // step h = 2^-20 px towards the side where q keeps its sign. On both sides of q = 0
-    // it has the numerator's sign; the whole-pixel step that jumps across q = 0 does
-    // not (c runs off to infinity and comes back from the other side), which is why a
-    // mapper must not take the rule from c's difference between two pixels.
+    // du/dx (= dc/dx) at pixel t is measured without the numerator: the exact secant of
+    // u = p/q over a step h = 2^-20 px towards the side where q keeps its sign. On both
+    // sides of q = 0 it has the numerator's sign; the whole-pixel step that jumps across
+    // q = 0 does not (u runs off to infinity and comes back from the other side), which
+    // is why a mapper must not take the rule from u's difference between two pixels.
     std::mt19937 random(4800);
     const Rational h(1, 1 << 20);
     int pixels = 0, crossing_steps = 0, pixels_on_zero = 0, negative_q = 0;
@@ -124,7 +126,7 @@ TEST_CASE("the numerator's sign is the sign of dc/dx at every pixel, across 1/w 
         for (int t = 0; t < span_length; ++t) {
             const Rational q = along_x(c, Rational(t), true);
             if (q == Rational(0)) {
-                ++pixels_on_zero; // no c here at all; the numerator is still n
+                ++pixels_on_zero; // no u here at all; the numerator is still n
                 CHECK(numerator_x(moved_by(c, Rational(t), Rational(0))) ==
                       numerator_x(c));
                 continue;

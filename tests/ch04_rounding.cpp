@@ -168,22 +168,23 @@ TEST_CASE("the rule follows the sign of dc/dx, and of dc/dy when dc/dx is zero" 
 TEST_CASE("a sample on a texel edge goes to the texel on its right, or below it" *
           doctest::description("points: 1; exercise: ch04-choose-rule")) {
     // The fill-rule reading of the choice, checked independently of the code's sign
-    // test: c(x, y) = c0 + a x + b y with a tie at (0, 0) (c0 an integer). The texel
-    // the chosen rule picks must be the one that holds c a little to the right of the
-    // sample, or, when a = 0, a little below it.
+    // test: u(x, y) = u0 + a x + b y with a tie at (0, 0) (u0 an integer: c = u - 1/2 is
+    // half way between two texel centres; a and b are the gradient of c as of u). The
+    // texel the chosen rule picks must be the one that holds u a little to the right of
+    // the sample, or, when a = 0, a little below it.
     std::mt19937 random(44);
     std::uniform_int_distribution<int> numerator(-8, 8);
     const Rational nudge(1, 1024);
     for (int trial = 0; trial < 2000; ++trial) {
         const Rational a(numerator(random), 4), b(numerator(random), 4);
-        const std::int64_t c0 = numerator(random);
+        const std::int64_t u0 = numerator(random);
         const RoundingRule rule = choose_rule(a, b);
-        const std::int64_t picked = rule == RoundingRule::ties_up ? c0 : c0 - 1;
-        INFO("dc/dx = " << a << ", dc/dy = " << b << ", c = " << c0);
+        const std::int64_t picked = rule == RoundingRule::ties_up ? u0 : u0 - 1;
+        INFO("dc/dx = " << a << ", dc/dy = " << b << ", u = " << u0);
         if (a != Rational(0)) {
-            CHECK(picked == floor_of(Rational(c0) + a * nudge));
+            CHECK(picked == floor_of(Rational(u0) + a * nudge));
         } else if (b != Rational(0)) {
-            CHECK(picked == floor_of(Rational(c0) + b * nudge));
+            CHECK(picked == floor_of(Rational(u0) + b * nudge));
         } else {
             CHECK(rule == RoundingRule::ties_up);
         }
@@ -193,10 +194,10 @@ TEST_CASE("a sample on a texel edge goes to the texel on its right, or below it"
 TEST_CASE("with the chosen rule a span samples only the texels between its ends" *
           doctest::description("points: 2; exercise: ch04-choose-rule")) {
     // One row: the span covers pixel centres in [x0, x1) (the left end is in, the right
-    // end out, as the top-left rule has it), and c runs linearly from the integer a at
+    // end out, as the top-left rule has it), and u runs linearly from the integer a at
     // x0 to the integer b at x1. Texels a .. b-1 (or b .. a-1) are the ones the span
-    // owns; the neighbours' texels must never show, whichever way c runs. Exact
-    // arithmetic: x0, x1 on the 1/256 px grid, c at each centre as a Rational.
+    // owns; the neighbours' texels must never show, whichever way u runs. Exact
+    // arithmetic: x0, x1 on the 1/256 px grid, u at each centre as a Rational.
     std::mt19937 random(4004);
     std::uniform_int_distribution<int> position(0, 40 * 256), texel(-20, 20);
     int samples = 0, ties = 0, stray_with_rule1 = 0;
@@ -211,7 +212,7 @@ TEST_CASE("with the chosen rule a span samples only the texels between its ends"
             continue;
         }
         const Rational x0(std::min(s0, s1), 256), x1(std::max(s0, s1), 256);
-        const Rational slope = Rational(b - a) / (x1 - x0); // dc/dx
+        const Rational slope = Rational(b - a) / (x1 - x0); // du/dx = dc/dx
         const RoundingRule rule = choose_rule(slope, Rational(0));
         const std::int64_t lo = std::min(a, b), hi = std::max(a, b);
         for (std::int64_t x = floor_of(x0) - 1; x <= floor_of(x1) + 1; ++x) {
@@ -219,13 +220,13 @@ TEST_CASE("with the chosen rule a span samples only the texels between its ends"
             if (centre < x0 || centre >= x1) {
                 continue; // not covered
             }
-            const Rational c = Rational(a) + slope * (centre - x0);
-            const std::int64_t rule1 = floor_of(c);
-            const bool tie = Rational(rule1) == c;
+            const Rational u = Rational(a) + slope * (centre - x0);
+            const std::int64_t rule1 = floor_of(u);
+            const bool tie = Rational(rule1) == u;
             const std::int64_t picked =
                 (rule == RoundingRule::ties_down && tie) ? rule1 - 1 : rule1;
-            INFO("span [" << x0 << ", " << x1 << "), c from " << a << " to " << b
-                          << ", centre " << centre << ", c = " << c);
+            INFO("span [" << x0 << ", " << x1 << "), u from " << a << " to " << b
+                          << ", centre " << centre << ", u = " << u);
             CHECK(picked >= lo);
             CHECK(picked < hi);
             ++samples;

@@ -10,8 +10,10 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 using namespace exactpixels;
@@ -82,6 +84,63 @@ TEST_CASE("on the facing wall only the rounding rule decides, at exactly the tie
     }
 }
 
+TEST_CASE("a wrong texel at a tie is a differing texel where the exact u or v is whole") {
+    // Four pixels, the reference's (u, v) and the candidate's texel at each:
+    //   0: u whole (a tie), the candidate's i differs        -> wrong at a tie
+    //   1: v whole (a tie), the candidate agrees              -> a tie, not wrong
+    //   2: no tie, the candidate's i differs                  -> differs, not at a tie
+    //   3: u and v whole, the candidate's j only differs      -> wrong at a tie
+    TexelMap reference(4, 1), candidate(4, 1);
+    reference.covered = {true, true, true, true};
+    reference.u = {3.0, 0.25, 5.5, -2.0};
+    reference.v = {0.5, 7.0, 1.75, 4.0};
+    reference.i = {2, 0, 5, -3};
+    reference.j = {0, 7, 1, 4};
+    candidate = reference;
+    candidate.i[0] = 3;
+    candidate.u[2] = 6.0;
+    candidate.i[2] = 6;
+    candidate.j[3] = 3;
+    const TexelError e = compare_texel_maps(reference, candidate);
+    CHECK(e.pixels == 4);
+    CHECK(e.ties == 3);
+    CHECK(e.wrong_at_ties == 2);
+    CHECK(e.differing_share == 0.75);
+}
+
+TEST_CASE("the exact mapper errs at no tie with the rule and at half the wall without") {
+    // With chapter 4's rule the exact mappers agree with the reference at every tie of
+    // every scene (exact fixed rounds its quotient to 16.16 first, and a whole u stays
+    // whole). Without it, rule 1 sends the wall's ties in u, which falls to the right,
+    // to the other texel: every pixel of every second column. The floor and the field
+    // have no ties at all: there the rule can change no texel the reference picks.
+    const std::vector<AccuracyScene> scenes = accuracy_scenes();
+    for (const AccuracyScene& scene : scenes) {
+        for (const char* name : {"exact double +rule", "exact fixed +rule"}) {
+            INFO(scene.name << " " << name);
+            CHECK(measure_mapper_error(scene, find(name)).wrong_at_ties == 0);
+        }
+    }
+    const AccuracyScene& wall = scenes[0];
+    const TexelError with = measure_mapper_error(wall, find("exact double +rule"));
+    const TexelError without = measure_mapper_error(wall, find("exact double"));
+    const TexelError affine = measure_mapper_error(wall, find("affine fixed"));
+    CHECK(with.ties == without.ties);
+    CHECK(4 * with.ties == 3 * with.pixels); // every second column or row
+    CHECK(without.wrong_at_ties > 0);
+    CHECK(2 * without.wrong_at_ties == without.pixels); // every second column
+    CHECK(affine.wrong_at_ties == without.wrong_at_ties);
+    record_fact("ch05_wall_pixels", double(without.pixels));
+    record_fact("ch05_wall_ties", double(without.ties));
+    record_fact("ch05_wall_wrong_at_ties_rule_1", double(without.wrong_at_ties));
+    for (const AccuracyScene* scene : {&scenes[1], &scenes[2]}) {
+        INFO(scene->name);
+        const TexelError e = measure_mapper_error(*scene, find("exact double"));
+        CHECK(e.ties == 0);
+        record_fact("ch05_" + scene->name + "_ties", double(e.ties));
+    }
+}
+
 TEST_CASE("the grazing floor spans depth ratios from 1.1 to 20") {
     const auto r = span_depth_ratios(grazing_floor_scene());
     record_fact("ch05_floor_ratio_low", r[0]);
@@ -90,6 +149,91 @@ TEST_CASE("the grazing floor spans depth ratios from 1.1 to 20") {
     CHECK(r[0] <= 1.2);
     CHECK(r[1] >= 20.0);
     CHECK(r[1] <= 21.0);
+}
+
+TEST_CASE("the floor's picks follow how far a span reaches, not its depth ratio") {
+    // The picks table (figures/ch05_table.cpp) splits the floor by the depth ratio of
+    // each pixel's span and picks, per band, the cheapest mapper under half a texel. A
+    // short piece's error is its texel extent times a function of its own depth ratio
+    // (eq. affine-bound, eq. piece-ratio), and both are largest at the far end of a span,
+    // where one pixel covers the most texels: what decides whether short pieces hold is
+    // how far the span reaches, which the bands do not sort by. Bands 1-2, 2-5 and 10-30
+    // hold spans that reach the floor's far edge (depth 28); band 5-10 only spans that
+    // stop before depth 15. So pieces of 4 (affine) and 16 (quadratic) stay under half a
+    // texel in band 5-10 and not in 2-5 or 10-30, and in band 10-30 they do hold on the
+    // spans that stop before depth 15. Pieces of 8 (quadratic) hold everywhere.
+    const AccuracyScene floor = grazing_floor_scene();
+    const std::vector<double> ratio = span_ratio_map(floor);
+    const std::vector<double> far = span_far_depth_map(floor);
+    TexelMap reference(floor.width, floor.height);
+    map_with(reference, floor, reference_mapper());
+    const auto map_of = [&](const char* name) {
+        TexelMap map(floor.width, floor.height);
+        map_with(map, floor, find(name));
+        return map;
+    };
+    const TexelMap sub4 = map_of("subdivided:4 fixed"),
+                   quad16 = map_of("quadratic:16 fixed"),
+                   quad8 = map_of("quadratic:8 fixed");
+    // The worst error of `map` over the pixels of band [lo, hi) whose far depth passes:
+    // eq. texel-error written out here rather than through texel_error, which is the
+    // chapter's exercise (a fresh kit's stub must not fail this test).
+    const auto worst = [&](const TexelMap& map, double lo, double hi, auto&& far_ok) {
+        double w = 0;
+        int pixels = 0;
+        for (std::size_t k = 0; k < ratio.size(); ++k) {
+            if (ratio[k] >= lo && ratio[k] < hi && far_ok(far[k]) && map.covered[k] &&
+                reference.covered[k]) {
+                ++pixels;
+                w = std::max({w, std::abs(map.u[k] - reference.u[k]),
+                              std::abs(map.v[k] - reference.v[k])});
+            }
+        }
+        REQUIRE(pixels > 0);
+        return w;
+    };
+    const auto any = [](double) { return true; };
+    for (const auto& [lo, hi] : picks_ratio_bands) {
+        const std::string band =
+            "ch05_band_" + std::to_string(int(lo)) + "_" + std::to_string(int(hi));
+        double reach = 0;
+        for (std::size_t k = 0; k < ratio.size(); ++k) {
+            if (ratio[k] >= lo && ratio[k] < hi) {
+                reach = std::max(reach, far[k]);
+            }
+        }
+        const double s4 = worst(sub4, lo, hi, any), q16 = worst(quad16, lo, hi, any),
+                     q8 = worst(quad8, lo, hi, any);
+        INFO(band << ": reaches depth " << reach << ", subdivided:4 " << s4
+                  << ", quadratic:16 " << q16 << ", quadratic:8 " << q8);
+        record_fact(band + "_far", reach);
+        record_fact(band + "_subdivided4", s4);
+        record_fact(band + "_quadratic16", q16);
+        record_fact(band + "_quadratic8", q8);
+        CHECK(q8 < 0.5);
+        if (lo == 5.0) {
+            CHECK(reach < 15.0);
+            CHECK(s4 < 0.5);
+            CHECK(q16 < 0.5);
+        } else {
+            CHECK(reach > 25.0);
+        }
+        if (lo == 2.0 || lo == 10.0) {
+            CHECK(s4 > 0.5);
+            CHECK(q16 > 0.5);
+        }
+    }
+    // Within band 10-30 alone, the spans that stop before depth 15 against the rest.
+    const auto near = [](double w) { return w < 15.0; };
+    const auto beyond = [](double w) { return w >= 15.0; };
+    const double s4_near = worst(sub4, 10.0, 30.0, near);
+    const double q16_near = worst(quad16, 10.0, 30.0, near);
+    record_fact("ch05_band_10_30_near15_subdivided4", s4_near);
+    record_fact("ch05_band_10_30_near15_quadratic16", q16_near);
+    CHECK(s4_near < 0.5);
+    CHECK(q16_near < 0.5);
+    CHECK(worst(sub4, 10.0, 30.0, beyond) > 0.5);
+    CHECK(worst(quad16, 10.0, 30.0, beyond) > 0.5);
 }
 
 TEST_CASE("the measured affine error meets chapter 3's bound on a single receding quad" *

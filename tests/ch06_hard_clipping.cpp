@@ -63,12 +63,19 @@ TEST_CASE("clipping keeps, drops or cuts a triangle into one or two, all at z >=
                 for (int k = 0; k < c.count; ++k) {
                     for (const ViewVertex& p : c.triangles[static_cast<std::size_t>(k)]) {
                         CHECK(p.position.z >= near);
-                        // On the original triangle: its (x, z) lies on the plane through
-                        // the three corners, and uv matches the corners' affine map.
+                        // On the original triangle: the weights (b0, b1, b2) of its x and
+                        // y are those of a point inside it, its z is the triangle's depth
+                        // there (so a crossing is where the edge meets the plane, not
+                        // merely some point with z set to near), and uv matches the
+                        // corners' affine map.
                         const double b1 = (p.position.x - t[0].position.x -
                                            (p.position.y - t[0].position.y) / 2.5) /
                                           3.0;
                         const double b2 = (p.position.y - t[0].position.y) / 2.5;
+                        CHECK(std::min({1.0 - b1 - b2, b1, b2}) >= -1e-12);
+                        CHECK(p.position.z ==
+                              doctest::Approx(z0 + b1 * (z1 - z0) + b2 * (z2 - z0))
+                                  .epsilon(1e-12));
                         CHECK(p.uv.x == doctest::Approx(30.0 * b1).epsilon(1e-12));
                         CHECK(p.uv.y == doctest::Approx(20.0 * b2).epsilon(1e-12));
                     }

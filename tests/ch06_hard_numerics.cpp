@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <string>
@@ -31,7 +32,7 @@ constexpr int trials = 200; // Debug and sanitizer builds: the same checks, fewe
 TEST_CASE("near-zero y-deltas: both gradient setups stay finite and close to exact") {
     // Chapter 1's study, fewer triangles: y-deltas from 1e-2 px down to 1e-12 px and 0.
     // The reference is the exact gradient (128-bit integers). Tolerance, in machine
-    // epsilons of the precision, on the largest error over all triangles: 2^10 for the
+    // epsilons of the precision, on the largest error over all triangles: 2^8 for the
     // closed form, and the same for the split edge; never NaN or infinite.
     const std::vector<StabilityRow> rows = gradient_stability_study(trials, 5);
     std::map<std::string, double> worst; // the chapter quotes each method's worst
@@ -56,9 +57,9 @@ TEST_CASE("near-zero y-deltas: both gradient setups stay finite and close to exa
 }
 
 TEST_CASE("near-zero y-delta triangles keep twice their area far from zero") {
-    // The closed form divides by twice the area D, which depends on all three vertices:
-    // two of them on almost one row leave D about (their x distance) x (the third's
-    // height). For the study's triangles, in float and double grids, |D| stays at least
+    // The closed form divides by twice the area 2A, which depends on all three vertices:
+    // two of them on almost one row leave 2A about (their x distance) x (the third's
+    // height). For the study's triangles, in float and double grids, |2A| stays at least
     // 1 px^2 whatever the y-delta, and its smallest value does not fall as the delta
     // does.
     double smallest_at_largest_delta = 0.0;
@@ -67,8 +68,8 @@ TEST_CASE("near-zero y-delta triangles keep twice their area far from zero") {
         for (const bool as_float : {false, true}) {
             for (const PlaneSamples<double>& s :
                  stability_triangles(delta, trials, 5, as_float)) {
-                const double area2 = (s.x[2] - s.x[0]) * (s.y[1] - s.y[0]) -
-                                     (s.x[1] - s.x[0]) * (s.y[2] - s.y[0]);
+                const double area2 = (s.x[1] - s.x[0]) * (s.y[2] - s.y[0]) -
+                                     (s.x[2] - s.x[0]) * (s.y[1] - s.y[0]);
                 smallest = std::min(smallest, std::abs(area2));
             }
         }
@@ -158,9 +159,11 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
     // (u/w) / (1/w) magnifies the rounding of both. The reference evaluates the same
     // planes (through the snapped corners) in long double. Tolerances: double 1e-6
     // texels; 16.16: half a unit (2^-17 texels) plus 1e-6; float: u/w and 1/w are each
-    // off by about 2 eps times their largest value, so relative to 1/w at the far pixel
-    // by 2 eps R, R the ratio of 1/w across the row: the allowance is
-    // 8 * 2^-24 * R * |u|max.
+    // rounded to about eps of their largest value along the row, so at the far pixel u
+    // is off by up to 2 eps R relatively, R the ratio of 1/w across the row (eq.
+    // edge-on-error), at most 2 eps R |u|max texels: the allowance is that times 4,
+    // 8 * 2^-24 * R * |u|max. R reaches the thousands: the right edge's pixel centres
+    // come within a fraction of a pixel of the edge, where 1/w is near 1e-4.
     const TexturedVertex a{{10.3, 20.6}, 1.0, {0.0, 0.0}},
         b{{300.7, 22.1}, 1.0e4, {4096.0, 0.0}}, c{{300.2, 60.9}, 1.0e4, {4096.0, 64.0}},
         d{{12.2, 60.4}, 1.0, {0.0, 64.0}};
@@ -168,6 +171,8 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
     double worst[3] = {0, 0, 0};
     double ratio = 1.0; // the largest ratio of 1/w along a row, at pixel centres
     int pixels = 0;
+    int float_wrong_texels = 0; // float's texel is not the one under the exact (u, v)
+    long double wrong_q = 1.0L; // the largest 1/w there (1/w is 1 at the near edge)
     const Precision precisions[3] = {Precision::float64, Precision::fixed,
                                      Precision::float32};
     for (const auto& t : quad) {
@@ -204,6 +209,11 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
                     q_hi = std::max(q_hi, q);
                     worst[k] = std::max({worst[k], double(std::abs(map.u[at] - u)),
                                          double(std::abs(map.v[at] - v))});
+                    if (k == 2 && (map.i[at] != int(std::floor(u)) ||
+                                   map.j[at] != int(std::floor(v)))) {
+                        ++float_wrong_texels;
+                        wrong_q = float_wrong_texels == 1 ? q : std::max(wrong_q, q);
+                    }
                 }
                 if (q_hi > 0) {
                     ratio = std::max(ratio, double(q_hi / q_lo));
@@ -213,17 +223,23 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
     }
     MESSAGE("edge-on, " << pixels << " pixels, 1/w ratio along a row up to " << ratio
                         << ", worst texel error: double " << worst[0] << ", 16.16 "
-                        << worst[1] << ", float " << worst[2]);
+                        << worst[1] << ", float " << worst[2]
+                        << "; float picks another texel at " << float_wrong_texels
+                        << " pixels, 1/w at most " << double(wrong_q));
     record_fact("ch06_edge_on_pixels", pixels);
     record_fact("ch06_edge_on_ratio", ratio);
     record_fact("ch06_edge_on_double", worst[0]);
     record_fact("ch06_edge_on_fixed", worst[1]);
     record_fact("ch06_edge_on_float", worst[2]);
+    record_fact("ch06_edge_on_float_wrong_texels", float_wrong_texels);
+    record_fact("ch06_edge_on_float_wrong_q", double(wrong_q));
     CHECK(pixels > 5000);
-    CHECK(ratio > 100.0);
+    CHECK(ratio > 1000.0); // "by thousands": 1/w falls by more than a factor 1000
     CHECK(worst[0] <= 1e-6);
     CHECK(worst[1] <= 0x1p-17 + 1e-6);
     CHECK(worst[2] <= 8 * 0x1p-24 * ratio * 4096.0);
+    // Where float takes another texel, it is at the far end: 1/w below a hundredth.
+    CHECK((float_wrong_texels == 0 || wrong_q < 0.01L));
 }
 
 TEST_CASE("long spans in float: stepping drifts, re-evaluating the plane does not") {
@@ -264,4 +280,29 @@ TEST_CASE("long spans in float: stepping drifts, re-evaluating the plane does no
     CHECK(fresh <= 0x1p-23 * u_max);
     CHECK(mapper_drift == drift);
     CHECK(drift > 16 * fresh); // stepping is the problem, not float as such
+}
+
+TEST_CASE("long spans in 16.16: integer steps drift by the step's rounding") {
+    // The same span in 16.16 fixed point. The additions are exact, but u0 and du are each
+    // rounded to 2^-16 first (an error of at most 2^-17 each) and the step's error is
+    // added again at every pixel, so after k pixels U / 2^16 is off by at most
+    // (1 + k) 2^-17 texels (chapter 3's bound), whatever |u| is. 1.0001 texels is
+    // 65542.55 units, rounded by 0.45 of a unit, so the drift comes close to that bound:
+    // 4096 * 2^-17 = 1/32 texel at the end of the span.
+    const int n = 4096;
+    const double u0 = 0.3, du = 1.0001;
+    double drift = 0.0;
+    int beyond_bound = 0;
+    map_span_affine_fixed(AffineSpan<double>{u0, 0.0, du, 0.0, n},
+                          [&](int k, std::int32_t U, std::int32_t) {
+                              const double error = std::abs(U / 65536.0 - (u0 + k * du));
+                              drift = std::max(drift, error);
+                              beyond_bound += error > (1 + k) * 0x1p-17 + 1e-12;
+                          });
+    const double bound = n * 0x1p-17;
+    MESSAGE("16.16 over " << n << " px: drift " << drift << " texels, bound " << bound);
+    record_fact("ch06_drift_fixed", drift);
+    record_fact("ch06_drift_fixed_bound", bound);
+    CHECK(beyond_bound == 0);
+    CHECK(drift > bound / 2); // integer steps do drift: the step itself was rounded
 }

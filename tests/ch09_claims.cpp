@@ -3,12 +3,14 @@
 // committed instruction counts (data/ch09_instructions.csv), and the textured run with
 // its comparison of pixels (data/ch09_textured.csv, data/ch09_textured_compare.csv). A
 // new run that changes a comparison makes the matching test fail, and the sentence must
-// change with it.
+// change with it. Every rate is net of its frame's fixed cost (the run at area 0, a frame
+// with nothing in it), as the chapter's measurement protocol says.
 #include "exactpixels/lab/benchmark_csv.hpp"
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fmt/format.h>
 #include <string>
@@ -25,10 +27,18 @@ const BenchmarkRuns& timed() {
     return r;
 }
 
+/// Triangles per second of MODE/VARIANT/AREA in `runs` (one core), net of the fixed cost
+/// of its frame.
+double net(const BenchmarkRuns& runs, const std::string& mode, const std::string& variant,
+           int area) {
+    return runs.net_rate(fmt::format("{}/{}/{}/1/process_time", mode, variant, area),
+                         fmt::format("{}/{}/0/1/process_time", mode, variant),
+                         "tri_per_s", "cpu_time");
+}
+
 /// Triangles per second of MODE/VARIANT/AREA in the committed run (one core).
 double rate(const std::string& mode, const std::string& variant, int area) {
-    return timed().value(fmt::format("{}/{}/{}/1/process_time", mode, variant, area),
-                         "tri_per_s");
+    return net(timed(), mode, variant, area);
 }
 
 /// The fastest of the project's variants at `area`.
@@ -47,30 +57,41 @@ double instructions(const std::string& name) {
 }
 
 /// Triangles per second of textured/VARIANT/AREA in the committed textured run.
-double textured(const std::string& variant, int area) {
+const BenchmarkRuns& textured_runs() {
     static const BenchmarkRuns r = read_benchmark_csv(data / "ch09_textured.csv");
-    return r.value(fmt::format("textured/{}/{}/1/process_time", variant, area),
-                   "tri_per_s");
+    return r;
+}
+
+double textured(const std::string& variant, int area) {
+    return net(textured_runs(), "textured", variant, area);
 }
 
 } // namespace
 
-TEST_CASE("claim: on 3 and 15 px the pixel walk and 8x8 blocks beat llvmpipe 5x") {
+TEST_CASE("claim: on 3 and 15 px the best variant draws over twice llvmpipe's rate") {
     for (const std::string mode : {"flat", "depth"}) {
-        for (const char* v : {"walk", "blocks"}) {
-            for (const int area : {3, 15}) {
-                INFO(mode << " " << v << " " << area << " px");
-                CHECK(rate(mode, v, area) >= 5.0 * rate(mode, "llvmpipe", area));
-            }
+        for (const int area : {3, 15}) {
+            INFO(mode << " " << area << " px");
+            CHECK(best(mode, area) > 2.0 * rate(mode, "llvmpipe", area));
         }
     }
 }
 
-TEST_CASE("claim: flat, the best variant leads llvmpipe 2x to 3.5x at 80 and 1000 px") {
-    for (const int area : {80, 1000}) {
+TEST_CASE("claim: the lead over llvmpipe is least at 80 px, flat and depth-tested") {
+    for (const std::string mode : {"flat", "depth"}) {
+        const double at_80 = best(mode, 80) / rate(mode, "llvmpipe", 80);
+        CHECK(at_80 > 1.0); // a lead all the same
+        for (const int area : {3, 15, 1000, 65536}) {
+            INFO(mode << " " << area << " px");
+            CHECK(best(mode, area) / rate(mode, "llvmpipe", area) > at_80);
+        }
+    }
+}
+
+TEST_CASE("claim: flat from 80 px up the covered runs are the fastest variant") {
+    for (const int area : {80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(best("flat", area) > 2.0 * rate("flat", "llvmpipe", area));
-        CHECK(best("flat", area) < 3.5 * rate("flat", "llvmpipe", area));
+        CHECK(rate("flat", "runs", area) == best("flat", area));
     }
 }
 
@@ -83,17 +104,9 @@ TEST_CASE(
     }
 }
 
-TEST_CASE(
-    "claim: flat at 65536 px runs are fastest, 5x to 7x llvmpipe, over 6x the walk") {
-    CHECK(rate("flat", "runs", 65536) == best("flat", 65536));
-    CHECK(rate("flat", "runs", 65536) > 5.0 * rate("flat", "llvmpipe", 65536));
-    CHECK(rate("flat", "runs", 65536) < 7.0 * rate("flat", "llvmpipe", 65536));
-    CHECK(rate("flat", "runs", 65536) > 6.0 * rate("flat", "walk", 65536));
-}
-
-TEST_CASE("claim: runs reach between 40 and 50 % of a plain fill at 65536 px") {
+TEST_CASE("claim: runs reach between a third and a half of a plain fill at 65536 px") {
     const double share = rate("flat", "runs", 65536) / rate("flat", "plain", 65536);
-    CHECK(share > 0.40);
+    CHECK(share > 1.0 / 3.0);
     CHECK(share < 0.50);
 }
 
@@ -111,18 +124,15 @@ TEST_CASE("claim: flat 8x8 blocks reach under a fifth of a plain fill at 65536 p
     CHECK(share < 0.20);
 }
 
-TEST_CASE(
-    "claim: depth-tested, the best variant leads llvmpipe 2x to 3.5x from 80 px up") {
-    for (const int area : {80, 1000, 65536}) {
+TEST_CASE("claim: depth-tested, the best variant leads llvmpipe at every size") {
+    for (const int area : {3, 15, 80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(best("depth", area) > 2.0 * rate("depth", "llvmpipe", area));
-        CHECK(best("depth", area) < 3.5 * rate("depth", "llvmpipe", area));
+        CHECK(best("depth", area) > rate("depth", "llvmpipe", area));
     }
 }
 
-TEST_CASE("claim: flat 8x8 masks beat the walk from 15 px up, by under 1 % at 15 px") {
-    CHECK(rate("flat", "masks", 15) < 1.01 * rate("flat", "walk", 15));
-    for (const int area : {15, 80, 1000, 65536}) {
+TEST_CASE("claim: flat 8x8 masks beat the walk from 1000 px up") {
+    for (const int area : {1000, 65536}) {
         INFO(area << " px");
         CHECK(rate("flat", "masks", area) > rate("flat", "walk", area));
     }
@@ -131,46 +141,53 @@ TEST_CASE("claim: flat 8x8 masks beat the walk from 15 px up, by under 1 % at 15
 namespace {
 
 /// The tiled renderer's wall-clock rate with `threads` threads at `area` px.
+double wall_rate(const std::string& variant, int area, int threads) {
+    return timed().net_rate(
+        fmt::format("wall/{}/{}/{}/real_time", variant, area, threads),
+        fmt::format("wall/{}/0/{}/real_time", variant, threads), "tri_per_s",
+        "real_time");
+}
+
 double wall(int area, int threads) {
-    return timed().value(fmt::format("wall/tiled/{}/{}/real_time", area, threads),
-                         "tri_per_s");
+    return wall_rate("tiled", area, threads);
 }
 
 } // namespace
 
-TEST_CASE("claim: two threads beat one from 80 px up, by 1.8 to 2.1 times") {
+TEST_CASE("claim: two threads beat one from 80 px up, by 1.75 to 2.3 times") {
     for (const int area : {80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(wall(area, 2) > 1.8 * wall(area, 1));
-        CHECK(wall(area, 2) < 2.1 * wall(area, 1));
+        CHECK(wall(area, 2) > 1.75 * wall(area, 1));
+        CHECK(wall(area, 2) < 2.3 * wall(area, 1));
     }
 }
 
-TEST_CASE("claim: two threads gain under 1.4x on 3 and 15 px triangles") {
+TEST_CASE("claim: two threads gain under 1.6x on 3 and 15 px triangles") {
     for (const int area : {3, 15}) {
         INFO(area << " px");
         CHECK(wall(area, 2) > wall(area, 1));
-        CHECK(wall(area, 2) < 1.4 * wall(area, 1));
+        CHECK(wall(area, 2) < 1.6 * wall(area, 1));
     }
 }
 
 TEST_CASE("claim: on two threads each, the tiled renderer draws 2.5x llvmpipe's rate") {
     const auto peer = [](int area, int threads) {
-        return timed().value(fmt::format("wall/llvmpipe/{}/{}/real_time", area, threads),
-                             "tri_per_s");
+        return wall_rate("llvmpipe", area, threads);
     };
     for (const int area : {3, 15, 80, 1000, 65536}) {
         INFO(area << " px");
         CHECK(wall(area, 2) > 2.5 * peer(area, 2));
     }
-    // and llvmpipe gains from its second thread from 80 px up, under a tenth below
+    // and llvmpipe gains from its second thread from 80 px up, less below
+    double least_gain = 2.0;
     for (const int area : {80, 1000, 65536}) {
         INFO(area << " px");
         CHECK(peer(area, 2) > 1.4 * peer(area, 1));
+        least_gain = std::min(least_gain, peer(area, 2) / peer(area, 1));
     }
     for (const int area : {3, 15}) {
         INFO(area << " px");
-        CHECK(peer(area, 2) < 1.1 * peer(area, 1));
+        CHECK(peer(area, 2) / peer(area, 1) < least_gain);
     }
 }
 
@@ -179,14 +196,16 @@ TEST_CASE(
     CHECK(rate("flat", "tiled", 1000) < rate("flat", "runs", 1000));
 }
 
-TEST_CASE("claim: the fastest 3 px rate is between 40 and 50 Mtri/s") {
-    CHECK(best("flat", 3) > 40e6);
-    CHECK(best("flat", 3) < 50e6);
+TEST_CASE("claim: a 3 px triangle costs the pixel walk 600 to 800 instructions") {
+    CHECK(instructions("flat/walk/3") > 600);
+    CHECK(instructions("flat/walk/3") < 800);
 }
 
-TEST_CASE("claim: a 3 px triangle costs the pixel walk 400 to 500 instructions") {
-    CHECK(instructions("flat/walk/3") > 400);
-    CHECK(instructions("flat/walk/3") < 500);
+TEST_CASE("claim: on a 3 px triangle llvmpipe executes over twice the walk's instructions") {
+    for (const std::string mode : {"flat", "depth"}) {
+        INFO(mode);
+        CHECK(instructions(mode + "/llvmpipe/3") > 2.0 * instructions(mode + "/walk/3"));
+    }
 }
 
 TEST_CASE("claim: at 1000 px runs take under a third of the walk's instructions") {
@@ -206,17 +225,46 @@ TEST_CASE(
     CHECK(instructions("depth/runs/1000") < instructions("depth/llvmpipe/1000") / 3.0);
 }
 
-TEST_CASE(
-    "claim: llvmpipe draws every flat set with exactly the teaching path's pixels") {
-    const BenchmarkRuns r = read_benchmark_csv(data / "ch09_compare.csv");
-    for (const int area : {3, 15, 80, 1000, 65536}) {
-        const std::string name = fmt::format("flat/{}", area);
-        INFO(name);
-        // Not vacuous: most of the set's area, or half the frame, is drawn.
-        CHECK(r.value(name, "pixels_drawn") >=
-              std::min(area * 1024 * 0.9, 0.5 * 1024 * 1024));
-        CHECK(r.value(name, "pixels_differ") == 0);
+TEST_CASE("claim: llvmpipe draws every set, flat or depth-tested, with the teaching "
+          "path's pixels") {
+    // The run compares each frame with the teaching path's after its timed loop: pixels
+    // drawn in one frame only, and pixels drawn with another triangle's 24-bit id.
+    for (const std::string mode : {"flat", "depth"}) {
+        for (const int area : {3, 15, 80, 1000, 65536}) {
+            for (const char* v :
+                 {"walk", "blocks", "runs", "masks", "tiled", "llvmpipe"}) {
+                const std::string name =
+                    fmt::format("{}/{}/{}/1/process_time", mode, v, area);
+                INFO(name);
+                CHECK(timed().value(name, "coverage_differ") == 0);
+                CHECK(timed().value(name, "colour_differ") == 0);
+            }
+        }
     }
+}
+
+TEST_CASE("net_rate takes the empty frame's time out of a rate") {
+    // A frame of 10 us holding 1000 triangles, 2 us of which the empty frame also takes:
+    // 1e8 triangles per second as measured, 1.25e8 net.
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / "exactpixels_net_rate_test.csv";
+    {
+        std::FILE* f = std::fopen(file.c_str(), "w");
+        REQUIRE(f != nullptr);
+        std::fputs("name,iterations,real_time,cpu_time,time_unit,tri_per_s\n"
+                   "set,100,10000,10000,ns,1e8\n"
+                   "empty,100,2000,2000,ns,0\n"
+                   "slow_empty,100,10000,10000,ns,0\n",
+                   f);
+        REQUIRE(std::fclose(f) == 0);
+    }
+    const BenchmarkRuns r = read_benchmark_csv(file);
+    std::filesystem::remove(file);
+    CHECK(r.net_rate("set", "empty", "tri_per_s", "cpu_time") == doctest::Approx(1.25e8));
+    CHECK(r.net_rate("set", "empty", "tri_per_s", "real_time") ==
+          doctest::Approx(1.25e8));
+    CHECK_THROWS(r.net_rate("set", "slow_empty", "tri_per_s", "cpu_time"));
+    CHECK_THROWS(r.net_rate("set", "missing", "tri_per_s", "cpu_time"));
 }
 
 TEST_CASE("claim: llvmpipe covers the textured sets exactly; texels differ next door") {
@@ -236,12 +284,12 @@ TEST_CASE("claim: llvmpipe covers the textured sets exactly; texels differ next 
     }
 }
 
-TEST_CASE("claim: textured runs draw 1.5 to 2.5 times llvmpipe's rate at every size") {
+TEST_CASE("claim: textured runs draw 1.1 to 2 times llvmpipe's rate at every size") {
     for (const int area : {3, 15, 80, 1000, 65536}) {
         INFO(area << " px");
         const double ratio = textured("runs", area) / textured("llvmpipe", area);
-        CHECK(ratio > 1.5); // ahead, but short of the 3x target
-        CHECK(ratio < 2.5);
+        CHECK(ratio > 1.1); // ahead, but short of the 3x target
+        CHECK(ratio < 2.0);
     }
 }
 

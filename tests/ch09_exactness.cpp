@@ -187,6 +187,51 @@ TEST_CASE("covered runs by exact division are the pixel walk's runs on every set
     CHECK(mismatches(hard, 640, 200, Fast::runs) == 0);
 }
 
+TEST_CASE("a run end stepped by quotient, remainder and carry is the exact division on "
+          "every row") {
+    // @eq:fast-step: RunEnd::step moves an edge's first column (s_x > 0) or end of run
+    // (s_x < 0) down the rows without a division. On every row its column k and its
+    // remainder e must be what run_end's exact divisions give for that row's value w,
+    // and e must stay in [0, s). Steps of both signs, from 1 to 2^37 (the largest step
+    // of a fixed-point edge), quotients Q from -4 to 4, values up to 2^59; rows with a
+    // carry and rows without are both common.
+    std::mt19937_64 rng(102);
+    const auto between = [&](std::int64_t lo, std::int64_t hi) {
+        return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng);
+    };
+    const std::int64_t s_max[] = {8, std::int64_t{1} << 20, std::int64_t{1} << 37};
+    const std::int64_t w_max[] = {200, std::int64_t{1} << 40, std::int64_t{1} << 59};
+    long carries = 0, plain = 0, negative_q = 0;
+    for (int trial = 0; trial < 30000; ++trial) {
+        const std::size_t scale = static_cast<std::size_t>(trial % 3);
+        const std::int64_t s = between(1, s_max[scale]);
+        const std::int64_t s_x = trial % 2 ? s : -s;
+        const std::int64_t s_y = between(-4 * s, 4 * s);
+        std::int64_t w = between(-w_max[scale], w_max[scale]);
+        RunEnd end = run_end(w, s_x, s_y);
+        negative_q += end.q < 0;
+        for (int row = 0; row < 64; ++row) {
+            // The exact end on this row, and the edge's value there (s_x > 0) or at the
+            // last column that passes (s_x < 0), as run_end divides them out.
+            const std::int64_t k = s_x > 0 ? ceil_div(-w, s) : floor_div(w, s) + 1;
+            const std::int64_t e = s_x > 0 ? w + k * s : w - (k - 1) * s;
+            CAPTURE(s_x);
+            CAPTURE(s_y);
+            CAPTURE(w);
+            CAPTURE(row);
+            REQUIRE(end.k == k);
+            REQUIRE(end.e == e);
+            REQUIRE((0 <= end.e && end.e < s));
+            (end.e + end.r >= s ? carries : plain) += 1;
+            end.step(s_x > 0 ? -1 : 1);
+            w += s_y;
+        }
+    }
+    CHECK(carries > 500000); // rows where the end moves by Q + 1
+    CHECK(plain > 500000);   // and by Q
+    CHECK(negative_q > 10000);
+}
+
 TEST_CASE(
     "the double estimate of a run's end is one column off below 2^52, two up to 2^60") {
     // Exercise 2 of chapter 9: run_of_row_fast starts each edge's end from the double
@@ -273,19 +318,31 @@ template <class T> unsigned defined_bits(const T (&w)[3], const T (&s)[3], int l
 } // namespace
 
 TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes") {
+    // Rows of values near zero (mixed masks), values across the 2^60 of @eq:edge-range
+    // and beyond, and values anywhere in int64, the extremes themselves included, whose
+    // steps point towards zero so that no lane's sum leaves int64.
+    using Limits = std::numeric_limits<std::int64_t>;
     std::mt19937_64 rng(93);
-    const std::int64_t big = std::numeric_limits<std::int64_t>::max() / 16;
-    std::uniform_int_distribution<std::int64_t> value(-big, big);
+    std::uniform_int_distribution<std::int64_t> value(-(std::int64_t{1} << 61),
+                                                      std::int64_t{1} << 61);
+    std::uniform_int_distribution<std::int64_t> anywhere(Limits::min(), Limits::max());
     std::uniform_int_distribution<std::int64_t> step(-(std::int64_t{1} << 40),
                                                      std::int64_t{1} << 40);
-    int all_mixed = 0;
+    int all_mixed = 0, extremes = 0;
     for (int trial = 0; trial < 20000; ++trial) {
-        // Values near zero half the time, so that masks come out mixed.
-        const std::int64_t w[3] = {trial % 2 ? value(rng) : value(rng) >> 40,
-                                   trial % 2 ? value(rng) : value(rng) >> 40,
-                                   trial % 2 ? value(rng) : value(rng) >> 40};
-        const std::int64_t s[3] = {step(rng) >> (trial % 40), step(rng) >> (trial % 40),
-                                   step(rng) >> (trial % 40)};
+        std::int64_t w[3], s[3];
+        for (std::size_t k = 0; k < 3; ++k) {
+            s[k] = step(rng) >> (trial % 40);
+            if (trial % 4 == 3) { // anywhere; every eighth row starts at min, max, any
+                const std::int64_t first[] = {Limits::min(), Limits::max(),
+                                              anywhere(rng)};
+                w[k] = trial % 8 == 3 ? first[k] : anywhere(rng);
+                s[k] = w[k] < 0 ? std::abs(s[k]) : -std::abs(s[k]);
+            } else { // near zero half the time, so that masks come out mixed
+                w[k] = trial % 2 ? value(rng) : value(rng) >> 40;
+            }
+        }
+        extremes += w[0] == Limits::min() && w[1] == Limits::max();
         const unsigned portable = lane_bits<lanes::Portable>(w, s);
         REQUIRE(portable == defined_bits(w, s, 8));
 #if defined(__SSE2__)
@@ -294,22 +351,24 @@ TEST_CASE("SSE2 lanes compute the portable lanes' bits, up to the int64 extremes
         all_mixed += portable != 0 && portable != 0xff;
     }
     CHECK(all_mixed > 1000); // the test saw many partly covered rows
+    CHECK(extremes == 2500); // and rows that start at both extremes of int64
 }
 
 TEST_CASE("depth lanes write plot's depth bits and colours, four pixels at a time") {
     // Random depth planes over rows of 40 pixels of stored depths (many of them exactly
     // the plane's own z, so that ties, which must not draw, are common; some +-0, some
-    // infinities, some the largest finite float), every run [x_begin, x_end) and every
-    // 8-pixel mask row of each, drawn by both implementations and by plot's definition
-    // one pixel at a time (z = plane.at(x, y), drawn when z < stored): the same depth
-    // bits and colours.
+    // infinities, some the largest finite float, some NaN, which never draws), every run
+    // [x_begin, x_end) and every 8-pixel mask row of each, drawn by both implementations
+    // and by plot's definition one pixel at a time (z = plane.at(x, y), drawn when z <
+    // stored): the same depth bits and colours.
     std::mt19937_64 rng(95);
     constexpr int width = 40;
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
     std::uniform_int_distribution<int> kind(0, 9), column(0, width), row_of(0, 4095);
     const float big = std::numeric_limits<float>::max();
     const float inf = std::numeric_limits<float>::infinity();
-    const float edge_values[] = {0.0f, -0.0f, inf, -inf, big, -big, 1.0f, 0.5f};
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float edge_values[] = {0.0f, -0.0f, inf, -inf, big, -big, 1.0f, 0.5f, nan};
     const Rgba8 paint = rgba(10, 200, 30, 77), ground = rgba(1, 2, 3, 4);
     const auto bits_of = [](const std::vector<float>& d) {
         std::vector<std::uint32_t> b;
@@ -329,7 +388,7 @@ TEST_CASE("depth lanes write plot's depth bits and colours, four pixels at a tim
             const int k = kind(rng);
             stored[static_cast<std::size_t>(x)] =
                 k < 3   ? plane.at(x, y)
-                : k < 5 ? edge_values[static_cast<std::size_t>(trial + x) % 8]
+                : k < 5 ? edge_values[static_cast<std::size_t>(trial + x) % 9]
                         : plane.at(x, y) + unit(rng) * scale;
         }
         // One case: a run [b, e) or a mask row (8 pixels from a multiple of 8, random
@@ -589,6 +648,68 @@ TEST_CASE("the tiled renderer draws the teaching path's picture with 1 to 4 thre
                       draw_masks(t, tri);
                   }
               }) == reference);
+    }
+}
+
+TEST_CASE("a depth tie goes to the triangle drawn first, as GL_LESS gives it") {
+    // Two overlapping triangles on one depth plane: every pixel both cover is a tie.
+    // The depth test here is "less" (plot's !(z < d) refuses a tie), OpenGL's default
+    // GL_LESS, which bench_ch09_fast sets for llvmpipe, so the earlier triangle keeps the
+    // pixel on every path; chapter 7's DepthBuffer gives a tie to the later one instead
+    // (tests/ch07_scenes.cpp). Without a depth buffer the later triangle paints over.
+    constexpr int width = 80, height = 60;
+    const auto a = ch02::snap3({2.5, 3.25}, {70.75, 8.5}, {20.125, 55.5});
+    const auto b = ch02::snap3({10.5, 50.25}, {75.25, 40.5}, {30.75, 1.5});
+    const std::array<float, 3> depth = {0.25f, 0.25f, 0.25f};
+    const Rgba8 red = rgba(255, 0, 0), blue = rgba(0, 0, 255), ground = rgba(0, 0, 0);
+    for (const bool with_depth : {true, false}) {
+        for (const bool a_first : {true, false}) {
+            INFO("depth test: " << with_depth << ", red first: " << a_first);
+            const FlatTriangle first{a_first ? a : b, depth_plane(a_first ? a : b, depth),
+                                     a_first ? red : blue};
+            const FlatTriangle second{a_first ? b : a,
+                                      depth_plane(a_first ? b : a, depth),
+                                      a_first ? blue : red};
+            const std::vector<FlatTriangle> tris = {first, second};
+            const auto draw = [&](auto&& how) {
+                std::vector<Rgba8> colour(width * height, ground);
+                std::vector<float> z(width * height, 1.0f);
+                how(RenderTarget{colour.data(), with_depth ? z.data() : nullptr, width,
+                                 height});
+                return colour;
+            };
+            // What each triangle covers alone, to find the pixels both cover.
+            const auto alone = [&](const FlatTriangle& t) {
+                return draw([&](const RenderTarget& target) {
+                    draw_reference(target, std::span(&t, 1));
+                });
+            };
+            const std::vector<Rgba8> only_first = alone(first),
+                                     only_second = alone(second);
+            const std::vector<Rgba8> reference =
+                draw([&](const RenderTarget& t) { draw_reference(t, tris); });
+            int shared = 0;
+            for (std::size_t i = 0; i < reference.size(); ++i) {
+                if (only_first[i] != ground && only_second[i] != ground) {
+                    ++shared;
+                    CHECK(reference[i] == (with_depth ? first.colour : second.colour));
+                }
+            }
+            CHECK(shared > 300);
+            for (int threads = 1; threads <= 2; ++threads) {
+                CHECK(draw([&](const RenderTarget& t) {
+                          draw_tiled(t, tris, threads);
+                      }) == reference);
+            }
+            CHECK(draw([&](const RenderTarget& t) {
+                      draw_runs(t, first);
+                      draw_runs(t, second);
+                  }) == reference);
+            CHECK(draw([&](const RenderTarget& t) {
+                      draw_masks(t, first);
+                      draw_masks(t, second);
+                  }) == reference);
+        }
     }
 }
 

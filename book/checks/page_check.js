@@ -15,6 +15,8 @@
 //             one line: a name or number broken inside itself
 //   unnumbered on a chapter page (its <h1> carries a section number), every <h2> that
 //             has none, such as an Exercises heading left unnumbered
+//   fences    prose (not code) with a line that begins with ::: or ```: a Markdown fence
+//             that was not read as one and reached the reader as text
 (() => {
   const short = (text) => text.replace(/\s+/g, " ").trim().slice(0, 80);
   const links = [...document.querySelectorAll("a[href], link[href]")].map((a) => ({
@@ -41,6 +43,41 @@
   }
   for (const span of document.querySelectorAll("span.math")) {
     rawTex.push("unrendered math: " + short(span.textContent));
+  }
+
+  // Fence text: a line of prose beginning with ::: or ```. A block's prose runs over
+  // several nodes (links, emphasis); code and math in it are not prose, and a block
+  // nested in it is checked on its own.
+  const fences = [];
+  const fence = /^\s*(:::|```)/;
+  const notProse = "pre, code, script, style, math, svg, textarea";
+  const blockTags = "p, li, div, table, ul, ol, dl, dt, dd, blockquote, figure, " +
+    "figcaption, h1, h2, h3, h4, h5, h6, td, th";
+  const proseOf = (node) => {
+    if (node.nodeType === Node.TEXT_NODE) {
+      return node.nodeValue;
+    }
+    if (node.nodeType !== Node.ELEMENT_NODE) {
+      return "";
+    }
+    if (node.matches(notProse)) {
+      return "\u2026"; // code or math in the line: shown as an ellipsis, not read
+    }
+    if (node.matches(blockTags)) {
+      return "\n";
+    }
+    return [...node.childNodes].map(proseOf).join("");
+  };
+  for (const block of document.querySelectorAll(blockTags)) {
+    if (block.closest(notProse)) {
+      continue;
+    }
+    const text = [...block.childNodes].map(proseOf).join("");
+    for (const line of text.split("\n")) {
+      if (fence.test(line)) {
+        fences.push(short(line));
+      }
+    }
   }
 
   const mathErrors = [];
@@ -117,5 +154,5 @@
       }
     }
   }
-  return { links, images, ids, rawTex, mathErrors, wide, tall, wrapped, unnumbered };
+  return { links, images, ids, rawTex, mathErrors, wide, tall, wrapped, unnumbered, fences };
 })()

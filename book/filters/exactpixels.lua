@@ -102,6 +102,79 @@ local function plain(text)
 end
 
 ---------------------------------------------------------------------------------------
+-- Fence text. A `:::` or ``` line that Pandoc did not read as a fence (a closing `:::`
+-- sharing its line with text, a fence never closed) reaches the reader as text, as
+-- chapter 3's "::: erratum ... ::: The parabola" once did. Every such word fails the
+-- build, each reported with the line of the source it came from.
+
+local function is_fence_word(text)
+  return text:sub(1, 3) == ":::" or text:sub(1, 3) == "```"
+end
+
+-- Up to `count` words of `inlines` from position k on (Str only, smart quotes undone),
+-- stopping at the first inline that is not a word or a space.
+local function words_from(inlines, k, count)
+  local words = {}
+  for i = k, #inlines do
+    local inline = inlines[i]
+    if inline.t == "Str" then
+      words[#words + 1] = plain(inline.text)
+      if #words == count then break end
+    elseif inline.t ~= "Space" and inline.t ~= "SoftBreak" then
+      break
+    end
+  end
+  return words
+end
+
+-- The first line of `lines` whose words, read on over the next lines, begin with `words`;
+-- failing that, the first line holding the first two of them; failing that, 0.
+local function line_of_words(lines, words)
+  for n = 1, #lines do
+    local tokens = {}
+    for m = n, math.min(n + 4, #lines) do
+      for token in lines[m]:gmatch("%S+") do tokens[#tokens + 1] = token end
+    end
+    local match = #tokens >= #words and lines[n]:find("%S") ~= nil -- it starts on line n
+    for i = 1, #words do
+      if tokens[i] ~= words[i] then match = false break end
+    end
+    if match then return n end
+  end
+  local needle = table.concat(words, " ", 1, math.min(2, #words))
+  for n, line in ipairs(lines) do
+    if line:find(needle, 1, true) then return n end
+  end
+  return 0
+end
+
+-- Fails the build if any block of `blocks` shows fence text. `source_of(block)` gives the
+-- file the block came from (for the message) and the text of that file.
+local function refuse_fence_text(blocks, source_of)
+  local problems = {}
+  for _, block in ipairs(blocks) do
+    local file, text = source_of(block)
+    pandoc.Pandoc({ block }):walk({
+      Inlines = function(inlines)
+        for k, inline in ipairs(inlines) do
+          if inline.t == "Str" and is_fence_word(inline.text) then
+            local words = words_from(inlines, k, 6)
+            local line = line_of_words(lines_of(text or ""), words)
+            problems[#problems + 1] = string.format("%s:%d: error: fence text reaches the "
+              .. "page: '%s' (a ::: or ``` line Pandoc did not read as a fence; a closing "
+              .. "fence stands on a line of its own)", file, line, table.concat(words, " "))
+          end
+        end
+      end,
+    })
+  end
+  if #problems > 0 then
+    io.stderr:write(table.concat(problems, "\n") .. "\n")
+    os.exit(1)
+  end
+end
+
+---------------------------------------------------------------------------------------
 -- Recognising numbered things
 
 local function equation_label(block)
@@ -473,6 +546,15 @@ local function render_block(block, counters, state)
       out:insert(raw("latex", "\\end{eperratum}"))
       return out
     end
+    -- ::: summary: the chapter's "In short", a box with a rule down its left side headed
+    -- "In short" in both formats (style.css; the epsummary environment of header.tex,
+    -- which may break across a page). teaching() checks where it stands.
+    if block.t == "Div" and block.classes:includes("summary") and not html then
+      local out = pandoc.List({ raw("latex", "\\begin{epsummary}") })
+      out:extend(block.content)
+      out:insert(raw("latex", "\\end{epsummary}"))
+      return out
+    end
     return { block }
   elseif block.t == "BulletList" or block.t == "OrderedList" then
     for i, item in ipairs(block.content) do
@@ -548,8 +630,17 @@ local function test_reference(span, dir)
   local lines = lines_of(text)
   for n, line in ipairs(lines) do
     -- clang-format may put the name on the line after "TEST_CASE(": join them.
+    local next = n + 1
     if line:match("TEST_CASE%($") or line:match("TEST_CASE_TEMPLATE%($") then
-      line = line .. (lines[n + 1] or ""):gsub("^%s+", "")
+      line = line .. (lines[next] or ""):gsub("^%s+", "")
+      next = next + 1
+    end
+    -- and may split a long name into adjacent string literals: "abc "\n "def".
+    if line:match("TEST_CASE") then
+      while line:match('"%s*$') and (lines[next] or ""):match('^%s*"') do
+        line = line:gsub('"%s*$', "") .. lines[next]:gsub('^%s*"', "")
+        next = next + 1
+      end
     end
     if line:find('TEST_CASE("' .. name .. '"', 1, true)
         or line:find('TEST_CASE_TEMPLATE("' .. name .. '"', 1, true) then
@@ -669,8 +760,10 @@ local function claim(span, dir)
     local number = tonumber(token)
     if number then return number end
     if facts[token] ~= nil then return facts[token] end
-    local factor, rest = token:match("^([%d%.]+)%*(.+)$") -- e.g. 1.5*floor/affine_fixed#2
-    if factor then return tonumber(factor) * value_of(rest) end
+    -- A product, e.g. 1.5*floor/affine_fixed#2, or tie_factor*floor/exact_double#2 (a
+    -- factor that is itself a fact); what follows the * may be a sum.
+    local factor, rest = token:match("^([^*+]+)%*(.+)$")
+    if factor then return value_of(factor) * value_of(rest) end
     for at in token:gmatch("()%+") do -- a sum of facts, e.g. a#2+b#2
       local left, right = token:sub(1, at - 1), token:sub(at + 1)
       if (tonumber(left) or facts[left] ~= nil or left:find("[*+]"))
@@ -834,6 +927,8 @@ end
 -- A page that is not a chapter: references and named tests resolve, headings are not
 -- numbered, and `::: contents` is filled with the table of contents.
 local function render_page(doc)
+  local page_text = read_file(page_file) or ""
+  refuse_fence_text(doc.blocks, function() return page_file, page_text end)
   doc = render_inlines(doc, function() return nil end)
   doc = doc:walk({
     Div = function(div)
@@ -878,27 +973,52 @@ local function solution_blocks(div)
   return { pandoc.Div(content, { class = "solution" }) }
 end
 
--- Checks and renders the objectives, the exercises' tags and the solutions of every
--- chapter in `blocks` (top level, level-1 headings start chapters).
+-- Checks and renders the objectives, the summary, the exercises' tags and the solutions
+-- of every chapter in `blocks` (top level, level-1 headings start chapters). The summary
+-- (`::: summary`, "In short") stands directly before `## Exercises`: a chapter with
+-- exercises has exactly one, and a summary anywhere else is an error.
 local function teaching(blocks, dirs)
   local out, h1, dir = pandoc.List(), 0, nil
   local objectives, in_sections, in_exercises = 0, false, false
+  local summary_waiting = false -- the block before this one was the summary
   local function finish()
     if dir and objectives ~= 1 then
       fail(dir, "# ", string.format("the chapter needs exactly one `::: objectives` block "
         .. "(what the reader will be able to do) before its first section, found %d",
         objectives))
     end
+    if dir and summary_waiting then
+      fail(dir, "::: summary", "the `::: summary` block must stand directly before "
+        .. "`## Exercises`")
+    end
   end
   for _, block in ipairs(blocks) do
     local keep = { block }
+    local is_exercises = block.t == "Header" and block.level == 2
+      and pandoc.utils.stringify(block.content) == "Exercises"
+    if summary_waiting and not is_exercises then
+      fail(dir, "::: summary", "the `::: summary` block must stand directly before "
+        .. "`## Exercises`")
+    end
+    if is_exercises and not summary_waiting then
+      fail(dir, "## Exercises", "the chapter needs a `::: summary` block (\"In short\": "
+        .. "what was derived, the tests that prove it, the numbers that matter) directly "
+        .. "before `## Exercises`")
+    end
+    summary_waiting = false
     if block.t == "Header" and block.level == 1 then
       finish()
       h1 = h1 + 1
       dir, objectives, in_sections, in_exercises = dirs[h1], 0, false, false
     elseif block.t == "Header" and block.level == 2 then
       in_sections = true
-      in_exercises = pandoc.utils.stringify(block.content) == "Exercises"
+      in_exercises = is_exercises
+    elseif block.t == "Div" and block.classes:includes("summary") then
+      if in_exercises then
+        fail(dir, "::: summary", "the `::: summary` block must stand directly before "
+          .. "`## Exercises`")
+      end
+      summary_waiting = true
     elseif block.t == "Div" and block.classes:includes("objectives") then
       if in_sections then
         fail(dir, "::: objectives", "the objectives block must come before the first section")
@@ -942,6 +1062,14 @@ end
 function Pandoc(doc)
   collect_labels()
   if page_file then return render_page(doc) end
+  -- Before the student book drops the solutions, so that both editions are checked.
+  local h1_seen, texts = 0, {}
+  refuse_fence_text(doc.blocks, function(block)
+    if block.t == "Header" and block.level == 1 then h1_seen = h1_seen + 1 end
+    local dir = chapters_here[math.max(h1_seen, 1)] or "??"
+    texts[dir] = texts[dir] or read_file(root .. "/" .. chapter_file(dir)) or ""
+    return chapter_file(dir), texts[dir]
+  end)
   doc.blocks = teaching(doc.blocks, chapters_here)
   -- Inline references need the chapter each block belongs to: resolve them block by
   -- block, top level, tracking level-1 headings.

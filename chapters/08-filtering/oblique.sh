@@ -52,7 +52,7 @@ require_csv "$csv" "oblique.sh"
     ' "$csv" > "$out.rows"
     # rows in the configurations' order (filter_configs), as the chapter's tables list them
     head -n 4 "$out.rows"
-    for f in nearest bilinear mip-nearest trilinear trilinear_per-span trilinear_per-triangle \
+    for f in nearest nearest_linear-light bilinear mip-nearest trilinear trilinear_per-span trilinear_per-triangle \
              anisotropic-4 anisotropic-16 ewa; do
         grep "^| $f |" "$out.rows" || true
     done

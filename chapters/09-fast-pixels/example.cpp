@@ -19,7 +19,8 @@ int main(int argc, char** argv) {
     const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
     const int width = 320, height = 200;
 
-    // Triangles from slivers to a third of the frame, each its own colour and depth.
+    // Triangles from slivers to a third of the frame, with random colours (a few
+    // triangles share one) and random depth planes.
     std::mt19937_64 rng(9);
     std::uniform_real_distribution<double> x(-20.0, width + 20.0),
         y(-20.0, height + 20.0);

@@ -17,6 +17,7 @@ bench="$build/bin/bench_ch09_fast"
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 started=$(date -u '+%Y-%m-%d %H:%M')
+load_start=$(cut -d' ' -f1-3 /proc/loadavg)
 LP_NUM_THREADS=1 "$bench" --benchmark_repetitions=3 \
     --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true \
     --benchmark_out="$scratch/run.csv" --benchmark_out_format=csv >/dev/null 2>&1
@@ -27,10 +28,19 @@ LP_NUM_THREADS=2 "$bench" --benchmark_filter='^wall/llvmpipe/' --benchmark_repet
     --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true \
     --benchmark_out="$scratch/two.csv" --benchmark_out_format=csv >/dev/null 2>&1
 cat "$scratch/two.csv" >> "$scratch/run.csv"
+# llvmpipe held to SSE4.1 (128-bit vectors, four floats) where by default it generates
+# AVX code (256-bit vectors, eight floats): Mesa reads GALLIUM_OVERRIDE_CPU_CAPS once per
+# process, so these rows (MODE/llvmpipe_sse4.1/AREA/1) come from a third process.
+LP_NUM_THREADS=1 GALLIUM_OVERRIDE_CPU_CAPS=sse4.1 "$bench" \
+    --benchmark_filter='^(flat|depth)/llvmpipe_sse4.1/(0|80|1000)/' --benchmark_repetitions=3 \
+    --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true \
+    --benchmark_out="$scratch/narrow.csv" --benchmark_out_format=csv >/dev/null 2>&1
+cat "$scratch/narrow.csv" >> "$scratch/run.csv"
 {
     echo "# bench_ch09_fast full run, measured $started to $(date -u '+%H:%M') UTC: every benchmark"
-    echo "# repeated three times in random order, the median of each kept under the run's name"
-    echo "# machine: $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')), load average $(cut -d' ' -f1-3 /proc/loadavg) at the end${note:+; $note}"
+    echo "# repeated three times in random order, the median of each kept under the run's name,"
+    echo "# with the spread of the three in time_cv (their times' coefficient of variation)"
+    echo "# machine: $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')), load average $load_start at the start, $(cut -d' ' -f1-3 /proc/loadavg) at the end${note:+; $note}"
     echo "# software: $(c++ --version | head -n 1), $(dpkg-query -W -f 'Mesa ${Version}' libosmesa6 2>/dev/null || echo 'Mesa') llvmpipe via OSMesa, Release build, commit $(git rev-parse --short HEAD)"
     echo "# command: chapters/09-fast-pixels/full_run.sh build"
     echo "# rates are per second of process CPU time (all threads) except wall/* (wall clock)"

@@ -12,8 +12,9 @@
 # data/ch09_textured_compare.csv (bench_ch09_fast --compare-textured=AREA for every area:
 # pixels drawn, coverage and texel differences against llvmpipe, and the runs against the
 # teaching path), and data/ch09_textured_instructions.csv (instructions per triangle of
-# one drawing, counted by callgrind as callgrind.sh counts the default run: the teaching
-# path, the runs and llvmpipe at 3 and 1000 px). Takes about five minutes.
+# one frame, counted by callgrind as callgrind.sh counts the default run, less the count
+# of a frame with nothing in it: the teaching path, the runs and llvmpipe at 3 and
+# 1000 px). Takes about five minutes.
 set -eu
 build=${1:?usage: textured_run.sh BUILD_DIR}
 data=chapters/09-fast-pixels/data
@@ -35,7 +36,8 @@ end=$(date -u +%H:%M)
 load_end=$(cut -d ' ' -f 1-3 /proc/loadavg)
 {
     echo "# bench_ch09_fast --textured full run, measured $start-$end UTC: every benchmark repeated"
-    echo "# three times in random order, the median of each kept under the run's name (as full_run.sh)"
+    echo "# three times in random order, the median of each kept under the run's name (as full_run.sh),"
+    echo "# with the spread of the three in time_cv (their times' coefficient of variation)"
     echo "# machine: $cpu, $(nproc --all) cores at $mhz MHz, load average (1, 5, 15 min) $load_start at the start, $load_end at the end"
     echo "# software: $(c++ --version | head -n 1), Mesa $mesa llvmpipe via OSMesa, ${type:-unknown} build, commit $commit"
     echo "# command: chapters/09-fast-pixels/textured_run.sh build (LP_NUM_THREADS=1 bench_ch09_fast --textured --benchmark_repetitions=3 --benchmark_enable_random_interleaving=true)"
@@ -57,14 +59,22 @@ mv "$data/ch09_textured_compare.csv.tmp" "$data/ch09_textured_compare.csv"
     echo "# Chapter 9, textured: instructions per triangle (callgrind), measured $(date -u +%Y-%m-%d)"
     echo "# with $(valgrind --version) on $(uname -m), compiler $(c++ --version | head -n 1),"
     echo "# Mesa $mesa. Regenerate with chapters/09-fast-pixels/textured_run.sh build (Release build)."
-    echo "name,instructions,triangles,instructions_per_triangle"
-    for name in textured/teaching/3 textured/runs/3 textured/llvmpipe/3 \
-        textured/teaching/1000 textured/runs/1000 textured/llvmpipe/1000; do
+    echo "# instructions_per_triangle = (instructions - fixed_instructions) / triangles, where"
+    echo "# fixed_instructions is the count of textured/VARIANT/0, a frame with nothing in it."
+    echo "name,instructions,fixed_instructions,triangles,instructions_per_triangle"
+    count() {
         LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch09_draw_once \
             --smc-check=all-non-file --callgrind-out-file="$scratch/callgrind.out" \
-            "$bench" --once="$name" >/dev/null 2>"$scratch/log"
-        ir=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$scratch/log")
-        echo "$name,$ir,1024,$(awk "BEGIN { printf \"%.1f\", $ir / 1024 }")"
+            "$bench" --once="$1" >/dev/null 2>"$scratch/log"
+        sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$scratch/log"
+    }
+    for variant in teaching runs llvmpipe; do
+        fixed=$(count "textured/$variant/0")
+        echo "textured/$variant/0,$fixed,$fixed,0,0"
+        for area in 3 1000; do
+            ir=$(count "textured/$variant/$area")
+            echo "textured/$variant/$area,$ir,$fixed,1024,$(awk "BEGIN { printf \"%.1f\", ($ir - $fixed) / 1024 }")"
+        done
     done
 } >"$data/ch09_textured_instructions.csv.tmp"
 mv "$data/ch09_textured_instructions.csv.tmp" "$data/ch09_textured_instructions.csv"

@@ -52,7 +52,7 @@ def two_adic(n):
 
 
 # The text: an edge between integer points meets a centre exactly when dx and dy are both
-# non-zero and share their power of two; Exercise 2: when the reduced direction (dx, dy)/g
+# non-zero and the largest powers of two dividing them are equal; Exercise 2: when the reduced direction (dx, dy)/g
 # has both components odd. Both, against the exact search above, for every edge from the
 # origin to a point of [-6, 6]^2 (every integer edge is one of these, shifted).
 for dx, dy in itertools.product(range(-6, 7), repeat=2):
@@ -67,6 +67,20 @@ for dx, dy in itertools.product(range(-6, 7), repeat=2):
     holds(f"edge (0,0)-({dx},{dy}): centre {meets}, reduced direction odd {odd}",
           meets == odd)
 holds("the edge (0,0)-(2,2) passes through (1/2, 1/2)", passes_through_centre((0, 0), (2, 2)))
+# Exercise 2, "how often": of all integer edge vectors in a large square, a third have a
+# reduced direction with both components odd (odd-odd, odd-even and even-odd are equally
+# common among reduced directions; even-even is not reduced).
+import math  # noqa: E402
+vectors = odd_odd = 0
+for dx in range(-200, 201):
+    for dy in range(-200, 201):
+        if dx == 0 and dy == 0:
+            continue
+        g = math.gcd(dx, dy)
+        vectors += 1
+        odd_odd += (dx // g) % 2 != 0 and (dy // g) % 2 != 0
+holds(f"a third of the edge vectors meet centres: {odd_odd}/{vectors}",
+      abs(odd_odd / vectors - 1 / 3) < 0.005)
 
 # @eq:snap: X = floor(256 x + 1/2) is the nearest integer to 256 x, halves up ...
 x = sp.Symbol("x", real=True)

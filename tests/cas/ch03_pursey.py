@@ -28,6 +28,27 @@ same("slope at t = 0", slope.subs(t, 0), (3 - r) / (1 + r))
 same("slope at t = 1", slope.subs(t, 1), (3 * r - 1) / (1 + r))
 same("quadratic error (eq:quadratic-error)", q - s,
      2 * (r - 1)**2 * t * (t - sp.Rational(1, 2)) * (1 - t) / ((r + 1) * (r - (r - 1) * t)))
+# The same from divided differences, as the text argues: f = 1 / (r - (r - 1) t) has
+# f[t0..tm] = (r - 1)^m / prod(r - (r - 1) ti), s = (r f - 1) / (r - 1), and s - q is
+# t (t - 1/2)(t - 1) times s[0, 1/2, 1, t] = r / (r - 1) f[0, 1/2, 1, t].
+f = 1 / (r - (r - 1) * t)
+same("s from f", s, (r * f - 1) / (r - 1))
+u_ = sp.symbols("u")
+points = [sp.Integer(0), sp.Rational(1, 2), sp.Integer(1), u_]
+
+
+def divided(values, nodes):
+    if len(nodes) == 1:
+        return values[0]
+    return (divided(values[1:], nodes[1:]) - divided(values[:-1], nodes[:-1])) \
+        / (nodes[-1] - nodes[0])
+
+
+f_at = [f.subs(t, x) for x in points]
+same("divided difference of f", divided(f_at, points),
+     (r - 1)**3 / sp.prod([r - (r - 1) * x for x in points]))
+same("error from the divided difference", (s - q).subs(t, u_),
+     u_ * (u_ - sp.Rational(1, 2)) * (u_ - 1) * r / (r - 1) * divided(f_at, points))
 turn = sp.solve(sp.Eq(slope, 0), t)[0]
 same("turning point", turn, (r - 3) / (4 * (r - 1)))
 same("value at the turning point", q.subs(t, turn), -(r - 3)**2 / (8 * (r - 1) * (r + 1)))

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Chapter 5, re-derived with SymPy (run by CTest, label book): what the texel error
 (eq:texel-error) below one half says about the texel picked, the facing wall's share of
-differing texels (eq:differing-share), the Pareto front's dominance (eq:pareto), the depth
+differing texels (eq:differing-share), that beating (eq:pareto, with times tied within
+the noise, eq:time-tie) has no cycle, so every scene has a front, the depth
 ratio of a piece (eq:piece-ratio) with its consequences in the text, the receding quad's
 worst affine error, and Exercise 2's piece length. Exits non-zero on any mismatch."""
 import itertools
@@ -41,23 +42,54 @@ same("facing wall: share of differing texels", sp.Rational(differ, len(columns))
      sp.Rational(1, 2))
 
 
-# @eq:pareto: "m' dominates m" is a strict partial order (irreflexive, transitive), so the
-# front (the undominated mappers) is never empty and every mapper off it is dominated by
-# one on it.
-def dominates(a, b):
-    return a[0] <= b[0] and a[1] <= b[1] and a != b
+# @eq:pareto with @eq:time-tie: m' beats m when it is no slower beyond the noise delta
+# ((1 + delta) t_m bounds t_m'), no worse on the worst error e and the wrong texels at
+# ties N, and better on one (time: faster beyond the noise). With delta >= 0 the relation
+# is irreflexive and has no cycle: along a cycle e and N could never fall, so every step
+# would be faster beyond the noise, and t would fall all the way round. So every scene
+# has a front (a finite set with an acyclic relation has an unbeaten member). It is not
+# transitive once delta > 0: a chain of ties can span more than the noise, so the text
+# may not say that a mapper off the front is beaten by one on it.
+def beats(b, a, delta):
+    no_slower = b[0] <= (1 + delta) * a[0]
+    faster = (1 + delta) * b[0] < a[0]
+    return (no_slower and b[1] <= a[1] and b[2] <= a[2]
+            and (faster or b[1] < a[1] or b[2] < a[2]))
 
 
-grid = [(sp.Rational(t, 4), sp.Rational(e, 3)) for t in range(4) for e in range(4)]
-for a, b, c in itertools.product(grid, repeat=3):
-    holds(f"dominance irreflexive at {a}", not dominates(a, a))
-    if dominates(a, b) and dominates(b, c):
-        holds(f"dominance transitive {a} {b} {c}", dominates(a, c))
-front = [m for m in grid if not any(dominates(o, m) for o in grid)]
-for m in grid:
-    if m not in front:
-        holds(f"{m} off the front is dominated by a front member",
-              any(dominates(f, m) for f in front))
+def tied(t, t_other, delta):
+    return max(t, t_other) <= (1 + delta) * min(t, t_other)
+
+
+for delta in (sp.Integer(0), sp.Rational(1, 20), sp.Rational(1, 4)):
+    times = [sp.Rational(t, 20) for t in range(18, 27, 2)]
+    grid = [(t, e, N) for t in times for e in range(2) for N in range(2)]
+    # "No slower" is "faster or tied"; "faster" is "quicker and not tied" (the code's
+    # form, pareto_front.cpp).
+    for t, t_other in itertools.product(times, repeat=2):
+        holds(f"no slower is faster or tied at {t}, {t_other}",
+              (t <= (1 + delta) * t_other)
+              == ((1 + delta) * t < t_other or tied(t, t_other, delta)))
+        holds(f"faster is quicker and not tied at {t}, {t_other}",
+              ((1 + delta) * t < t_other) == (t < t_other and not tied(t, t_other, delta)))
+    for a in grid:
+        holds(f"beats irreflexive at {a}, delta {delta}", not beats(a, a, delta))
+    for a, b in itertools.product(grid, repeat=2):
+        holds(f"no 2-cycle {a} {b}, delta {delta}", not (beats(a, b, delta) and beats(b, a, delta)))
+    for a, b, c in itertools.product(grid, repeat=3):
+        holds(f"no 3-cycle {a} {b} {c}, delta {delta}",
+              not (beats(a, b, delta) and beats(b, c, delta) and beats(c, a, delta)))
+        if delta == 0 and beats(a, b, delta) and beats(b, c, delta):
+            holds(f"without noise, beating is transitive {a} {b} {c}", beats(a, c, delta))
+    front = [m for m in grid if not any(beats(o, m, delta) for o in grid)]
+    holds(f"the front is not empty, delta {delta}", len(front) > 0)
+# With noise, beating is not transitive: y beats x (tied, fewer wrong texels at ties),
+# z beats y (tied, smaller worst error), but z is slower than x beyond the noise.
+delta = sp.Rational(1, 20)
+x, y, z = (1, 1, 9), (sp.Rational(104, 100), 1, 0), (sp.Rational(108, 100), 0, 0)
+holds("y beats x", beats(y, x, delta))
+holds("z beats y", beats(z, y, delta))
+holds("z does not beat x: beating is not transitive with noise", not beats(z, x, delta))
 
 # @eq:piece-ratio: with q(k) = q0 + k dq > 0 on the piece, max/min = 1 + n |dq| / min,
 # for either sign of dq.

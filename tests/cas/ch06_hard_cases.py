@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Chapter 6, re-derived with SymPy (run by CTest, label book): the float spacing near
-10^6 px, the limit of the fixed-point range, the edge-on error of the divide
-(eq:edge-on-error), the near-plane crossing (eq:clip-t) with Exercise 2's error bound, and
-the drift of stepping (eq:drift-bound). Exits non-zero on any mismatch."""
+10^6 px, the limit of the fixed-point range and how far past it an edge product
+overflows, the edge-on error of the divide (eq:edge-on-error), the near-plane crossing
+(eq:clip-t) with Exercise 2's error bound and its example in doubles, the drift of
+stepping (eq:drift-bound) and of the 16.16 loop. Exits non-zero on any mismatch."""
 import pathlib
 import sys
 
@@ -17,6 +18,17 @@ from derivation import holds, same, finish  # noqa: E402
 same("2^28 units are 2^20 px", sp.Integer(2)**28 / 256, sp.Integer(2)**20)
 holds("one unit past the limit prints as 1048576.00390625",
       sp.Integer(2)**20 + sp.Rational(1, 256) == sp.Rational("1048576.00390625"))
+# Within it every edge value is below 2^60 (chapter 2's eq:edge-range, L = 2^28 units), far
+# from 2^63; a product of two differences reaches 2^63 only when each is 2^31.5 units,
+# 2^23.5 px, that is with coordinates of about 2^22.5 px, some six million pixels.
+L_units = sp.Integer(2)**28
+holds("edge values below 2^60 at the limit", 8 * L_units**2 + 2**14 * L_units < sp.Integer(2)**60)
+same("differences of 2^31.5 units multiply to 2^63", (sp.Integer(2)**sp.Rational(63, 2))**2,
+     sp.Integer(2)**63)
+same("2^31.5 units are 2^23.5 px", sp.Integer(2)**sp.Rational(63, 2) / 256,
+     sp.Integer(2)**sp.Rational(47, 2))
+holds("coordinates of 2^22.5 px are some six million pixels",
+      5.5e6 < float(sp.Integer(2)**sp.Rational(45, 2)) < 6.5e6)
 
 # @sec:far: a float has 24 significant bits; in [2^e, 2^(e+1)) its spacing is 2^(e-23).
 # Near 2^20 the spacing is 1/8 px; 10^6 lies in [2^19, 2^20), spacing 1/16, so rounding
@@ -85,6 +97,56 @@ linear = sum(expanded.coeff(d, 1).subs({d2: 0, d3: 0, d4: 0, d5: 0}) * d
              for d in (d2, d3, d4, d5))
 same("Exercise 2: first-order error of the crossing's depth",
      linear, (n_near - az) * (d2 + d3 + d4) + n_near * d5)
+# Exercise 2, in doubles as clipping.cpp computes them (Python's floats are IEEE doubles,
+# each operation rounded to nearest, no fused multiply-add): the first-order bound
+# 3 eps |a_z - n| + eps n holds, and it is units in the last place of a_z, not of n. The
+# solution's example: n = 0.1, a_z = 1234.5, b_z = -1 lands 6554 units of n below n.
+import math  # noqa: E402
+import random  # noqa: E402
+from fractions import Fraction  # noqa: E402
+
+eps_double = Fraction(1, 2**53)
+
+
+def crossing_depth(a, b, near):
+    """near_crossing's depth before it is set to near: a + t (b - a), t = (a - n)/(a - b)."""
+    t_hat = (a - near) / (a - b)
+    return a + t_hat * (b - a)
+
+
+def first_order_bound(a, near):
+    return 3 * eps_double * abs(Fraction(a) - Fraction(near)) + eps_double * Fraction(near)
+
+
+z_example = crossing_depth(1234.5, -1.0, 0.1)
+ulps_example = (Fraction(z_example) - Fraction(0.1)) / Fraction(math.ulp(0.1))
+holds(f"exercise 2 example: 6554 units of n below n ({ulps_example})", ulps_example == -6554)
+holds("exercise 2 example: behind the plane", z_example < 0.1)
+holds("exercise 2 example: within the first-order bound",
+      abs(Fraction(z_example) - Fraction(0.1)) <= first_order_bound(1234.5, 0.1))
+sampler = random.Random(6)
+for _ in range(20000):
+    near = sampler.choice([1e-6, 1e-3, 0.1, 0.5])
+    a_z = near + sampler.random() * 10**sampler.uniform(-3, 6)
+    b_z = near - (sampler.random() + 1e-9) * 10**sampler.uniform(-3, 6)
+    if not a_z >= near > b_z:
+        continue
+    miss = abs(Fraction(crossing_depth(a_z, b_z, near)) - Fraction(near))
+    if miss > first_order_bound(a_z, near):
+        holds(f"exercise 2 bound at n = {near}, a_z = {a_z}, b_z = {b_z}", False)
+        break
+
+# @sec:drift, the 16.16 loop: u0 and du rounded to 2^-16 (to_fixed_texel: u * 2^16 rounded
+# to nearest) and added exactly, so pixel k is off by at most (1 + k) 2^-17; over the
+# test's 4096 pixels the bound is 1/32 texel, and 1.0001 texels rounds by 0.45 of a unit,
+# so the drift at the last pixel is more than half the bound.
+same("16.16 bound over 4096 px", 4096 * sp.Integer(2)**-17, sp.Rational(1, 32))
+U0, dU = round(Fraction(0.3) * 2**16), round(Fraction(1.0001) * 2**16)
+holds("du rounds by 0.45 of a unit", abs(dU - Fraction(1.0001) * 2**16) > Fraction(44, 100))
+fixed_drift = max(abs(Fraction(U0 + k * dU, 2**16) - (Fraction(0.3) + k * Fraction(1.0001)))
+                  for k in range(4096))
+holds(f"16.16 drift {float(fixed_drift)} within (1 + k) 2^-17 and above half of 1/32",
+      Fraction(1, 64) < fixed_drift <= Fraction(1, 32))
 
 # @eq:drift-bound: u_{j+1} = (u_j + du)(1 + d_j), |d_j| <= 2^-24. To first order
 # u_k - (u_0 + k du) = sum_j d_j (u_0 + (j + 1) du): k terms, each at most 2^-24 max|u|.

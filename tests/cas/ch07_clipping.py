@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Chapter 7's clipping against the view volume, re-derived with SymPy (run by CTest,
-label book): the guard-band planes (eq:scene-guard-band), the crossing on any plane, the
-band's size against the fixed-point range, and the far-plane row (eq:scene-far-row).
+label book): the guard-band planes (eq:scene-guard-band), the crossing on any plane and
+an example of its rounding in doubles, the band's size against the fixed-point range,
+and the far-plane row (eq:scene-far-row).
 Exits non-zero on any mismatch."""
 import pathlib
 import sys
@@ -39,6 +40,31 @@ band = lambda r: (B - cx) * r[2] - f * r[0]  # noqa: E731
 tb = band((px, 0, pz)) / (band((px, 0, pz)) - band((qx, 0, qz)))
 cross = [px + tb * (qx - px), pz + tb * (qz - pz)]
 same("band crossing projects to B", sp.together(cx + f * cross[0] / cross[1]), B)
+
+# In doubles, as plane_crossing and project compute it (Python's floats are IEEE doubles,
+# no fused multiply-add), the crossing is more than a few units in the last place of B
+# from B: the text's example lands 554 of them inside, about 6e-8 px.
+import math  # noqa: E402
+
+
+def band_crossing_xs(x_in, z_in, x_out, z_out, focal, centre, band):
+    normal = (-focal, band - centre)  # the plane (B - c_x) z - f x >= 0, in (x, z)
+    s_in = normal[0] * x_in + normal[1] * z_in
+    s_out = normal[0] * x_out + normal[1] * z_out
+    assert s_in >= 0.0 > s_out
+    denominator = normal[0] * (x_in - x_out) + normal[1] * (z_in - z_out)
+    if not denominator > 0.0:
+        denominator = s_in - s_out
+    t_hat = min(max(s_in / denominator, 0.0), 1.0)
+    x_hat, z_hat = x_in + t_hat * (x_out - x_in), z_in + t_hat * (z_out - z_in)
+    return centre + focal * x_hat / z_hat
+
+
+xs_example = band_crossing_xs(30.0, 95.0, 70.0, 0.13, 1024.0, 640.0, 2.0**19)
+ulps_off = (xs_example - 2.0**19) / math.ulp(2.0**19)
+holds(f"the band crossing lands 554 units in the last place inside B ({ulps_off})",
+      ulps_off == -554)
+holds("that is about 6e-8 px", 5e-8 < abs(xs_example - 2.0**19) < 7e-8)
 
 # The band: half of chapter 2's exact range 2^20 px, far beyond the largest image side.
 holds("B = 2^19 is half the exact range", sp.Integer(2)**19 * 2 == sp.Integer(2)**20)

@@ -109,7 +109,8 @@ std::vector<MapperConfig> accuracy_mappers() {
     list.push_back(m(K::exact, P::float32));
     list.push_back(m(K::exact, P::float64));
     list.push_back(m(K::exact, P::fixed));
-    // The same fixed-point loops with chapter 4's rule chosen per triangle.
+    // Five of them again with chapter 4's rule chosen per triangle: four 16.16 loops and
+    // the exact mapper in double.
     list.push_back(m(K::affine, P::fixed, 16, true));
     list.push_back(m(K::subdivided, P::fixed, 16, true));
     list.push_back(m(K::quadratic_subdivided, P::fixed, 16, true));

@@ -97,8 +97,17 @@ std::int64_t pixel_writes(const AccuracyScene& scene);
 /// the last triangle that covers it; 0 where no triangle does.
 std::vector<double> span_ratio_map(const AccuracyScene& scene);
 
+/// For every pixel (row-major), the larger depth w at the two ends of the row span of
+/// the last triangle that covers it: how far that span reaches; 0 where no triangle does.
+std::vector<double> span_far_depth_map(const AccuracyScene& scene);
+
 /// The smallest and largest depth ratio max(w) / min(w) across the row spans of the
 /// scene's triangles (spans of at least two pixels).
 std::array<double, 2> span_depth_ratios(const AccuracyScene& scene);
+
+/// The bands of span depth ratio, [low, high), that chapter 5's picks table splits the
+/// floor into (figures/ch05_table.cpp; the test that explains the picks uses the same).
+inline constexpr std::array<std::array<double, 2>, 4> picks_ratio_bands = {
+    {{1.0, 2.0}, {2.0, 5.0}, {5.0, 10.0}, {10.0, 30.0}}};
 
 } // namespace exactpixels

@@ -38,8 +38,8 @@ std::string benchmark_name(const AccuracyScene& scene, const MapperConfig& mappe
 }
 
 namespace {
-/// Calls f(span, ratio) for every row span of the scene, ratio = max(w) / min(w)
-/// between its first and last pixel centres (1/w is linear on screen).
+/// Calls f(span, ratio, far) for every row span of the scene, ratio = max(w) / min(w)
+/// between its first and last pixel centres (1/w is linear on screen) and far = max(w).
 template <class F> void for_each_span_ratio(const AccuracyScene& scene, F&& f) {
     for (const auto& t : scene.triangles) {
         const std::array<FixedPoint2, 3> s = snapped(t);
@@ -52,7 +52,7 @@ template <class F> void for_each_span_ratio(const AccuracyScene& scene, F&& f) {
         scanline_spans(s, Viewport{scene.width, scene.height}, [&](Span span) {
             const double a = one_w(span.x_begin + 0.5, span.y + 0.5);
             const double b = one_w(span.x_end - 0.5, span.y + 0.5);
-            f(span, std::max(a, b) / std::min(a, b));
+            f(span, std::max(a, b) / std::min(a, b), 1.0 / std::min(a, b));
         });
     }
 }
@@ -62,7 +62,7 @@ std::vector<double> span_ratio_map(const AccuracyScene& scene) {
     std::vector<double> ratio(static_cast<std::size_t>(scene.width) *
                                   static_cast<std::size_t>(scene.height),
                               0.0);
-    for_each_span_ratio(scene, [&](Span s, double r) {
+    for_each_span_ratio(scene, [&](Span s, double r, double) {
         for (int x = s.x_begin; x < s.x_end; ++x) {
             ratio[static_cast<std::size_t>(s.y) * std::size_t(scene.width) +
                   std::size_t(x)] = r;
@@ -71,9 +71,22 @@ std::vector<double> span_ratio_map(const AccuracyScene& scene) {
     return ratio;
 }
 
+std::vector<double> span_far_depth_map(const AccuracyScene& scene) {
+    std::vector<double> far(static_cast<std::size_t>(scene.width) *
+                                static_cast<std::size_t>(scene.height),
+                            0.0);
+    for_each_span_ratio(scene, [&](Span s, double, double w) {
+        for (int x = s.x_begin; x < s.x_end; ++x) {
+            far[static_cast<std::size_t>(s.y) * std::size_t(scene.width) +
+                std::size_t(x)] = w;
+        }
+    });
+    return far;
+}
+
 std::array<double, 2> span_depth_ratios(const AccuracyScene& scene) {
     double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
-    for_each_span_ratio(scene, [&](Span s, double r) {
+    for_each_span_ratio(scene, [&](Span s, double r, double) {
         if (s.x_end - s.x_begin >= 2) {
             lo = std::min(lo, r);
             hi = std::max(hi, r);

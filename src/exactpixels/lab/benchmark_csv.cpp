@@ -43,6 +43,17 @@ double BenchmarkRuns::value(const std::string& name, const std::string& column) 
     return cell->second;
 }
 
+double BenchmarkRuns::net_rate(const std::string& name, const std::string& empty,
+                               const std::string& counter,
+                               const std::string& time) const {
+    const double t = value(name, time), t_empty = value(empty, time);
+    if (!(t_empty < t)) {
+        throw Error(fmt::format("{}: run '{}' takes no longer than its empty frame '{}'",
+                                file, name, empty));
+    }
+    return value(name, counter) * t / (t - t_empty);
+}
+
 BenchmarkRuns read_benchmark_csv(const std::filesystem::path& path) {
     std::ifstream in(path);
     if (!in) {

@@ -5,6 +5,9 @@
 // Usage:
 //   const BenchmarkRuns runs = read_benchmark_csv("data/ch09_fast.csv");
 //   double r = runs.value("flat/runs/1000/1/process_time", "tri_per_s");  // per second
+//   double n = runs.net_rate("flat/runs/1000/1/process_time",
+//   "flat/runs/0/1/process_time",
+//                            "tri_per_s", "cpu_time");  // less the empty frame's time
 //
 // Lines before the header row (Google Benchmark writes none; committed files may carry
 // '#' comments naming the machine and date) are skipped. Values are as written: times in
@@ -24,6 +27,12 @@ struct BenchmarkRuns {
     std::map<std::string, std::map<std::string, double>> runs; ///< the numeric cells
     /// The number in column `column` of run `name`; Error naming both when absent.
     double value(const std::string& name, const std::string& column) const;
+    /// The rate in counter `counter` of run `name` net of a fixed per-frame cost: run
+    /// `empty` times the same frame with nothing in it, and the rate is scaled by
+    /// t / (t - t_empty), t from column `time` (cpu_time, or real_time for wall-clock
+    /// runs) of each run. Error when a run or column is absent, or t_empty >= t.
+    double net_rate(const std::string& name, const std::string& empty,
+                    const std::string& counter, const std::string& time) const;
     /// True when a run called `name` exists.
     bool has(const std::string& name) const { return runs.count(name) != 0; }
 };

@@ -1,12 +1,17 @@
 #include "exactpixels/lab/filter_measure.hpp"
 
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/split_mix.hpp"
 #include "exactpixels/texture/bilinear.hpp"
 #include "exactpixels/texture/rounding.hpp"
+
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <numbers>
+#include <utility>
 
 namespace exactpixels {
 
@@ -125,7 +130,8 @@ std::vector<FilterConfig> filter_configs() {
         return FilterSettings{.filter = f, .wrap = Wrap::repeat, .max_probes = probes};
     };
     return {
-        {"nearest", with(Filter::nearest)},
+        {"nearest", with(Filter::nearest), Derivatives::per_pixel, TexelPath::as_stored},
+        {"nearest linear-light", with(Filter::nearest)},
         {"bilinear", with(Filter::bilinear)},
         {"mip-nearest", with(Filter::mip_nearest)},
         {"trilinear", with(Filter::trilinear)},
@@ -138,41 +144,224 @@ std::vector<FilterConfig> filter_configs() {
 }
 //< filter-configs
 
+//> bench-loop
+void filter_frame(Framebuffer& frame, const FilterScene& fs, const FilterConfig& config) {
+    if (config.path == TexelPath::as_stored) { // nearest as a renderer samples
+        assert(config.settings.filter == Filter::nearest);
+        for (const FilterPixel& p : fs.pixels) {
+            frame.at(p.x, p.y) =
+                sample_nearest(fs.scene->texture, p.uv, config.settings.wrap);
+        }
+        return;
+    }
+    for (const FilterPixel& p : fs.pixels) {
+        const TexelDerivatives& d = derivatives_of(p, config.derivatives);
+        frame.at(p.x, p.y) =
+            encode_linear_fast(sample_filtered(fs.chain, p.uv, d, config.settings));
+    }
+}
+//< bench-loop
+
 std::vector<LinearTexel> filter_image(const FilterScene& fs, const FilterConfig& config) {
     std::vector<LinearTexel> image;
     image.reserve(fs.pixels.size());
     for (const FilterPixel& p : fs.pixels) {
-        image.push_back(sample_filtered(
-            fs.chain, p.uv, derivatives_of(p, config.derivatives), config.settings));
+        image.push_back(config.path == TexelPath::as_stored
+                            ? decode_texel(sample_nearest(fs.scene->texture, p.uv,
+                                                          config.settings.wrap))
+                            : sample_filtered(fs.chain, p.uv,
+                                              derivatives_of(p, config.derivatives),
+                                              config.settings));
     }
     return image;
 }
 
+namespace {
+
+/// A convex polygon in one pixel's own coordinates: the pixel is [0, 1] x [0, 1], its
+/// corners listed counter-clockwise in (s, t) = (x - pixel x, y - pixel y).
+using PixelPolygon = std::vector<Point2>;
+
+/// a + b s + c t: a linear function on the pixel (u/w, v/w and 1/w are such functions).
+struct PixelLinear {
+    double a = 0.0, b = 0.0, c = 0.0;
+    double operator()(Point2 p) const { return a + b * p.x + c * p.y; }
+    PixelLinear operator-(const PixelLinear& o) const {
+        return {a - o.a, b - o.b, c - o.c};
+    }
+    PixelLinear operator*(double k) const { return {a * k, b * k, c * k}; }
+};
+
+/// Cuts `polygon` along the line f = 0: the part where f < 0 into `below`, the part
+/// where f >= 0 into `above` (Sutherland and Hodgman's clip, keeping both sides).
+void cut(const PixelPolygon& polygon, const PixelLinear& f, PixelPolygon& below,
+         PixelPolygon& above) {
+    below.clear();
+    above.clear();
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+        const Point2 a = polygon[k], b = polygon[(k + 1) % polygon.size()];
+        const double fa = f(a), fb = f(b);
+        (fa < 0.0 ? below : above).push_back(a);
+        if ((fa < 0.0) != (fb < 0.0)) { // the edge crosses the line: both sides get it
+            const Point2 crossing = a + (b - a) * (fa / (fa - fb));
+            below.push_back(crossing);
+            above.push_back(crossing);
+        }
+    }
+}
+
+/// The area of a polygon listed counter-clockwise (the shoelace formula).
+double area(const PixelPolygon& polygon) {
+    double twice = 0.0;
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+        const Point2 a = polygon[k], b = polygon[(k + 1) % polygon.size()];
+        twice += a.x * b.y - b.x * a.y;
+    }
+    return 0.5 * twice;
+}
+
+/// The texel indices floor(p / q) that the polygon reaches, first and last: a ratio of
+/// linear functions takes its extremes over a convex polygon at its corners.
+std::pair<int, int> texel_range(const PixelPolygon& polygon, const PixelLinear& p,
+                                const PixelLinear& q) {
+    double lo = p(polygon[0]) / q(polygon[0]), hi = lo;
+    for (const Point2 corner : polygon) {
+        lo = std::min(lo, p(corner) / q(corner));
+        hi = std::max(hi, p(corner) / q(corner));
+    }
+    return {static_cast<int>(std::floor(lo)), static_cast<int>(std::floor(hi))};
+}
+
+/// The part of a pixel's square the reference averages over, with u/w, v/w and 1/w of
+/// its triangle on it.
+struct PixelDomain {
+    PixelLinear pu, pv, q;            ///< u = pu / q and v = pv / q on the pixel
+    PixelPolygon polygon;             ///< the square, or the square inside the triangle
+    std::vector<PixelLinear> insides; ///< empty, or the triangle's edges (inside: >= 0)
+};
+
+/// The pixel's square with its triangle's planes extended over it; where 1/w is not
+/// positive at a corner of the square (the extended plane reaches behind the eye, so
+/// the mapping means nothing there), only the part of the square inside the triangle,
+/// where 1/w > 0 because it is at the three corners.
+PixelDomain pixel_domain(const FilterScene& fs, const FilterPixel& p) {
+    const auto& tri = fs.scene->triangles[static_cast<std::size_t>(p.triangle)];
+    const Point2 origin{p.x, p.y}; // the pixel's top-left corner: (s, t) = (0, 0)
+    const auto [u, v] = projected_coordinates(tri, origin);
+    PixelDomain d{{u.p, u.dp.dx, u.dp.dy},
+                  {v.p, v.dp.dx, v.dp.dy},
+                  {u.q, u.dq.dx, u.dq.dy},
+                  {{0, 0}, {1, 0}, {1, 1}, {0, 1}},
+                  {}};
+    if (std::all_of(d.polygon.begin(), d.polygon.end(),
+                    [&](Point2 corner) { return d.q(corner) > 0.0; })) {
+        return d;
+    }
+    // Edge a -> b: the cross product (b - a) x (s - a) has the sign of the triangle's
+    // own (b - a) x (c - a) on the inside.
+    const auto cross = [](Point2 e, Point2 f) { return e.x * f.y - e.y * f.x; };
+    const double orientation =
+        cross(tri[1].position - tri[0].position, tri[2].position - tri[0].position) > 0.0
+            ? 1.0
+            : -1.0;
+    PixelPolygon outside, inside;
+    for (int k = 0; k < 3; ++k) {
+        const Point2 a = tri[static_cast<std::size_t>(k)].position - origin;
+        const Point2 b = tri[static_cast<std::size_t>((k + 1) % 3)].position - origin;
+        const Point2 e = b - a;
+        const PixelLinear edge = PixelLinear{-cross(e, a), -e.y, e.x} * orientation;
+        d.insides.push_back(edge);
+        cut(d.polygon, edge, outside, inside);
+        d.polygon.swap(inside);
+    }
+    assert(area(d.polygon) > 0.0); // the pixel's centre is inside the triangle
+    return d;
+}
+
+} // namespace
+
 //> reference-image
 std::vector<LinearTexel> reference_image(const FilterScene& fs) {
-    constexpr int S = reference_samples_per_side;
     const LinearImage& base = fs.chain.levels.front();
     std::vector<LinearTexel> image;
     image.reserve(fs.pixels.size());
+    PixelPolygon rest, row, next, rest_of_row, piece, next_in_row;
     for (const FilterPixel& p : fs.pixels) {
-        const auto& tri = fs.scene->triangles[static_cast<std::size_t>(p.triangle)];
-        // u/w, v/w and 1/w at the pixel's top-left corner and their steps per sample.
-        const auto [u, v] = projected_coordinates(tri, Point2{p.x, p.y});
+        // u = pu / q and v = pv / q on the pixel; the texel edge u = i is the line
+        // pu - i q = 0, and v = j likewise: each cuts the pixel along a straight line.
+        const PixelDomain d = pixel_domain(fs, p);
+        rest = d.polygon; // the pixel, before any row of texels is cut off
         LinearTexel sum{0.0};
-        for (int b = 0; b < S; ++b) {
-            for (int a = 0; a < S; ++a) {
-                const double dx = (a + 0.5) / S, dy = (b + 0.5) / S;
-                const double q = u.q + u.dq.dx * dx + u.dq.dy * dy;
-                const TexCoord uv{(u.p + u.dp.dx * dx + u.dp.dy * dy) / q,
-                                  (v.p + v.dp.dx * dx + v.dp.dy * dy) / q};
-                sum += sample_nearest(base, uv, Wrap::repeat);
+        const auto [j_first, j_last] = texel_range(rest, d.pv, d.q);
+        for (int j = j_first; j <= j_last; ++j) {
+            // row: the part of the pixel with j <= v < j + 1; rest: v >= j + 1.
+            if (j < j_last) {
+                cut(rest, d.pv - d.q * (j + 1.0), row, next);
+                rest.swap(next);
+            } else {
+                row.swap(rest);
+            }
+            if (row.size() < 3) {
+                continue; // the pixel does not reach this row of texels
+            }
+            rest_of_row = row;
+            const auto [i_first, i_last] = texel_range(rest_of_row, d.pu, d.q);
+            for (int i = i_first; i <= i_last; ++i) {
+                if (i < i_last) { // piece: i <= u < i + 1
+                    cut(rest_of_row, d.pu - d.q * (i + 1.0), piece, next_in_row);
+                    rest_of_row.swap(next_in_row);
+                } else {
+                    piece.swap(rest_of_row);
+                }
+                if (piece.size() >= 3) {
+                    sum +=
+                        area(piece) * base.at(wrap_index(i, base.width, Wrap::repeat),
+                                              wrap_index(j, base.height, Wrap::repeat));
+                }
             }
         }
-        image.push_back(sum / double(S * S));
+        image.push_back(sum / area(d.polygon)); // the area is 1 for a whole square
     }
     return image;
 }
 //< reference-image
+
+std::vector<LinearTexel> sampled_reference_image(const FilterScene& fs, int per_side,
+                                                 SamplePattern pattern,
+                                                 const std::vector<bool>& selected) {
+    assert(per_side >= 1);
+    assert(selected.empty() || selected.size() == fs.pixels.size());
+    const LinearImage& base = fs.chain.levels.front();
+    std::vector<LinearTexel> image(fs.pixels.size(), LinearTexel{0.0});
+    for (std::size_t k = 0; k < fs.pixels.size(); ++k) {
+        if (!selected.empty() && !selected[k]) {
+            continue;
+        }
+        const PixelDomain d = pixel_domain(fs, fs.pixels[k]);
+        const auto sample = [&](Point2 at) {
+            return sample_nearest(base, {d.pu(at) / d.q(at), d.pv(at) / d.q(at)},
+                                  Wrap::repeat);
+        };
+        SplitMix random(0x5eed0000u + k); // the same samples in every run
+        LinearTexel sum{0.0};
+        int count = 0;
+        for (int b = 0; b < per_side; ++b) {
+            for (int a = 0; a < per_side; ++a) {
+                const double ds = pattern == SamplePattern::grid ? 0.5 : random.uniform();
+                const double dt = pattern == SamplePattern::grid ? 0.5 : random.uniform();
+                const Point2 at{(a + ds) / per_side, (b + dt) / per_side};
+                if (std::all_of(d.insides.begin(), d.insides.end(),
+                                [at](const PixelLinear& e) { return e(at) >= 0.0; })) {
+                    sum += sample(at);
+                    ++count;
+                }
+            }
+        }
+        // No sample inside (a sliver of a triangle): the pixel's centre is inside.
+        image[k] = count > 0 ? sum / double(count) : sample({0.5, 0.5});
+    }
+    return image;
+}
 
 //> rms-error
 double rms_code_error(const std::vector<LinearTexel>& image,

@@ -4,18 +4,22 @@
 // Usage:
 //   const AccuracyScene scene = grazing_floor_scene();
 //   const FilterScene fs = prepare_filter_scene(scene);     // pixels, uv, derivatives
-//   const std::vector<LinearTexel> ref = reference_image(fs);  // slow, deterministic
-//   const std::vector<LinearTexel> img = filter_image(fs, {.filter = Filter::trilinear});
+//   const std::vector<LinearTexel> ref = reference_image(fs);  // exact, deterministic
+//   const FilterConfig trilinear{"trilinear", {.filter = Filter::trilinear}};
+//   const std::vector<LinearTexel> img = filter_image(fs, trilinear);
 //   double e = rms_code_error(img, ref);                     // in 8-bit sRGB codes
+//   filter_frame(frame, fs, trilinear);  // the same pixels as 8-bit codes (the bench)
 //
 // Every pixel a triangle covers (chapter 1's coverage, the last triangle wins) is
 // sampled at its centre: uv of the exact perspective mapping there and its exact
 // derivatives (level_of_detail.hpp). A span is a run of consecutive pixels of one row
-// that one triangle owns; its derivatives are taken at its middle. The reference
-// integrates the texture (level 0, nearest texel, linear light) over the pixel's square
-// [x, x+1) x [y, y+1) with reference_samples_per_side^2 stratified samples of the same
-// triangle's mapping (its plane extended where the square reaches past an edge). Scenes
-// wrap with repeat.
+// that one triangle owns; its derivatives are taken at its middle. The reference is the
+// mean of the texture (level 0, each texel a uniform square, linear light) over the
+// pixel's square [x, x+1) x [y, y+1) under the same triangle's mapping (its planes
+// extended where the square reaches past an edge), computed exactly: the texel edges
+// are straight lines on screen, and each texel is weighted by the area of the piece of
+// the square it covers. sampled_reference_image estimates the same mean from n x n
+// samples, to check the exact one against. Scenes wrap with repeat.
 #pragma once
 
 #include "exactpixels/lab/accuracy_scenes.hpp"
@@ -43,9 +47,6 @@ AccuracyScene oblique_wall_scene();
 
 /// The scenes chapter 8 measures: chapter 5's wall, floor and field, then the horizon.
 std::vector<AccuracyScene> filter_scenes();
-
-/// Samples per side of each pixel's reference grid (32 x 32 = 1024 per pixel).
-inline constexpr int reference_samples_per_side = 32;
 
 /// One covered pixel of a scene with what every filter needs there.
 struct FilterPixel {
@@ -79,21 +80,54 @@ enum class Derivatives {
 /// The derivatives of pixel p under the choice `which`.
 const TexelDerivatives& derivatives_of(const FilterPixel& p, Derivatives which);
 
+/// How a configuration's texels reach the frame.
+enum class TexelPath {
+    linear_light, ///< decoded to linear light, filtered there, encoded once (srgb.hpp)
+    as_stored     ///< nearest only: the 8-bit texel fetched and written as it is stored
+};
+
 /// One filter configuration the chapter measures.
 struct FilterConfig {
     std::string name;        ///< short, unique, no commas: "trilinear"
     FilterSettings settings; ///< the filter, wrap, probes
     Derivatives derivatives = Derivatives::per_pixel; ///< where the level comes from
+    TexelPath path = TexelPath::linear_light;         ///< as_stored: nearest only
 };
 
-/// The configurations of the chapter; the first, nearest, is the time baseline.
+/// The configurations of the chapter. The first, "nearest", samples as a renderer does
+/// (the 8-bit texel, no light involved) and is the time baseline; the second, "nearest
+/// linear-light", picks the same texel through the linear-light chain every filter
+/// uses (decode, encode), and gives the same pixels.
 std::vector<FilterConfig> filter_configs();
 
-/// Every pixel of the scene (same order as fs.pixels) through the configuration.
+/// Every pixel of the scene through the configuration, written into `frame`
+/// (scene-sized) as 8-bit codes: what the benchmark times. Linear-light paths encode
+/// with encode_linear_fast; the as-stored path copies the texel.
+void filter_frame(Framebuffer& frame, const FilterScene& fs, const FilterConfig& config);
+
+/// Every pixel of the scene (same order as fs.pixels) through the configuration, in
+/// linear light (the as-stored path's texel decoded, so that errors compare alike).
 std::vector<LinearTexel> filter_image(const FilterScene& fs, const FilterConfig& config);
 
-/// The reference of every pixel (same order as fs.pixels): the box over the pixel.
+/// The reference of every pixel (same order as fs.pixels): the mean of the texture over
+/// the pixel's square, exact up to rounding. Each texel counts with the area of the
+/// piece of the square it covers (the pieces are convex polygons: the perspective
+/// mapping takes texel edges to straight lines). Throws Error when 1/w is not positive
+/// over a pixel's square.
 std::vector<LinearTexel> reference_image(const FilterScene& fs);
+
+/// Where a sampled reference puts its n x n samples in a pixel.
+enum class SamplePattern {
+    grid,    ///< at the centres of the n x n cells (the book's first edition's reference)
+    jittered ///< one uniformly random point in each cell, seeded per pixel: deterministic
+};
+
+/// An estimate of reference_image from per_side^2 samples of the nearest texel of level
+/// 0 per pixel, for the pixels k with selected[k] (all when `selected` is empty); the
+/// other pixels are 0.
+std::vector<LinearTexel> sampled_reference_image(const FilterScene& fs, int per_side,
+                                                 SamplePattern pattern,
+                                                 const std::vector<bool>& selected = {});
 
 /// Root mean square over pixels and the r, g, b channels of the difference between the
 /// 8-bit sRGB codes of two images (same size), over the pixels k with selected[k] (all

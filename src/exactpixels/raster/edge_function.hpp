@@ -191,7 +191,7 @@ inline std::array<double, 3> barycentric(const std::array<FixedPoint2, 3>& v,
 //> edge-gradient
 /// dc/dx and dc/dy from the edge functions' steps (@eq:edge-gradient): c_i times the
 /// change of lambda_i per pixel, summed. The same plane as chapter 1's closed form
-/// (@eq:split-dcdy), in any number type T (double, or an exact rational in the tests).
+/// (@eq:closed-form), in any number type T (double, or an exact rational in the tests).
 /// Zero area: {0, 0}.
 template <class T> Gradient<T> edge_function_gradient(const PlaneSamples<T>& s) {
     // E_0 at vertex 0 (@eq:edge-function with a = v1, b = v2, p = v0): twice the signed

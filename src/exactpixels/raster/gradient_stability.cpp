@@ -100,13 +100,13 @@ Gradient<long double> exact_gradient(const PlaneSamples<double>& s) {
     // 2^53, each product below 2^106, each difference of products below 2^107.
     const Int128 dx2 = x[1] - x[0], dy2 = y[1] - y[0], dc2 = c[1] - c[0];
     const Int128 dx3 = x[2] - x[0], dy3 = y[2] - y[0], dc3 = c[2] - c[0];
-    const Int128 area2 = dx3 * dy2 - dx2 * dy3;
+    const Int128 area2 = dx2 * dy3 - dx3 * dy2; // 2A
     if (area2 == 0) {
         return {0.0L, 0.0L};
     }
     const auto d = static_cast<long double>(area2);
-    return {static_cast<long double>(dc3 * dy2 - dc2 * dy3) / d,
-            static_cast<long double>(dc2 * dx3 - dc3 * dx2) / d};
+    return {static_cast<long double>(dc2 * dy3 - dc3 * dy2) / d,
+            static_cast<long double>(dc3 * dx2 - dc2 * dx3) / d};
 }
 
 std::vector<PlaneSamples<double>> stability_triangles(double y_delta, int count,

@@ -10,8 +10,10 @@
 // px, c lies in [0, 1]. Every input is a multiple of 2^-40 below 2^10 in magnitude (for
 // the float trials also rounded to float, where a y-delta below the spacing of floats
 // near y, 2^-17 .. 2^-14 px, becomes 0 or one spacing), and the exact gradient is a ratio
-// of two 128-bit integers (@eq:closed-form with integer inputs): the reference is that
-// ratio rounded once to long double, relative error below 2^-62. With an `origin`
+// of two 128-bit integers (@eq:closed-form with integer inputs): the reference converts
+// both to long double and divides, three roundings, so with a 64-bit significand (x86-64,
+// GCC or Clang) it is within 3 * 2^-64 of the exact ratio. Where long double is a double
+// (MSVC, Apple Silicon) it is no wider than what it measures. With an `origin`
 // (chapter 1's Exercise 5) every x and y is moved by that many px before the rounding, so
 // the same triangles lie near the origin instead (inputs then below 2^12 in magnitude).
 // The error of a computed gradient g is the relative error of the vector: |g - g_exact| /
@@ -44,7 +46,8 @@ struct StabilityRow {
 /// The y-deltas the study measures, largest first; the last one is exactly 0.
 std::vector<double> stability_y_deltas();
 
-/// The exact gradient of the triangle (@eq:closed-form), rounded once to long double.
+/// The exact gradient of the triangle (@eq:closed-form): numerator and denominator in
+/// 128-bit integers, each converted to long double, then divided (three roundings).
 /// Every input must be a multiple of 2^-40 with magnitude below 2^12 (asserted); zero
 /// area gives {0, 0}.
 Gradient<long double> exact_gradient(const PlaneSamples<double>& s);

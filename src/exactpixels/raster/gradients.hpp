@@ -49,11 +49,11 @@ template <class T> Gradient<T> closed_form_gradient(const PlaneSamples<T>& s) {
     const T dx2 = s.x[1] - s.x[0], dy2 = s.y[1] - s.y[0], dc2 = s.c[1] - s.c[0];
     const T dx3 = s.x[2] - s.x[0], dy3 = s.y[2] - s.y[0], dc3 = s.c[2] - s.c[0];
     //> exercise ch01-closed-form: dc/dx and dc/dy as the ratio of two cross products.
-    const T area2 = dx3 * dy2 - dx2 * dy3; // twice the signed area
+    const T area2 = dx2 * dy3 - dx3 * dy2; // 2A: > 0 when clockwise on screen (y down)
     if (area2 == T(0)) {
         return {T(0), T(0)}; // collinear or coincident vertices: no plane
     }
-    return {(dc3 * dy2 - dc2 * dy3) / area2, (dc2 * dx3 - dc3 * dx2) / area2};
+    return {(dc2 * dy3 - dc3 * dy2) / area2, (dc3 * dx2 - dc2 * dx3) / area2};
     //| (void)dx2, (void)dy2, (void)dc2, (void)dx3, (void)dy3, (void)dc3;
     //| return {T(0), T(0)}; // stub: a flat plane
     //< exercise ch01-closed-form

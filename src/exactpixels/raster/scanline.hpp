@@ -99,8 +99,9 @@ struct EdgeWalker {
 //< edge-walker
 
 /// The triangle's vertices sorted by y (ties keep their order) and which side the
-/// middle vertex is on. `area2` is twice the signed area in sorted order: positive when
-/// the middle vertex lies left of the long edge, zero for a degenerate triangle.
+/// middle vertex is on. `area2` is twice the signed area 2A in sorted order (positive
+/// when top, middle, bottom run clockwise on screen): negative when the middle vertex
+/// lies left of the long edge, zero for a degenerate triangle.
 template <class Vertex> struct SortedTriangle {
     std::array<int, 3> order; ///< indices of top, middle and bottom in the input
     Vertex top;               ///< smallest y
@@ -115,10 +116,10 @@ template <class Vertex>
 SortedTriangle<Vertex> sort_triangle(const std::array<Vertex, 3>& v) {
     const auto order = sorted_by_y(std::array{v[0].y, v[1].y, v[2].y});
     const Vertex a = v[order[0]], b = v[order[1]], c = v[order[2]];
-    // (x3 - x1)(y2 - y1) - (x2 - x1)(y3 - y1) = (x4 - x2)(y3 - y1): its sign says
-    // whether the middle vertex is left of the long edge.
-    const auto area2 = (c.x - a.x) * (b.y - a.y) - (b.x - a.x) * (c.y - a.y);
-    return {order, a, b, c, area2 > 0, area2 == 0};
+    // 2A = (x2 - x1)(y3 - y1) - (x3 - x1)(y2 - y1) = -(x4 - x2)(y3 - y1): negative
+    // exactly when the middle vertex is left of the long edge (x2 < x4).
+    const auto area2 = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+    return {order, a, b, c, area2 < 0, area2 == 0};
 }
 
 //> scanline-spans

@@ -67,7 +67,7 @@ struct Sse2 {
     /// Every lane set to `value`.
     static Sse2 broadcast(std::int32_t value) { return {_mm_set1_epi32(value)}; }
     /// Lane i set to i * step (i = 0 .. 3): step in lanes 1 and 3 plus 2 step in lanes 2
-    /// and 3, by masks (SSE2 has no 32-bit multiply).
+    /// and 3, by masks (SSE2 has no four-lane 32-bit multiply).
     static Sse2 ramp(std::int32_t step) {
         const __m128i one = _mm_set1_epi32(step), two = _mm_add_epi32(one, one);
         const __m128i odd = _mm_set_epi32(-1, 0, -1, 0),

@@ -210,7 +210,8 @@ namespace {
 /// One chunk's bins: tile k lists the triangles of the chunk (a contiguous slice of the
 /// submission order) whose bounds meet it, in order, as bins[first[k]] ..
 /// bins[first[k + 1] - 1] (a counting sort: count per tile, offsets, then fill). Kept
-/// from draw to draw, so the memory is allocated once; each on its own cache lines.
+/// from draw to draw, so the memory is allocated once. The three vectors begin a cache
+/// line of their own; their arrays are separate allocations.
 struct alignas(64) ChunkBins {
     std::vector<std::uint32_t> first; ///< tile_count + 1 offsets into bins
     std::vector<std::uint32_t> bins;  ///< triangle indices, tile after tile

@@ -29,8 +29,8 @@ std::array<ProjectedCoordinate<double>, 2> coordinates_at(const ProjectedPlanes&
     return {moved_by(u0, d.x, d.y), moved_by(v0, d.x, d.y)};
 }
 
-/// The rule on the row through the point of c. When the x numerator is zero the row is
-/// a line of constant c, and the sign of dc/dy = numerator_y / q^2 is taken on the side
+/// The rule on the row through the point of u. When the x numerator is zero the row is
+/// a line of constant u, and the sign of du/dy = numerator_y / q^2 is taken on the side
 /// of the row where q > 0 (the visible side): numerator_y / q has that sign everywhere.
 RoundingRule rule_on_row(const ProjectedCoordinate<double>& c) {
     const double n_y = numerator_y(c);

@@ -20,9 +20,10 @@
 // texels belongs to the texel on its right on screen (+x), or, where the boundary is
 // horizontal (dc/dx = 0), to the texel below it (+y). That is rule 1 when c grows to
 // the right (or, with dc/dx = 0, downwards or not at all) and rule 2 otherwise.
-// Under perspective, c = p / q with p = c/w and q = 1/w linear on screen; the sign of
-// dc/dx is the sign of the numerator dp/dx * q - p * dq/dx, which is the same at every
-// point of a row, even where q changes sign (@eq:numerator-constant).
+// Under perspective, u = p / q with p = u/w and q = 1/w linear on screen; the sign of
+// du/dx, which is that of dc/dx, is the sign of the numerator dp/dx * q - p * dq/dx,
+// which is the same at every point of a row, even where q changes sign
+// (@eq:numerator-constant), but not from row to row.
 #pragma once
 
 #include "exactpixels/base/error.hpp"
@@ -110,24 +111,24 @@ template <class Real> RoundingRule choose_rule(Real dc_dx, Real dc_dy) {
 }
 //< choose-rule
 
-/// A texture coordinate c under perspective, around one screen point: p = c/w and
-/// q = 1/w there, and their screen gradients (both are linear in x and y).
+/// A texture coordinate u (or v) under perspective, around one screen point: p = u/w
+/// and q = 1/w there, and their screen gradients (both are linear in x and y).
 template <class Real> struct ProjectedCoordinate {
-    Real p;            ///< c/w at the point
+    Real p;            ///< u/w at the point
     Real q;            ///< 1/w at the point
-    Gradient<Real> dp; ///< d(c/w)/dx and d(c/w)/dy, per pixel
+    Gradient<Real> dp; ///< d(u/w)/dx and d(u/w)/dy, per pixel
     Gradient<Real> dq; ///< d(1/w)/dx and d(1/w)/dy, per pixel
 };
 
 //> numerator
-/// The numerator of dc/dx = (dp/dx q - p dq/dx) / q^2 (@eq:numerator): its sign is the
-/// sign of dc/dx, and it does not change along the row through the point
-/// (@eq:numerator-constant).
+/// The numerator of du/dx = (dp/dx q - p dq/dx) / q^2 (@eq:numerator): its sign is the
+/// sign of du/dx (and of dc/dx, c = u - 1/2), and it does not change along the row
+/// through the point (@eq:numerator-constant).
 template <class Real> Real numerator_x(const ProjectedCoordinate<Real>& c) {
     return c.dp.dx * c.q - c.p * c.dq.dx;
 }
 
-/// The same for dc/dy: constant along the column through the point.
+/// The same for du/dy: constant along the column through the point.
 template <class Real> Real numerator_y(const ProjectedCoordinate<Real>& c) {
     return c.dp.dy * c.q - c.p * c.dq.dy;
 }
@@ -141,7 +142,7 @@ ProjectedCoordinate<Real> moved_by(const ProjectedCoordinate<Real>& c, Real dx, 
 }
 
 /// The rule for a perspective coordinate at its point: the signs of the numerators
-/// stand for the signs of dc/dx and dc/dy (q^2 > 0 wherever q != 0).
+/// stand for the signs of du/dx and du/dy (q^2 > 0 wherever q != 0).
 template <class Real> RoundingRule choose_rule(const ProjectedCoordinate<Real>& c) {
     return choose_rule(numerator_x(c), numerator_y(c));
 }

@@ -58,7 +58,13 @@ TexelError compare_texel_maps(const TexelMap& reference, const TexelMap& candida
             texel_error(candidate.u[k], candidate.v[k], reference.u[k], reference.v[k]);
         e.worst = std::max(e.worst, error);
         sum += error;
-        differing += candidate.i[k] != reference.i[k] || candidate.j[k] != reference.j[k];
+        const bool differs =
+            candidate.i[k] != reference.i[k] || candidate.j[k] != reference.j[k];
+        const bool tie = std::floor(reference.u[k]) == reference.u[k] ||
+                         std::floor(reference.v[k]) == reference.v[k];
+        differing += differs;
+        e.ties += tie;
+        e.wrong_at_ties += tie && differs;
         ++e.pixels;
     }
     if (e.pixels > 0) {

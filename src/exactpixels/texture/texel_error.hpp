@@ -6,12 +6,15 @@
 //   map_textured_triangle(reference, triangle, exact_settings);
 //   map_textured_triangle(candidate, triangle, settings);
 //   TexelError e = compare_texel_maps(reference, candidate);
-//   // e.worst, e.mean in texels; e.differing_share in [0, 1]
+//   // e.worst, e.mean in texels; e.differing_share in [0, 1]; e.wrong_at_ties, pixels
 //
 // The texel error at a pixel is the larger of |u - u_ref| and |v - v_ref|, in texels,
 // where (u, v) is the coordinate the mapper computed there (16.16 values divided by
 // 2^16) and (u_ref, v_ref) the reference's. A pixel "differs" when the texel indices
-// (i, j) the two picked are not the same (compared before wrapping). Only pixels that
+// (i, j) the two picked are not the same (compared before wrapping). A pixel is a "tie"
+// when the reference's u or v is a whole number: the sample lies exactly on a texel edge,
+// where only the rounding rule (chapter 4) decides the texel; wrong_at_ties counts the
+// ties where the candidate's texel differs, the error that rule fixes. Only pixels that
 // both maps cover are compared; every mapper covers the same pixels (chapter 1's
 // fixed-point coverage), and coverage_mismatches counts any pixel where that fails.
 #pragma once
@@ -29,6 +32,8 @@ struct TexelError {
     double worst = 0.0;                   ///< largest texel error, texels
     double mean = 0.0;                    ///< mean texel error, texels
     double differing_share = 0.0;         ///< share of pixels whose texel differs, [0, 1]
+    std::int64_t ties = 0;                ///< pixels whose reference u or v is whole
+    std::int64_t wrong_at_ties = 0;       ///< ties where the texel differs
     std::int64_t coverage_mismatches = 0; ///< pixels covered by one map only
     /// Pixels where either map holds a NaN or infinite coordinate: a failure, counted
     /// apart and never hidden in worst or mean (std::max would drop a NaN).
