@@ -538,22 +538,18 @@ local function render_block(block, counters, state)
 
   if block.t == "Div" or block.t == "BlockQuote" then
     block.content = render_blocks(block.content, counters, state, true)
-    -- ::: erratum: where the book corrects its source; a ruled box headed "Erratum" in
-    -- both formats (style.css for HTML, the eperratum environment of header.tex for PDF).
-    if block.t == "Div" and block.classes:includes("erratum") and not html then
-      local out = pandoc.List({ raw("latex", "\\begin{eperratum}") })
-      out:extend(block.content)
-      out:insert(raw("latex", "\\end{eperratum}"))
-      return out
-    end
-    -- ::: summary: the chapter's "In short", a box with a rule down its left side headed
-    -- "In short" in both formats (style.css; the epsummary environment of header.tex,
-    -- which may break across a page). teaching() checks where it stands.
-    if block.t == "Div" and block.classes:includes("summary") and not html then
-      local out = pandoc.List({ raw("latex", "\\begin{epsummary}") })
-      out:extend(block.content)
-      out:insert(raw("latex", "\\end{epsummary}"))
-      return out
+    -- The boxed divs, styled in HTML by style.css and set in PDF in an environment of
+    -- header.tex: ::: erratum, where the book corrects its source (a ruled box headed
+    -- "Erratum"), and ::: summary, the chapter's "In short" (a box with a rule down its
+    -- left side, which may break across a page; teaching() checks where it stands).
+    local environments = { erratum = "eperratum", summary = "epsummary" }
+    for class, environment in pairs(environments) do
+      if block.t == "Div" and block.classes:includes(class) and not html then
+        local out = pandoc.List({ raw("latex", "\\begin{" .. environment .. "}") })
+        out:extend(block.content)
+        out:insert(raw("latex", "\\end{" .. environment .. "}"))
+        return out
+      end
     end
     return { block }
   elseif block.t == "BulletList" or block.t == "OrderedList" then
