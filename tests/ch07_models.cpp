@@ -363,6 +363,16 @@ std::vector<BadModel> bad_models() {
          "material 'wood' is not defined"},
         {"a missing material file", "mtllib nowhere.mtl\n" + triangle, "", "model.obj:1",
          "nowhere.mtl"},
+        // tinyobjloader splits mtllib names at spaces only and takes '\\' as an escape:
+        // each of these read two ways once made the reader look up a name the check
+        // never read (an abort).
+        {"a tab after the mtllib name", "mtllib model.mtl\t\n" + triangle + "usemtl a\n",
+         "newmtl a\nKd .5 .5 .5\n", "model.obj:1", "a tab or a backslash"},
+        {"two tabs between mtllib and the name",
+         "mtllib\t\tmodel.mtl\n" + triangle + "usemtl a\n", "newmtl a\nKd .5 .5 .5\n",
+         "model.obj:1", "a tab or a backslash"},
+        {"a backslash in the mtllib name", "mtllib mo\\del.mtl\n" + triangle, "",
+         "model.obj:1", "a tab or a backslash"},
         {"a missing texture", "mtllib model.mtl\n" + triangle,
          "newmtl a\nmap_Kd nowhere.png\n", "model.mtl:2", "nowhere.png"},
         {"a colour out of range", "mtllib model.mtl\n" + triangle, "newmtl a\nKd 2 0 0\n",

@@ -20,10 +20,11 @@ namespace exactpixels {
 
 namespace {
 
-/// Where a message points: a file and a line in it.
+/// Where a message points: a file and a line in it (and the line's text, as read).
 struct Place {
     std::string file;
     std::size_t line = 0;
+    std::string_view text = {};
 
     [[noreturn]] void fail(const std::string& message) const {
         throw Error(fmt::format("{}:{}: {}", file, line, message));
@@ -70,7 +71,7 @@ void for_each_statement(std::string_view text, const std::string& file, Each eac
         const std::vector<std::string_view> words =
             words_of(text.substr(start, end - start));
         if (!words.empty() && words[0][0] != '#') {
-            each(Place{file, line}, words);
+            each(Place{file, line, text.substr(start, end - start)}, words);
         }
         start = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
     }
@@ -307,6 +308,13 @@ CheckedObj check_obj(std::string_view text, const std::string& file,
             checked.face_lines.push_back(at.line);
         } else if (key == "mtllib") {
             expect_fields(at, words, 1, 1);
+            // tinyobjloader reads the names after "mtllib" split at spaces only, with a
+            // backslash escaping the next character: without tabs and backslashes on the
+            // line it reads this one name, as the check does.
+            if (at.text.find_first_of("\t\\") != std::string_view::npos) {
+                at.fail("mtllib: the line holds a tab or a backslash; write the file "
+                        "name after a space, with neither");
+            }
             const std::string name(words[1]);
             const std::filesystem::path path = folder / name;
             std::string mtl;
@@ -346,13 +354,16 @@ CheckedObj check_obj(std::string_view text, const std::string& file,
 /// Hands tinyobjloader the MTL texts the check has read.
 class CheckedMaterials : public tinyobj::MaterialReader {
   public:
-    explicit CheckedMaterials(const std::map<std::string, std::string>& texts)
-        : texts_(texts) {}
+    CheckedMaterials(const std::map<std::string, std::string>& texts, std::string model)
+        : texts_(texts), model_(std::move(model)) {}
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* ids, std::string* warning,
                     std::string* error) override {
         const auto found = texts_.find(name);
-        assert(found != texts_.end()); // the check read every mtllib
+        if (found == texts_.end()) { // the check read every mtllib it accepted
+            throw Error(fmt::format("{}: mtllib '{}' was not read by the check", model_,
+                                    name));
+        }
         std::istringstream in(found->second);
         tinyobj::LoadMtl(ids, materials, &in, warning, error);
         return true;
@@ -360,6 +371,7 @@ class CheckedMaterials : public tinyobj::MaterialReader {
 
   private:
     const std::map<std::string, std::string>& texts_;
+    std::string model_; ///< the OBJ file, for the message
 };
 
 //> fan
@@ -406,7 +418,7 @@ Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warning, error;
-    CheckedMaterials reader(checked.mtl_texts);
+    CheckedMaterials reader(checked.mtl_texts, name);
     std::istringstream in{std::string(text)};
     if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &in, &reader,
                           /*triangulate=*/false)) {
