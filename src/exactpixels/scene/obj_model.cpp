@@ -361,8 +361,8 @@ class CheckedMaterials : public tinyobj::MaterialReader {
                     std::string* error) override {
         const auto found = texts_.find(name);
         if (found == texts_.end()) { // the check read every mtllib it accepted
-            throw Error(fmt::format("{}: mtllib '{}' was not read by the check", model_,
-                                    name));
+            throw Error(
+                fmt::format("{}: mtllib '{}' was not read by the check", model_, name));
         }
         std::istringstream in(found->second);
         tinyobj::LoadMtl(ids, materials, &in, warning, error);
