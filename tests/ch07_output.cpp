@@ -176,6 +176,32 @@ TEST_CASE("an output that is the scene file or one of its textures is refused") 
     fs::remove_all(folder);
 }
 
+TEST_CASE("coverage refuses an output that is the file read as standard input") {
+    const auto folder = scratch_folder("stdin");
+    const fs::path triangles = folder / "t.txt";
+    const std::string text = "2 1\n0 0 2 0 0 1\n";
+    std::ofstream(triangles) << text;
+    fs::create_hard_link(triangles, folder / "alias.txt");
+    for (const char* victim : {"t.txt", "alias.txt"}) {
+        CAPTURE(victim);
+        const auto result =
+            run_command("sh -c \"" + cli_path() + " coverage -o " +
+                        quoted(folder / victim) + " < " + quoted(triangles) + "\"");
+        CHECK(result.exit_code == 2);
+        CHECK(result.err.find("it is the file read as standard input") !=
+              std::string::npos);
+        CHECK(slurp(triangles) == text);
+    }
+    CHECK(names_in(folder) == std::set<std::string>{"t.txt", "alias.txt"});
+    // Another output, or the input piped in, is fine.
+    const auto ok =
+        run_command("sh -c \"" + cli_path() + " coverage -o " +
+                    quoted(folder / "counts.txt") + " < " + quoted(triangles) + "\"");
+    CHECK(ok.exit_code == 0);
+    CHECK(slurp(folder / "counts.txt") == "1 0\n");
+    fs::remove_all(folder);
+}
+
 TEST_CASE("an output that is not a regular file is refused and left as it was") {
     const auto folder = scratch_folder("special");
     ::mkfifo((folder / "fifo").c_str(), 0600);

@@ -113,7 +113,8 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
                             "point only (--precision fixed)");
             }
             if (output_option->count() > 0) {
-                check_output(options->output, "coverage"); // before reading the input
+                check_output(options->output, "coverage", // before reading the input
+                             std::span(&standard_input, 1));
             }
             Viewport viewport{0, 0};
             const CoverageRasterizer kind = options->rasterizer;
@@ -129,7 +130,8 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
                                       viewport);
             const std::string out = format_counts(counts, viewport);
             if (output_option->count() > 0) {
-                write_file_atomically(options->output, "coverage", out);
+                write_file_atomically(options->output, "coverage", out,
+                                      std::span(&standard_input, 1));
             } else {
                 write_standard_output(out);
             }

@@ -91,9 +91,14 @@ void check_output(const std::filesystem::path& path, std::string_view kind,
     }
     for (const std::filesystem::path& input : inputs) {
         struct stat source {};
-        if (!input.empty() && ::stat(input.c_str(), &source) == 0 &&
-            source.st_dev == target.st_dev && source.st_ino == target.st_ino) {
-            fail(path, kind, fmt::format("it is the input file {}", input.string()));
+        const bool is_stdin = input == standard_input;
+        const bool found = is_stdin
+                               ? ::fstat(STDIN_FILENO, &source) == 0
+                               : !input.empty() && ::stat(input.c_str(), &source) == 0;
+        if (found && source.st_dev == target.st_dev && source.st_ino == target.st_ino) {
+            fail(path, kind,
+                 is_stdin ? std::string("it is the file read as standard input")
+                          : fmt::format("it is the input file {}", input.string()));
         }
     }
 }

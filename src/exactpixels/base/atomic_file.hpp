@@ -14,7 +14,9 @@
 // Refused before anything is written: an empty path; a target that exists and is not a
 // regular file (a directory, a device such as /dev/null, a FIFO, a symbolic link); and a
 // target that is the same file as one of `inputs` (same device and inode, so a hard link
-// or another spelling of the same path is caught too).
+// or another spelling of the same path is caught too). A command that reads standard
+// input names it among its inputs as `standard_input`, compared through its descriptor,
+// so that `cmd -o f < f` is refused too.
 #pragma once
 
 #include <filesystem>
@@ -22,6 +24,10 @@
 #include <string_view>
 
 namespace exactpixels {
+
+/// The name an input list gives standard input: check_output compares the file open as
+/// descriptor 0 (whatever redirected it) with the target.
+inline const std::filesystem::path standard_input = "-";
 
 /// Throws Error ("PATH: cannot write KIND file (reason)") when `path` may not be written:
 /// it is empty, exists and is not a regular file, or is the same file as one of
