@@ -202,6 +202,15 @@ TEST_CASE("coverage refuses an output that is the file read as standard input") 
     fs::remove_all(folder);
 }
 
+TEST_CASE("coverage: a read error on standard input is an error, not its end") {
+    // A directory as standard input: the first read fails (EISDIR), which std::cin
+    // reports as the end of the input.
+    const auto result = run_command("sh -c \"" + cli_path() + " coverage < /\"");
+    CHECK(result.exit_code == 2);
+    CHECK(result.err.find("standard input: cannot read") != std::string::npos);
+    CHECK(result.out.empty());
+}
+
 TEST_CASE("an output that is not a regular file is refused and left as it was") {
     const auto folder = scratch_folder("special");
     ::mkfifo((folder / "fifo").c_str(), 0600);

@@ -118,16 +118,32 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
             }
             Viewport viewport{0, 0};
             const CoverageRasterizer kind = options->rasterizer;
-            const std::vector<int> counts =
-                fast ? count_coverage(
-                           std::cin,
-                           [kind](std::vector<int>& c, Viewport frame,
-                                  const std::array<Point2, 3>& v) {
-                               add_fast_coverage(c, frame, v, kind);
-                           },
-                           viewport)
-                     : count_coverage(std::cin, chapter2_kind(kind), options->precision,
-                                      viewport);
+            // A failed read of standard input ends std::cin as its end would: the error
+            // flag of stdin (which std::cin reads through) tells the two apart, and a
+            // failed read is an error, whatever the reader made of the input before it.
+            const auto unread = [] {
+                return Error("standard input: cannot read it to its end (a read failed)");
+            };
+            std::vector<int> counts;
+            try {
+                counts = fast ? count_coverage(
+                                    std::cin,
+                                    [kind](std::vector<int>& c, Viewport frame,
+                                           const std::array<Point2, 3>& v) {
+                                        add_fast_coverage(c, frame, v, kind);
+                                    },
+                                    viewport)
+                              : count_coverage(std::cin, chapter2_kind(kind),
+                                               options->precision, viewport);
+            } catch (const Error&) {
+                if (std::ferror(stdin)) {
+                    throw unread();
+                }
+                throw;
+            }
+            if (std::ferror(stdin)) {
+                throw unread();
+            }
             const std::string out = format_counts(counts, viewport);
             if (output_option->count() > 0) {
                 write_file_atomically(options->output, "coverage", out,
