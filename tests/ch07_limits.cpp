@@ -3,8 +3,10 @@
 // stays under a stated peak of memory, and an input over them is refused cheaply. Each
 // case runs build/bin/exactpixels as a child process and reads its peak resident memory
 // from the kernel (wait4's ru_maxrss).
+#include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/base/test_pattern.hpp"
+#include "exactpixels/scene/obj_model.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 #include "support/png_chunks.hpp"
@@ -13,9 +15,9 @@
 #include <fmt/format.h>
 
 #include <fcntl.h>
-#include <malloc.h>
 #include <filesystem>
 #include <fstream>
+#include <malloc.h>
 #include <sstream>
 #include <string>
 #include <sys/resource.h>
@@ -184,5 +186,73 @@ TEST_CASE("the worst inputs under the limits stay under the stated peaks" *
         run_measured({"coverage", "-o", folder / "c.txt"}, folder / "frame.txt");
     CHECK(frame.exit_code == 0);
     CHECK(frame.bytes < 256 * mebibyte);
+    fs::remove_all(folder);
+}
+
+namespace {
+
+/// The message of the Error that parsing `text` (a scene in `folder`) throws, or "".
+std::string scene_error(const std::string& text, const fs::path& folder) {
+    try {
+        (void)parse_scene(text, "s.toml", folder);
+    } catch (const Error& error) {
+        return error.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST_CASE("model references over the limits are refused before they are copied") {
+    const fs::path folder = scratch_folder("references");
+    const fs::path cube = fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/models";
+    // Generated, not fixtures: thousands of entries. The cube has two materials, so
+    // 2049 references make 4098 meshes.
+    std::string many;
+    for (int k = 0; k < max_scene_meshes / 2 + 1; ++k) {
+        many += "[[mesh]]\nfile = \"cube.obj\"\n";
+    }
+    CHECK(scene_error(many, cube) ==
+          fmt::format("s.toml:{}:8: mesh[{}].file: the model's 2 materials take the "
+                      "scene beyond the {} meshes allowed",
+                      max_scene_meshes + 2, max_scene_meshes / 2, max_scene_meshes));
+
+    // A model of 2^15 triangles, a grid of 128 x 128 quads: 32 references are the
+    // scene's 2^20 triangles, the 33rd is refused before its copy is made.
+    std::string grid;
+    for (int y = 0; y <= 128; ++y) {
+        for (int x = 0; x <= 128; ++x) {
+            grid += fmt::format("v {} {} 0\n", x, y);
+        }
+    }
+    for (int y = 0; y < 128; ++y) {
+        for (int x = 0; x < 128; ++x) {
+            const int a = y * 129 + x + 1;
+            grid += fmt::format("f {} {} {} {}\n", a, a + 1, a + 130, a + 129);
+        }
+    }
+    std::ofstream(folder / "grid.obj") << grid;
+    std::string copies;
+    for (int k = 0; k < 33; ++k) {
+        copies += "[[mesh]]\nfile = \"grid.obj\"\n";
+    }
+    CHECK(scene_error(copies, folder) ==
+          fmt::format("s.toml:66:8: mesh[32].file: the model's 32768 triangles take the "
+                      "scene beyond the {} triangles allowed",
+                      max_scene_triangles));
+
+    // A second model file that would take the scene's models beyond
+    // max_scene_model_bytes is refused from its size, before a byte of it is read (a
+    // sparse file of zeros: reading it would be an error too, a different one).
+    std::ofstream(folder / "huge.obj").close();
+    fs::resize_file(folder / "huge.obj",
+                    static_cast<std::uintmax_t>(max_model_file_bytes));
+    const std::string two =
+        "[[mesh]]\nfile = \"grid.obj\"\n[[mesh]]\nfile = \"huge.obj\"\n";
+    CHECK(scene_error(two, folder) ==
+          fmt::format("s.toml:4:8: mesh[1].file: {}: {} bytes take the scene's model "
+                      "files beyond the {} bytes allowed together",
+                      (folder / "huge.obj").string(), max_model_file_bytes,
+                      max_scene_model_bytes));
     fs::remove_all(folder);
 }
