@@ -6,14 +6,17 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/base/test_pattern.hpp"
+#include "exactpixels/lab/model_generator.hpp"
 #include "exactpixels/scene/obj_model.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
+#include "support/measured_facts.hpp"
 #include "support/png_chunks.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
@@ -40,6 +43,7 @@ constexpr bool peaks_are_meaningful = false;
 #else
 constexpr bool peaks_are_meaningful = true;
 #endif
+constexpr bool sanitized = !peaks_are_meaningful;
 
 /// How a child ended and the most memory it held.
 struct Peak {
@@ -255,4 +259,73 @@ TEST_CASE("model references over the limits are refused before they are copied")
                       (folder / "huge.obj").string(), max_model_file_bytes,
                       max_scene_model_bytes));
     fs::remove_all(folder);
+}
+
+TEST_CASE("every shipped scene asks for a small part of the fill-work limit") {
+    // Every scene that ships in chapters/07-scenes/scenes/ (chapter 8's among them) and
+    // the big torus of chapter 7's speed section, which the book build generates.
+    std::vector<fs::path> scenes;
+    for (const fs::directory_entry& entry :
+         fs::directory_iterator(shipped_scene_folder())) {
+        if (entry.path().extension() == ".toml") {
+            scenes.push_back(entry.path());
+        }
+    }
+    std::sort(scenes.begin(), scenes.end());
+    REQUIRE(scenes.size() >= 12);
+    const fs::path folder = scratch_folder("fill");
+    write_generated_model(big_torus_model(), folder);
+    std::ofstream(folder / "big_torus.toml") << big_torus_scene();
+    scenes.push_back(folder / "big_torus.toml");
+    long long largest = 0;
+    for (const fs::path& path : scenes) {
+        const Scene scene = load_scene(path);
+        RenderReport report;
+        const std::vector<long long> work =
+            fill_work(run_geometry(scene, report), Viewport{scene.width, scene.height});
+        long long sum = 0;
+        for (const long long mesh : work) {
+            sum += mesh;
+        }
+        INFO(path.filename().string(), ": ", sum, " pixels");
+        CHECK(sum > 0);
+        largest = std::max(largest, sum);
+    }
+    fs::remove_all(folder);
+    // The limit is far above every scene the book draws.
+    CHECK(100 * largest < max_fill_work);
+    testing::record_fact("ch07_fill_work_largest", double(largest));
+    testing::record_fact("ch07_fill_work_margin",
+                         double(max_fill_work) / double(largest));
+    MESSAGE(fmt::format("largest shipped fill work: {} pixels, {:.0f} times under the "
+                        "limit",
+                        largest, double(max_fill_work) / double(largest)));
+}
+
+TEST_CASE("a scene over the fill-work limit is refused before it is drawn") {
+    // tests/fixtures/scenes/fill_work_over.toml: 17 triangles whose bounding boxes each
+    // cover the 4096 x 4096 image; 16 are exactly max_fill_work.
+    REQUIRE(max_fill_work == 16LL * 4096 * 4096);
+    const fs::path path =
+        fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/scenes/fill_work_over.toml";
+    Scene scene = load_scene(path);
+    REQUIRE(scene.meshes.size() == 17);
+    try {
+        (void)render_scene(scene);
+        FAIL("the scene was drawn");
+    } catch (const Error& error) {
+        CHECK(std::string(error.what()) ==
+              fmt::format("{}:59:1: mesh[16]: the triangles up to this mesh ask for {} "
+                          "pixels of drawing (their bounding boxes in the image), more "
+                          "than the {} allowed",
+                          path.string(), 17LL * 4096 * 4096, max_fill_work));
+    }
+    // At the limit the scene is drawn: 2^28 pixels of boxes, half of them covered, a
+    // fraction of a second, but many seconds under the sanitizers, which skip it.
+    if (!sanitized) {
+        scene.meshes.pop_back();
+        const RenderResult drawn = render_scene(scene);
+        CHECK(drawn.report.raster.triangles == 16);
+        CHECK(drawn.report.raster.pixels == 16LL * 4096 * 4095 / 2); // top-left rule
+    }
 }
