@@ -832,9 +832,11 @@ const LoadedModel& load_model(const Context& c, const toml::node& file,
     };
     struct stat info {};
     if (::stat(model_path.c_str(), &info) != 0) {
-        read(); // missing or unreadable: read_obj_model says why, as for any input
+        // Missing or unreadable: read_obj_model says why, as for any input. A file that
+        // appears in between is refused, not read without its size counted.
+        read();
         c.fail(file.source(), path,
-               fmt::format("{}: the model file appeared while it was read",
+               fmt::format("{}: the model file changed while it was read",
                            model_path.string()));
     }
     const std::pair key{info.st_dev, info.st_ino};
