@@ -165,3 +165,37 @@ TEST_CASE("coverage refuses a frame of more than 2^24 pixels and an endless line
     CHECK(largest.exit_code == 0);
     CHECK(largest.out.size() == 2 * 16384);
 }
+
+TEST_CASE("coverage refuses an input over the fill-work limit before drawing it") {
+    // Generated: thousands of lines. In a 4096 x 16 frame each triangle's bounding box
+    // is the whole frame, 2^16 pixels, so 4096 triangles are exactly max_fill_work
+    // (2^28 pixels) and a 4097th is over it.
+    const auto input_of = [](int triangles) {
+        std::string text = "4096 16\n";
+        for (int k = 0; k < triangles; ++k) {
+            text += "0 0 8192 0 0 32\n";
+        }
+        return text;
+    };
+    const auto over = run_command(cli_path() + " coverage", input_of(4097));
+    CHECK(over.exit_code == 2);
+    CHECK(over.out.empty());
+    CHECK(over.err ==
+          "exactpixels coverage: line 4098: the triangles up to this line ask "
+          "for 268500992 pixels of drawing (their bounding boxes in the "
+          "frame), more than the 268435456 allowed\n");
+#if !defined(__SANITIZE_ADDRESS__) // drawing 2^28 pixels takes many seconds there
+    // At the limit it is drawn: every pixel centre lies inside every triangle.
+    const auto at = run_command(cli_path() + " coverage", input_of(4096));
+    CHECK(at.exit_code == 0);
+    std::string row = "4096";
+    for (int x = 1; x < 4096; ++x) {
+        row += " 4096";
+    }
+    std::string expected_counts;
+    for (int y = 0; y < 16; ++y) {
+        expected_counts += row + "\n";
+    }
+    CHECK(at.out == expected_counts);
+#endif
+}

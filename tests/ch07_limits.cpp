@@ -3,19 +3,24 @@
 // stays under a stated peak of memory, and an input over them is refused cheaply. Each
 // case runs build/bin/exactpixels as a child process and reads its peak resident memory
 // from the kernel (wait4's ru_maxrss).
+#include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/base/test_pattern.hpp"
+#include "exactpixels/lab/model_generator.hpp"
+#include "exactpixels/scene/obj_model.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
+#include "support/measured_facts.hpp"
 #include "support/png_chunks.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fcntl.h>
-#include <malloc.h>
 #include <filesystem>
 #include <fstream>
+#include <malloc.h>
 #include <sstream>
 #include <string>
 #include <sys/resource.h>
@@ -38,6 +43,7 @@ constexpr bool peaks_are_meaningful = false;
 #else
 constexpr bool peaks_are_meaningful = true;
 #endif
+constexpr bool sanitized = !peaks_are_meaningful;
 
 /// How a child ended and the most memory it held.
 struct Peak {
@@ -185,4 +191,141 @@ TEST_CASE("the worst inputs under the limits stay under the stated peaks" *
     CHECK(frame.exit_code == 0);
     CHECK(frame.bytes < 256 * mebibyte);
     fs::remove_all(folder);
+}
+
+namespace {
+
+/// The message of the Error that parsing `text` (a scene in `folder`) throws, or "".
+std::string scene_error(const std::string& text, const fs::path& folder) {
+    try {
+        (void)parse_scene(text, "s.toml", folder);
+    } catch (const Error& error) {
+        return error.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST_CASE("model references over the limits are refused before they are copied") {
+    const fs::path folder = scratch_folder("references");
+    const fs::path cube = fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/models";
+    // Generated, not fixtures: thousands of entries. The cube has two materials, so
+    // 2049 references make 4098 meshes.
+    std::string many;
+    for (int k = 0; k < max_scene_meshes / 2 + 1; ++k) {
+        many += "[[mesh]]\nfile = \"cube.obj\"\n";
+    }
+    CHECK(scene_error(many, cube) ==
+          fmt::format("s.toml:{}:8: mesh[{}].file: the model's 2 materials take the "
+                      "scene beyond the {} meshes allowed",
+                      max_scene_meshes + 2, max_scene_meshes / 2, max_scene_meshes));
+
+    // A model of 2^15 triangles, a grid of 128 x 128 quads: 32 references are the
+    // scene's 2^20 triangles, the 33rd is refused before its copy is made.
+    std::string grid;
+    for (int y = 0; y <= 128; ++y) {
+        for (int x = 0; x <= 128; ++x) {
+            grid += fmt::format("v {} {} 0\n", x, y);
+        }
+    }
+    for (int y = 0; y < 128; ++y) {
+        for (int x = 0; x < 128; ++x) {
+            const int a = y * 129 + x + 1;
+            grid += fmt::format("f {} {} {} {}\n", a, a + 1, a + 130, a + 129);
+        }
+    }
+    std::ofstream(folder / "grid.obj") << grid;
+    std::string copies;
+    for (int k = 0; k < 33; ++k) {
+        copies += "[[mesh]]\nfile = \"grid.obj\"\n";
+    }
+    CHECK(scene_error(copies, folder) ==
+          fmt::format("s.toml:66:8: mesh[32].file: the model's 32768 triangles take the "
+                      "scene beyond the {} triangles allowed",
+                      max_scene_triangles));
+
+    // A second model file that would take the scene's models beyond
+    // max_scene_model_bytes is refused from its size, before a byte of it is read (a
+    // sparse file of zeros: reading it would be an error too, a different one).
+    std::ofstream(folder / "huge.obj").close();
+    fs::resize_file(folder / "huge.obj",
+                    static_cast<std::uintmax_t>(max_model_file_bytes));
+    const std::string two =
+        "[[mesh]]\nfile = \"grid.obj\"\n[[mesh]]\nfile = \"huge.obj\"\n";
+    CHECK(scene_error(two, folder) ==
+          fmt::format("s.toml:4:8: mesh[1].file: {}: {} bytes take the scene's model "
+                      "files beyond the {} bytes allowed together",
+                      (folder / "huge.obj").string(), max_model_file_bytes,
+                      max_scene_model_bytes));
+    fs::remove_all(folder);
+}
+
+TEST_CASE("every shipped scene asks for a small part of the fill-work limit") {
+    // Every scene that ships in chapters/07-scenes/scenes/ (chapter 8's among them) and
+    // the big torus of chapter 7's speed section, which the book build generates.
+    std::vector<fs::path> scenes;
+    for (const fs::directory_entry& entry :
+         fs::directory_iterator(shipped_scene_folder())) {
+        if (entry.path().extension() == ".toml") {
+            scenes.push_back(entry.path());
+        }
+    }
+    std::sort(scenes.begin(), scenes.end());
+    REQUIRE(scenes.size() >= 12);
+    const fs::path folder = scratch_folder("fill");
+    write_generated_model(big_torus_model(), folder);
+    std::ofstream(folder / "big_torus.toml") << big_torus_scene();
+    scenes.push_back(folder / "big_torus.toml");
+    long long largest = 0;
+    for (const fs::path& path : scenes) {
+        const Scene scene = load_scene(path);
+        RenderReport report;
+        const std::vector<long long> work =
+            fill_work(run_geometry(scene, report), Viewport{scene.width, scene.height});
+        long long sum = 0;
+        for (const long long mesh : work) {
+            sum += mesh;
+        }
+        INFO(path.filename().string(), ": ", sum, " pixels");
+        CHECK(sum > 0);
+        largest = std::max(largest, sum);
+    }
+    fs::remove_all(folder);
+    // The limit is far above every scene the book draws.
+    CHECK(100 * largest < max_fill_work);
+    testing::record_fact("ch07_fill_work_largest", double(largest));
+    testing::record_fact("ch07_fill_work_margin",
+                         double(max_fill_work) / double(largest));
+    MESSAGE(fmt::format("largest shipped fill work: {} pixels, {:.0f} times under the "
+                        "limit",
+                        largest, double(max_fill_work) / double(largest)));
+}
+
+TEST_CASE("a scene over the fill-work limit is refused before it is drawn") {
+    // tests/fixtures/scenes/fill_work_over.toml: 17 triangles whose bounding boxes each
+    // cover the 4096 x 4096 image; 16 are exactly max_fill_work.
+    REQUIRE(max_fill_work == 16LL * 4096 * 4096);
+    const fs::path path =
+        fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/scenes/fill_work_over.toml";
+    Scene scene = load_scene(path);
+    REQUIRE(scene.meshes.size() == 17);
+    try {
+        (void)render_scene(scene);
+        FAIL("the scene was drawn");
+    } catch (const Error& error) {
+        CHECK(std::string(error.what()) ==
+              fmt::format("{}:59:1: mesh[16]: the triangles up to this mesh ask for {} "
+                          "pixels of drawing (their bounding boxes in the image), more "
+                          "than the {} allowed",
+                          path.string(), 17LL * 4096 * 4096, max_fill_work));
+    }
+    // At the limit the scene is drawn: 2^28 pixels of boxes, half of them covered, a
+    // fraction of a second, but many seconds under the sanitizers, which skip it.
+    if (!sanitized) {
+        scene.meshes.pop_back();
+        const RenderResult drawn = render_scene(scene);
+        CHECK(drawn.report.raster.triangles == 16);
+        CHECK(drawn.report.raster.pixels == 16LL * 4096 * 4095 / 2); // top-left rule
+    }
 }

@@ -1,6 +1,7 @@
 #include "exactpixels/raster/coverage_reader.hpp"
 
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/raster/fill_work.hpp"
 
 #include <fmt/format.h>
 
@@ -129,37 +130,77 @@ std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,
         viewport, max_pixels);
 }
 
-std::vector<int> count_coverage(std::istream& in, const CoverageDraw& draw,
-                                Viewport& viewport, long long max_pixels) {
+namespace {
+
+/// A triangle of the input (pixels) and the line it was read from.
+struct InputTriangle {
+    std::array<Point2, 3> corners;
+    int line = 0;
+};
+
+/// The whole input: the frame and every triangle, their fill work within the limit.
+struct CoverageInput {
+    Viewport viewport{0, 0};
+    std::vector<InputTriangle> triangles;
+};
+
+/// Reads all of `in`, refusing more than max_coverage_triangles triangles and a sum of
+/// fill work (fill_work.hpp) beyond max_fill_work at the line that passes it, so that
+/// an input over the limits is refused before anything is drawn.
+CoverageInput read_coverage_input(std::istream& in, long long max_pixels) {
+    CoverageInput input;
     std::string text;
     int line = 0;
     bool have_header = false;
-    std::vector<int> counts;
+    long long work = 0;
     while (read_line(in, text, line + 1)) {
         ++line;
         if (words_of(text).empty()) {
             continue;
         }
         if (!have_header) {
-            viewport = parse_header(text, line, max_pixels);
-            counts.assign(static_cast<std::size_t>(viewport.width) *
-                              static_cast<std::size_t>(viewport.height),
-                          0);
+            input.viewport = parse_header(text, line, max_pixels);
             have_header = true;
             continue;
         }
         const std::array<Point2, 3> v = parse_triangle(text, line);
-        try {
-            draw(counts, viewport, v);
-        } catch (const Error& error) {
-            throw Error(fmt::format("line {}: {}", line, error.what()));
+        if (input.triangles.size() == static_cast<std::size_t>(max_coverage_triangles)) {
+            throw Error(fmt::format("line {}: more than the {} triangles allowed", line,
+                                    max_coverage_triangles));
         }
+        work += fill_work(v, input.viewport);
+        if (work > max_fill_work) {
+            throw Error(fmt::format("line {}: the triangles up to this line ask for {} "
+                                    "pixels of drawing (their bounding boxes in the "
+                                    "frame), more than the {} allowed",
+                                    line, work, max_fill_work));
+        }
+        input.triangles.push_back({v, line});
     }
     if (!have_header) {
         throw Error(
             fmt::format("line {}: expected the frame size 'W H', found the end of "
                         "the input",
                         line + 1));
+    }
+    return input;
+}
+
+} // namespace
+
+std::vector<int> count_coverage(std::istream& in, const CoverageDraw& draw,
+                                Viewport& viewport, long long max_pixels) {
+    const CoverageInput input = read_coverage_input(in, max_pixels);
+    viewport = input.viewport;
+    std::vector<int> counts(static_cast<std::size_t>(viewport.width) *
+                                static_cast<std::size_t>(viewport.height),
+                            0);
+    for (const InputTriangle& t : input.triangles) {
+        try {
+            draw(counts, viewport, t.corners);
+        } catch (const Error& error) {
+            throw Error(fmt::format("line {}: {}", t.line, error.what()));
+        }
     }
     return counts;
 }

@@ -10,7 +10,11 @@
 // max_frame_side, at most max_frame_pixels in all), then one triangle per line,
 // "x0 y0 x1 y1 x2 y2" (pixels, origin top-left, y down, decimal numbers). Blank lines are
 // skipped. Counts are row by row, top to bottom. Malformed input is an Error whose
-// message starts "line N:" and names the value.
+// message starts "line N:" and names the value. The whole input is read before anything
+// is drawn: at most max_coverage_triangles triangles, whose fill work together
+// (fill_work.hpp: the pixels of their bounding boxes in the frame) is at most
+// max_fill_work, so an input that asks for more is refused at the line that passes the
+// limit, before the count grid is allocated.
 #pragma once
 
 #include "exactpixels/raster/edge_rasterizer.hpp"
@@ -31,12 +35,17 @@ inline constexpr int max_frame_side = 16384;
 /// count grid and the output text (2 bytes or more per pixel) are allocated.
 inline constexpr long long max_frame_pixels = 1LL << 24;
 
+/// The most triangles of a coverage input (2^20, as many as a scene's): all of them are
+/// held, 56 bytes each, until the input is read to its end.
+inline constexpr long long max_coverage_triangles = 1 << 20;
+
 /// The longest line of the coverage input, bytes (a triangle needs about a hundred).
 inline constexpr std::size_t max_line_bytes = 1024;
 
 /// Reads the whole of `in`, draws every triangle with `kind` in `precision`, sets
 /// `viewport` to the frame's size and returns the counts row by row. Throws Error
-/// ("line N: ...") on malformed input or a triangle the rasterizer refuses.
+/// ("line N: ...") on malformed input, an input over the limits above or
+/// max_fill_work (before drawing anything), or a triangle the rasterizer refuses.
 /// `max_pixels` (at most max_frame_pixels) lowers the frame limit, as the fuzz target
 /// does to stay fast.
 std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,

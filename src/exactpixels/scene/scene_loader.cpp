@@ -13,14 +13,19 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <set>
+#include <sys/stat.h>
 
 #ifndef EXACTPIXELS_SCENES_DIR
 #define EXACTPIXELS_SCENES_DIR "chapters/07-scenes/scenes"
 #endif
 
 namespace exactpixels {
+
+static_assert(max_scene_model_bytes == static_cast<long long>(max_model_file_bytes),
+              "a scene's models together may be as large as one model file");
 
 namespace {
 
@@ -796,10 +801,85 @@ SceneMesh read_mesh(const Context& c, const toml::table& table, const std::strin
 }
 
 //> read-model
+/// A model file as a scene holds it once: the model (its triangles in model space), the
+/// scene texture each part's map_Kd became, and its triangle count.
+struct LoadedModel {
+    Model model;
+    std::vector<std::optional<std::size_t>> textures; ///< per part, into scene.textures
+    long long triangles = 0;
+};
+
+/// The model files a scene has read, by identity (device and inode), so that every
+/// reference to one file, however its path is spelled, reads and checks it once and
+/// shares its textures.
+struct ModelCache {
+    std::map<std::pair<dev_t, ino_t>, LoadedModel> models;
+    long long bytes = 0; ///< the sizes of the model files read so far
+};
+
+/// Reads the model `model_path` names, or finds it in `cache`. A new model's files are
+/// added to scene.models and its textures to scene.textures. Errors name `file`'s place.
+const LoadedModel& load_model(const Context& c, const toml::node& file,
+                              const std::string& path,
+                              const std::filesystem::path& model_path, Scene& scene,
+                              ModelCache& cache, long long& texture_bytes) {
+    const auto read = [&] {
+        try {
+            return read_obj_model(model_path, texture_bytes);
+        } catch (const Error& error) { // names the model's file and line, and the value
+            c.fail(file.source(), path, error.what());
+        }
+    };
+    struct stat info {};
+    if (::stat(model_path.c_str(), &info) != 0) {
+        // Missing or unreadable: read_obj_model says why, as for any input. A file that
+        // appears in between is refused, not read without its size counted.
+        read();
+        c.fail(file.source(), path,
+               fmt::format("{}: the model file changed while it was read",
+                           model_path.string()));
+    }
+    const std::pair key{info.st_dev, info.st_ino};
+    if (const auto found = cache.models.find(key); found != cache.models.end()) {
+        return found->second;
+    }
+    // Checked from the file's size before it is read (read_obj_model refuses anything
+    // but a regular file, whose size this is).
+    if (cache.bytes + info.st_size > max_scene_model_bytes) {
+        c.fail(file.source(), path,
+               fmt::format("{}: {} bytes take the scene's model files beyond the {} "
+                           "bytes allowed together",
+                           model_path.string(), info.st_size, max_scene_model_bytes));
+    }
+    LoadedModel loaded{read(), {}, 0};
+    cache.bytes += info.st_size;
+    scene.models.insert(scene.models.end(), loaded.model.files.begin(),
+                        loaded.model.files.end());
+    for (ModelPart& part : loaded.model.parts) {
+        loaded.triangles += static_cast<long long>(part.triangles.size());
+        loaded.textures.emplace_back();
+        if (part.texture) {
+            if (scene.textures.size() >= static_cast<std::size_t>(max_scene_textures)) {
+                c.fail(file.source(), path,
+                       fmt::format("the model's textures take the scene beyond the {} "
+                                   "textures allowed",
+                                   max_scene_textures));
+            }
+            loaded.textures.back() = scene.textures.size();
+            scene.textures.push_back(std::move(*part.texture));
+            part.texture.reset(); // the scene holds it now; references use the index
+        }
+    }
+    return cache.models.emplace(key, std::move(loaded)).first->second;
+}
+
 /// A `[[mesh]]` with `file = "model.obj"`: one SceneMesh per material the model's faces
-/// use, each material's texture added to the scene's textures.
+/// use, each with that material's texture. `triangles` is the scene's count so far: the
+/// model's copies are checked against max_scene_triangles and max_scene_meshes before
+/// they are made.
 void read_model(const Context& c, const toml::table& table, const std::string& path,
-                Scene& scene, long long& texture_bytes) {
+                Scene& scene, ModelCache& cache, long long& texture_bytes,
+                long long triangles) {
     const TableReader t(c, table, path,
                         {"file", "name", "wrap", "cull", "normals", "shading", "specular",
                          "shininess", "translate", "rotate", "scale"});
@@ -843,42 +923,42 @@ void read_model(const Context& c, const toml::table& table, const std::string& p
     }
     const MeshTransform transform = read_transform(t);
     t.finish();
-    Model model;
-    try {
-        model = read_obj_model(model_path, texture_bytes);
-    } catch (const Error& error) { // names the model's file and line, and the value
-        c.fail(file.source(), t.child("file"), error.what());
-    }
-    if (lit.normals == NormalSource::given && model.line_without_normal != 0) {
+    const LoadedModel& loaded =
+        load_model(c, file, t.child("file"), model_path, scene, cache, texture_bytes);
+    if (lit.normals == NormalSource::given && loaded.model.line_without_normal != 0) {
         c.fail(normals->source(), t.child("normals"),
                fmt::format("\"given\" needs a normal at every corner, and the face at "
                            "{}:{} has a corner without one (no vn index)",
-                           model_path.string(), model.line_without_normal));
+                           model_path.string(), loaded.model.line_without_normal));
     }
-    scene.models.insert(scene.models.end(), model.files.begin(), model.files.end());
-    for (ModelPart& part : model.parts) {
+    if (triangles + loaded.triangles > max_scene_triangles) {
+        c.fail(file.source(), t.child("file"),
+               fmt::format("the model's {} triangles take the scene beyond the {} "
+                           "triangles allowed",
+                           loaded.triangles, max_scene_triangles));
+    }
+    if (scene.meshes.size() + loaded.model.parts.size() >
+        static_cast<std::size_t>(max_scene_meshes)) {
+        c.fail(file.source(), t.child("file"),
+               fmt::format("the model's {} materials take the scene beyond the {} "
+                           "meshes allowed",
+                           loaded.model.parts.size(), max_scene_meshes));
+    }
+    for (std::size_t k = 0; k < loaded.model.parts.size(); ++k) {
+        const ModelPart& part = loaded.model.parts[k];
         SceneMesh mesh;
         mesh.name = part.material.empty() ? name : name + "/" + part.material;
         mesh.origin = fmt::format("{}:{}:{}: {}", c.file, table.source().begin.line,
                                   table.source().begin.column, path);
-        mesh.triangles = std::move(part.triangles);
+        mesh.triangles = part.triangles; // a copy: each reference is placed on its own
         mesh.colour = part.colour;
+        mesh.texture = loaded.textures[k];
         mesh.wrap = wrap;
         mesh.cull_back = cull_back;
         mesh.normals = lit.normals;
         mesh.shading = lit.shading;
         mesh.specular = lit.specular;
         mesh.shininess = lit.shininess;
-        if (part.texture) {
-            if (scene.textures.size() >= static_cast<std::size_t>(max_scene_textures)) {
-                c.fail(file.source(), t.child("file"),
-                       fmt::format("the model's textures take the scene beyond the {} "
-                                   "textures allowed",
-                                   max_scene_textures));
-            }
-            mesh.texture = scene.textures.size();
-            scene.textures.push_back(std::move(*part.texture));
-        }
         place_and_check(c, table, path, mesh, transform);
         scene.meshes.push_back(std::move(mesh));
     }
@@ -1001,7 +1081,9 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
     if (meshes == nullptr) {
         c.fail(root.source(), "mesh", "the scene has no [[mesh]]: nothing to draw");
     }
-    const toml::array& list = read_array(c, *meshes, "mesh", 1, 100000);
+    const toml::array& list =
+        read_array(c, *meshes, "mesh", 1, static_cast<std::size_t>(max_scene_meshes));
+    ModelCache models;
     long long triangles = 0;
     for (std::size_t k = 0; k < list.size(); ++k) {
         const std::string path = fmt::format("mesh[{}]", k);
@@ -1012,7 +1094,8 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
         }
         const std::size_t before = scene.meshes.size();
         if (node.as_table()->contains("file")) {
-            read_model(c, *node.as_table(), path, scene, texture_bytes);
+            read_model(c, *node.as_table(), path, scene, models, texture_bytes,
+                       triangles);
         } else {
             scene.meshes.push_back(read_mesh(c, *node.as_table(), path, scene));
         }
@@ -1023,6 +1106,12 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
             c.fail(
                 node.source(), path,
                 fmt::format("the scene has more than {} triangles", max_scene_triangles));
+        }
+        if (scene.meshes.size() > static_cast<std::size_t>(max_scene_meshes)) {
+            c.fail(node.source(), path,
+                   fmt::format("the scene has more than {} meshes (each material of a "
+                               "model is one)",
+                               max_scene_meshes));
         }
     }
     top.finish();

@@ -43,8 +43,16 @@ inline constexpr int max_key_parts = 64;
 /// The largest scene file, bytes (4 MiB). It is read in pieces, so a larger file, or
 /// an endless one such as /dev/zero, is refused after at most this much.
 inline constexpr std::size_t max_scene_file_bytes = std::size_t{4} << 20;
-/// The most triangles a scene may hold.
+/// The most triangles a scene may hold, counting a model's triangles once for every
+/// `[[mesh]]` that names it.
 inline constexpr long long max_scene_triangles = 1 << 20;
+/// The most meshes a scene may hold, each material of a model counting as one (and so
+/// the most `[[mesh]]` entries). The depth plan compares meshes in pairs.
+inline constexpr int max_scene_meshes = 4096;
+/// The most bytes of model (OBJ) files a scene may read, all its distinct models
+/// together: as much as one model file may hold (max_model_file_bytes). Each file is
+/// read once however many `[[mesh]]` entries name it.
+inline constexpr long long max_scene_model_bytes = 64LL << 20;
 /// The most lights (`[[light]]`) a scene may hold: each costs every lit pixel or vertex
 /// a dot product, a square root and a power.
 inline constexpr int max_scene_lights = 8;

@@ -2,6 +2,7 @@
 
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/fixed_point.hpp"
+#include "exactpixels/raster/fill_work.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/raster/screen_plane.hpp"
 #include "exactpixels/scene/depth_buffer.hpp"
@@ -216,9 +217,8 @@ TextureSetup texture_setup(const MeshContext& m, const std::array<TexturedVertex
                                  ? setup.affine_exact
                                  : options.mapper.mapper.kind == MapperKind::affine;
     const CornerQuotients q = corner_quotients(tv);
-    setup.planes = texture_planes(p, tv, q,
-                                  one_w != nullptr ? *one_w : plane_through(p, q.one_w),
-                                  affine_only);
+    setup.planes = texture_planes(
+        p, tv, q, one_w != nullptr ? *one_w : plane_through(p, q.one_w), affine_only);
     if (options.rounding) { // chapter 4: ties go right, or down
         if (affine_only) {
             setup.affine_rounding = choose_rounding(tv, MapperKind::affine);
@@ -577,8 +577,8 @@ void draw_triangle_lean(MeshContext& m, const ScreenTriangle& triangle) {
     ScreenPlane nearness{};
     bool nearness_ready = false;
     // Under perspective the depth stage's plane is the texture's 1/w plane: set up once.
-    const bool depth_one_w = m.depth != nullptr &&
-                             m.scene.camera.projection == Projection::perspective;
+    const bool depth_one_w =
+        m.depth != nullptr && m.scene.camera.projection == Projection::perspective;
     TextureSetup texture; // its planes not zeroed (TextureSetup::planes)
     bool texture_ready = false;
     std::array<bool, 5> mapper_used{};
@@ -839,10 +839,10 @@ struct MovedPosition {
 
 /// screen_accept_perspective's two tests: on each corner, and on the box of the three.
 struct PerspectiveAccept {
-    double near, far;          ///< the camera's planes (far at most the largest double)
-    double margin, band;       ///< screen_accept_margin_px; the guard band less it
-    double width, height;      ///< the screen
-    const Pinhole& lens;       ///< the projection
+    double near, far;     ///< the camera's planes (far at most the largest double)
+    double margin, band;  ///< screen_accept_margin_px; the guard band less it
+    double width, height; ///< the screen
+    const Pinhole& lens;  ///< the projection
     PerspectiveAccept(const Scene& scene, const Pinhole& pinhole)
         : near(scene.camera.near),
           far(std::min(scene.camera.far, std::numeric_limits<double>::max())),
@@ -877,7 +877,8 @@ bool screen_accept_perspective(const Scene& scene, const Pinhole& lens,
                                const std::array<ViewVertex, 3>& view,
                                std::array<TexturedVertex, 3>& corners) {
     const PerspectiveAccept accept(scene, lens);
-    double lo_x = accept.band, lo_y = accept.band, hi_x = -accept.band, hi_y = -accept.band;
+    double lo_x = accept.band, lo_y = accept.band, hi_x = -accept.band,
+           hi_y = -accept.band;
     for (std::size_t k = 0; k < 3; ++k) {
         const glm::dvec3 p = view[k].position;
         Point2 at{};
@@ -1109,7 +1110,8 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
         };
         // After the accept test: the finite check, culling and the stored triangle, of
         // corners whose view-space positions are `at` and whose 1/w is nearness(k).
-        const auto keep_unlit = [&](std::size_t index, const std::array<glm::dvec3, 3>& at,
+        const auto keep_unlit = [&](std::size_t index,
+                                    const std::array<glm::dvec3, 3>& at,
                                     std::array<TexturedVertex, 3>& corners,
                                     const auto& nearness) {
             const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
@@ -1174,7 +1176,8 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths f
                     return;
                 }
             }
-            const MovedPosition &a = moved[ids[0]], &b = moved[ids[1]], &c = moved[ids[2]];
+            const MovedPosition &a = moved[ids[0]], &b = moved[ids[1]],
+                                &c = moved[ids[2]];
             if (!(a.inside && b.inside && c.inside &&
                   accept.box(std::min({a.at.x, b.at.x, c.at.x}),
                              std::min({a.at.y, b.at.y, c.at.y}),
@@ -1243,6 +1246,41 @@ void share_drawing_time(RenderReport& report, const RenderReport& before, double
 
 } // namespace
 
+std::vector<long long> fill_work(const SceneGeometry& geometry, Viewport image) {
+    std::vector<long long> work;
+    for (const std::vector<ScreenTriangle>& mesh : geometry.meshes) {
+        long long sum = 0;
+        for (const ScreenTriangle& t : mesh) {
+            sum += fill_work(
+                {t.corners[0].position, t.corners[1].position, t.corners[2].position},
+                image);
+        }
+        work.push_back(sum);
+    }
+    return work;
+}
+
+namespace {
+
+/// Refuses, before anything is drawn, a scene whose triangles ask for more than
+/// max_fill_work pixels of drawing, naming the mesh that takes the sum past it.
+void check_fill_work(const Scene& scene, const SceneGeometry& geometry) {
+    const std::vector<long long> work =
+        fill_work(geometry, Viewport{scene.width, scene.height});
+    long long sum = 0;
+    for (std::size_t i = 0; i < work.size(); ++i) {
+        sum += work[i];
+        if (sum > max_fill_work) {
+            throw Error(fmt::format(
+                "{}: the triangles up to this mesh ask for {} pixels of drawing (their "
+                "bounding boxes in the image), more than the {} allowed",
+                scene.meshes[i].origin, sum, max_fill_work));
+        }
+    }
+}
+
+} // namespace
+
 //> render-scene
 RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths fast) {
     const Clock::time_point start = Clock::now();
@@ -1251,6 +1289,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
     RenderReport& report = result.report;
     const bool lit = !scene.lights.empty();
     const SceneGeometry geometry = run_geometry(scene, report, fast);
+    check_fill_work(scene, geometry); // before the first pixel is drawn
     const DepthPlan depth_plan = plan_depth(scene.options.depth, geometry.footprints,
                                             Viewport{scene.width, scene.height});
     report.depth_on = depth_plan.on;

@@ -24,6 +24,7 @@
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
+#include "exactpixels/raster/fill_work.hpp"
 #include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/scene.hpp"
 #include "exactpixels/scene/scene_pipeline.hpp"
@@ -158,6 +159,11 @@ struct SceneGeometry {
 /// chooses the fast variants (FastPaths); the result is the same either way.
 SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths fast = {});
 
+/// The fill work of each mesh of `geometry` (fill_work.hpp): the pixels of its
+/// triangles' bounding boxes inside `image`. render_scene refuses a scene whose sum
+/// exceeds max_fill_work before it draws anything.
+std::vector<long long> fill_work(const SceneGeometry& geometry, Viewport image);
+
 /// A rendered image and what it cost.
 struct RenderResult {
     Framebuffer image;   ///< scene.width x scene.height
@@ -168,8 +174,10 @@ struct RenderResult {
 /// pixel last written by a textured triangle the texel coordinate the mapper computed
 /// (and the indices it picked); pixels written by untextured triangles are uncovered.
 /// Throws Error naming the mesh (file, line, column, key path) when a triangle leaves
-/// the range the rasterizer or the mapper can handle exactly. `fast` chooses the fast
-/// variants (FastPaths); pixels, coordinates and counts are the same either way.
+/// the range the rasterizer or the mapper can handle exactly, and, before drawing
+/// anything, naming the mesh whose triangles take the scene's fill work past
+/// max_fill_work. `fast` chooses the fast variants (FastPaths); pixels, coordinates and
+/// counts are the same either way.
 RenderResult render_scene(const Scene& scene, TexelMap* coordinates = nullptr,
                           FastPaths fast = {});
 
