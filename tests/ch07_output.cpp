@@ -84,6 +84,13 @@ testing::CommandResult run_limited(int blocks, const std::string& arguments,
                        input);
 }
 
+/// The permission bits of `path`.
+mode_t mode_of(const fs::path& path) {
+    struct stat info {};
+    REQUIRE(::stat(path.c_str(), &info) == 0);
+    return info.st_mode & 0777;
+}
+
 } // namespace
 
 TEST_CASE("a failed write keeps the old file and leaves no temporary") {
@@ -291,5 +298,32 @@ TEST_CASE("a written file gets the usual permissions, not a temporary's") {
     REQUIRE(::stat((folder / "t.txt").c_str(), &info) == 0);
     CHECK((info.st_mode & 0777) == 0644);
     CHECK(slurp(folder / "t.txt") == "hello\n");
+    fs::remove_all(folder);
+}
+
+TEST_CASE("a replaced file keeps its mode, a new one gets 0666 less the umask") {
+    const auto folder = scratch_folder("keep-mode");
+    std::ofstream(folder / "secret.txt") << "old";
+    fs::permissions(folder / "secret.txt", fs::perms(0600));
+    std::ofstream(folder / "shared.txt") << "old";
+    fs::permissions(folder / "shared.txt", fs::perms(0664));
+    const mode_t mask = ::umask(027);
+    write_file_atomically(folder / "new.txt", "text", "new\n");
+    write_file_atomically(folder / "secret.txt", "text", "new\n");
+    write_file_atomically(folder / "shared.txt", "text", "new\n");
+    ::umask(mask);
+    CHECK(mode_of(folder / "new.txt") == 0640);
+    CHECK(mode_of(folder / "secret.txt") == 0600);
+    CHECK(mode_of(folder / "shared.txt") == 0664);
+    CHECK(slurp(folder / "secret.txt") == "new\n");
+
+    // Through a command, replacing its own earlier output.
+    const fs::path png = folder / "f.png";
+    REQUIRE(run_command(cli_path() + " pattern -o " + quoted(png)).exit_code == 0);
+    fs::permissions(png, fs::perms(0600));
+    REQUIRE(run_command(cli_path() + " pattern --cell 2 -o " + quoted(png)).exit_code ==
+            0);
+    CHECK(mode_of(png) == 0600);
+    CHECK(read_png(png) == draw_f_pattern(2));
     fs::remove_all(folder);
 }

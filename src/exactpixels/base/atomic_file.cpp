@@ -69,6 +69,17 @@ int write_all(int fd, std::string_view bytes) {
     return 0;
 }
 
+/// Gives the temporary file `fd` the permission bits of the regular file `target` it
+/// will replace, if there is one; a new file keeps 0666 less the umask from open().
+/// Returns the errno of a failure, or 0.
+int keep_mode_of(const std::filesystem::path& target, int fd) {
+    struct stat old {};
+    if (::lstat(target.c_str(), &old) != 0 || !S_ISREG(old.st_mode)) {
+        return 0;
+    }
+    return ::fchmod(fd, old.st_mode & 0777) == 0 ? 0 : errno;
+}
+
 } // namespace
 
 void check_output(const std::filesystem::path& path, std::string_view kind,
@@ -110,6 +121,9 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view k
     std::filesystem::path temporary;
     const int fd = create_temporary(path, kind, temporary);
     int error = write_all(fd, bytes);
+    if (error == 0) {
+        error = keep_mode_of(path, fd);
+    }
     if (error == 0 && ::fsync(fd) != 0) {
         error = errno;
     }

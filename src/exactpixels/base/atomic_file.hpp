@@ -9,7 +9,9 @@
 // under a short unique name (".ep-" and 12 hex digits, so any legal target name still
 // works). Every write is checked, the file is flushed to the disk (fsync) and closed, and
 // only then renamed over the target. On any failure the temporary file is removed, the
-// target is left as it was, and an Error names the path and the reason.
+// target is left as it was, and an Error names the path and the reason. A file that is
+// replaced keeps its permission bits (a 0600 file stays 0600); a new file gets 0666 less
+// the umask, like any file a program creates.
 //
 // Refused before anything is written: an empty path; a target that exists and is not a
 // regular file (a directory, a device such as /dev/null, a FIFO, a symbolic link); and a
