@@ -327,3 +327,23 @@ TEST_CASE("a replaced file keeps its mode, a new one gets 0666 less the umask") 
     CHECK(read_png(png) == draw_f_pattern(2));
     fs::remove_all(folder);
 }
+
+TEST_CASE("a render whose standard output fails writes no file and replaces none") {
+    const auto folder = scratch_folder("stdout-first");
+    const fs::path scene = write_textured_scene(folder);
+    std::ofstream(folder / "old.png") << "old picture";
+    for (const char* out : {"new.png", "old.png"}) {
+        for (const std::string flags : {"", " --report", " --check"}) {
+            CAPTURE(out);
+            CAPTURE(flags);
+            const auto result =
+                run_command("sh -c \"" + cli_path() + " render " + quoted(scene) + flags +
+                            " -o " + quoted(folder / out) + " >/dev/full\"");
+            CHECK(result.exit_code == 2);
+            CHECK(result.err.find("standard output") != std::string::npos);
+        }
+    }
+    CHECK(slurp(folder / "old.png") == "old picture");
+    CHECK(names_in(folder) == std::set<std::string>{"scene.toml", "wall.png", "old.png"});
+    fs::remove_all(folder);
+}

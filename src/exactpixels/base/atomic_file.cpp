@@ -114,12 +114,12 @@ void check_output(const std::filesystem::path& path, std::string_view kind,
     }
 }
 
-void write_file_atomically(const std::filesystem::path& path, std::string_view kind,
-                           std::string_view bytes,
-                           std::span<const std::filesystem::path> inputs) {
+PendingFile::PendingFile(const std::filesystem::path& path, std::string_view kind,
+                         std::string_view bytes,
+                         std::span<const std::filesystem::path> inputs)
+    : path_(path), kind_(kind) {
     check_output(path, kind, inputs);
-    std::filesystem::path temporary;
-    const int fd = create_temporary(path, kind, temporary);
+    const int fd = create_temporary(path, kind, temporary_);
     int error = write_all(fd, bytes);
     if (error == 0) {
         error = keep_mode_of(path, fd);
@@ -130,13 +130,39 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view k
     if (::close(fd) != 0 && error == 0) {
         error = errno;
     }
-    if (error == 0 && ::rename(temporary.c_str(), path.c_str()) != 0) {
-        error = errno;
-    }
     if (error != 0) {
-        ::unlink(temporary.c_str());
+        discard(); // the destructor does not run when a constructor throws
         fail(path, kind, std::strerror(error));
     }
+}
+
+PendingFile::~PendingFile() {
+    discard();
+}
+
+void PendingFile::commit() {
+    if (temporary_.empty()) {
+        return; // renamed or removed already
+    }
+    if (::rename(temporary_.c_str(), path_.c_str()) != 0) {
+        const int error = errno;
+        discard();
+        fail(path_, kind_, std::strerror(error));
+    }
+    temporary_.clear();
+}
+
+void PendingFile::discard() noexcept {
+    if (!temporary_.empty()) {
+        ::unlink(temporary_.c_str());
+        temporary_.clear();
+    }
+}
+
+void write_file_atomically(const std::filesystem::path& path, std::string_view kind,
+                           std::string_view bytes,
+                           std::span<const std::filesystem::path> inputs) {
+    PendingFile(path, kind, bytes, inputs).commit();
 }
 
 void write_standard_output(std::string_view bytes) {

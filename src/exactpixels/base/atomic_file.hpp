@@ -13,6 +13,10 @@
 // replaced keeps its permission bits (a 0600 file stays 0600); a new file gets 0666 less
 // the umask, like any file a program creates.
 //
+// A command that must also print before its output counts as done holds the file as a
+// PendingFile: written and on the disk, renamed only by commit(), removed if commit() is
+// never reached.
+//
 // Refused before anything is written: an empty path; a target that exists and is not a
 // regular file (a directory, a device such as /dev/null, a FIFO, a symbolic link); and a
 // target that is the same file as one of `inputs` (same device and inode, so a hard link
@@ -23,6 +27,7 @@
 
 #include <filesystem>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace exactpixels {
@@ -37,6 +42,35 @@ inline const std::filesystem::path standard_input = "-";
 void check_output(const std::filesystem::path& path, std::string_view kind,
                   std::span<const std::filesystem::path> inputs = {});
 
+/// A file written whole to a temporary beside its target and not yet in place.
+///   PendingFile png(path, "PNG", bytes, inputs); // checked, written, flushed
+///   write_standard_output("wrote it\n");         // throws: the temporary is removed
+///   png.commit();                                // renamed over the target
+class PendingFile {
+  public:
+    /// check_output(path, kind, inputs), then the bytes to a new temporary file, flushed
+    /// to the disk and closed. Throws Error as write_file_atomically does.
+    PendingFile(const std::filesystem::path& path, std::string_view kind,
+                std::string_view bytes,
+                std::span<const std::filesystem::path> inputs = {});
+    /// Removes the temporary file unless commit() succeeded.
+    ~PendingFile();
+    PendingFile(const PendingFile&) = delete;
+    PendingFile& operator=(const PendingFile&) = delete;
+
+    /// Renames the temporary file over the target (once). Throws Error on failure,
+    /// having removed the temporary file.
+    void commit();
+
+  private:
+    /// Removes the temporary file, if it is still there.
+    void discard() noexcept;
+
+    std::filesystem::path path_;      ///< the target
+    std::string kind_;                ///< "PNG", "coverage": for messages
+    std::filesystem::path temporary_; ///< the written file (empty: renamed or removed)
+};
+
 /// Writes `bytes` to `path` all or nothing, after check_output(path, kind, inputs).
 /// Throws Error ("PATH: cannot write KIND file (reason)") on any failure, leaving the
 /// target as it was and no temporary file behind.
@@ -45,7 +79,8 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view k
                            std::span<const std::filesystem::path> inputs = {});
 
 /// Writes `bytes` to standard output and flushes it. Throws Error ("standard output:
-/// reason") when any of it could not be written (a closed pipe, a full disk, /dev/full).
+/// reason") when any of it could not be written (a full disk, /dev/full, or a closed
+/// pipe when SIGPIPE is ignored; otherwise SIGPIPE ends the process).
 void write_standard_output(std::string_view bytes);
 
 } // namespace exactpixels
