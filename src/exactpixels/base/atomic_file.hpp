@@ -15,7 +15,8 @@
 //
 // A command that must also print before its output counts as done holds the file as a
 // PendingFile: written and on the disk, renamed only by commit(), removed if commit() is
-// never reached.
+// never reached. After remove_temporaries_on_signals(), a process killed by SIGINT,
+// SIGTERM, SIGHUP or SIGPIPE removes its temporary files too before it dies.
 //
 // Refused before anything is written: an empty path; a target that exists and is not a
 // regular file (a directory, a device such as /dev/null, a FIFO, a symbolic link); and a
@@ -69,6 +70,7 @@ class PendingFile {
     std::filesystem::path path_;      ///< the target
     std::string kind_;                ///< "PNG", "coverage": for messages
     std::filesystem::path temporary_; ///< the written file (empty: renamed or removed)
+    int guard_ = -1;                  ///< its slot for the signal handler (-1: none)
 };
 
 /// Writes `bytes` to `path` all or nothing, after check_output(path, kind, inputs).
@@ -77,6 +79,12 @@ class PendingFile {
 void write_file_atomically(const std::filesystem::path& path, std::string_view kind,
                            std::string_view bytes,
                            std::span<const std::filesystem::path> inputs = {});
+
+/// Makes SIGINT, SIGTERM, SIGHUP and SIGPIPE remove every temporary file this process
+/// is writing, then end it by that signal as before (its exit status still says which).
+/// A signal the process was started with set to be ignored stays ignored. For a
+/// program's main(), once.
+void remove_temporaries_on_signals();
 
 /// Writes `bytes` to standard output and flushes it. Throws Error ("standard output:
 /// reason") when any of it could not be written (a full disk, /dev/full, or a closed
