@@ -36,7 +36,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
     command->add_flag("--check", options->check,
                       "Also render the exact reference and print the texel error");
     command->callback([options, output_option, &exit_code] {
-        try {
+        report_errors("render", exit_code, [&] {
             const std::filesystem::path scene_path =
                 options->scene.empty() ? shipped_scenes().front()
                                        : std::filesystem::path(options->scene);
@@ -70,10 +70,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
             PendingFile png = prepare_png(output, result.image, inputs);
             write_standard_output(fmt::format("wrote {}\n", output.string()));
             png.commit();
-        } catch (const Error& error) {
-            print_error("render", error.what());
-            exit_code = exit_bad_input;
-        }
+        });
     });
 }
 //< render-command
