@@ -44,6 +44,9 @@ constexpr bool peaks_are_meaningful = false;
 constexpr bool peaks_are_meaningful = true;
 #endif
 constexpr bool sanitized = !peaks_are_meaningful;
+// AddressSanitizer reserves terabytes of address space for its shadow at start, so it
+// cannot run at all under a limit on the address space: those builds skip such tests.
+constexpr bool address_space_can_be_limited = peaks_are_meaningful;
 
 /// How a child ended and the most memory it held.
 struct Peak {
@@ -52,9 +55,11 @@ struct Peak {
 };
 
 /// Runs build/bin/exactpixels with `arguments`, standard input from `input` (a file),
-/// standard output and error to /dev/null.
+/// standard output to /dev/null and standard error to `errors`, its address space
+/// limited to `address_space` bytes when that is not 0 (as `ulimit -v` does).
 Peak run_measured(const std::vector<std::string>& arguments,
-                  const fs::path& input = "/dev/null") {
+                  const fs::path& input = "/dev/null",
+                  const fs::path& errors = "/dev/null", long long address_space = 0) {
     std::vector<char*> argv;
     std::string program = EXACTPIXELS_CLI;
     argv.push_back(program.data());
@@ -72,9 +77,15 @@ Peak run_measured(const std::vector<std::string>& arguments,
     if (child == 0) {
         const int in = ::open(input.c_str(), O_RDONLY);
         const int null = ::open("/dev/null", O_WRONLY);
+        const int err = ::open(errors.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
         ::dup2(in, 0);
         ::dup2(null, 1);
-        ::dup2(null, 2);
+        ::dup2(err, 2);
+        if (address_space > 0) {
+            const auto bytes = static_cast<rlim_t>(address_space);
+            const struct rlimit limit { bytes, bytes };
+            ::setrlimit(RLIMIT_AS, &limit);
+        }
         ::execv(argv[0], argv.data());
         ::_exit(127);
     }
@@ -328,4 +339,31 @@ TEST_CASE("a scene over the fill-work limit is refused before it is drawn") {
         CHECK(drawn.report.raster.triangles == 16);
         CHECK(drawn.report.raster.pixels == 16LL * 4096 * 4095 / 2); // top-left rule
     }
+}
+TEST_CASE("a render that runs out of memory exits 2 with one line and writes nothing" *
+          doctest::skip(!address_space_can_be_limited)) {
+    const fs::path folder = scratch_folder("memory");
+    // The largest image with --check needs about 900 MiB; the process may have 384.
+    std::ofstream(folder / "big.toml")
+        << "[image]\nwidth = 4096\nheight = 4096\n"
+           "[textures.a]\nkind = \"checkerboard\"\nsize = [64, 64]\nsquare = 8\n"
+           "[[mesh]]\nprimitive = \"triangles\"\n"
+           "positions = [[-1, -1, 5], [1, -1, 5], [0, 1, 5]]\n"
+           "uv = [[0, 0], [4, 0], [0, 4]]\ntexture = \"a\"\n";
+    const fs::path errors = folder / "errors.txt";
+    const Peak result =
+        run_measured({"render", folder / "big.toml", "--check", "-o", folder / "big.png"},
+                     "/dev/null", errors, 384 * mebibyte);
+    CHECK(result.exit_code == 2);
+    const std::string message = slurp(errors);
+    CHECK(message.find("exactpixels render: ") == 0);
+    CHECK(message.find("memory") != std::string::npos);
+    CHECK(std::count(message.begin(), message.end(), '\n') == 1);
+    std::vector<std::string> names; // no PNG, no temporary file
+    for (const auto& entry : fs::directory_iterator(folder)) {
+        names.push_back(entry.path().filename().string());
+    }
+    std::sort(names.begin(), names.end());
+    CHECK(names == std::vector<std::string>{"big.toml", "errors.txt"});
+    fs::remove_all(folder);
 }

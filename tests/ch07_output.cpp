@@ -13,12 +13,18 @@
 
 #include <doctest/doctest.h>
 
+#include <array>
+#include <chrono>
+#include <csignal>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 #include <vector>
 
@@ -82,6 +88,80 @@ testing::CommandResult run_limited(int blocks, const std::string& arguments,
     return run_command("sh -c \"ulimit -f " + std::to_string(blocks) + "; exec " +
                            cli_path() + " " + arguments + "\"",
                        input);
+}
+
+/// A pipe whose buffer is full: a write to its end [1] waits until someone reads [0].
+std::array<int, 2> full_pipe() {
+    int ends[2] = {-1, -1};
+    REQUIRE(::pipe2(ends, O_CLOEXEC) == 0);
+    ::fcntl(ends[1], F_SETFL, O_NONBLOCK);
+    const std::string block(4096, 'x');
+    while (::write(ends[1], block.data(), block.size()) > 0) {
+    }
+    while (::write(ends[1], "x", 1) > 0) { // whatever room a whole block did not fit
+    }
+    ::fcntl(ends[1], F_SETFL, 0); // the child's writes wait rather than fail
+    return {ends[0], ends[1]};
+}
+
+/// Starts `exactpixels render SCENE -o OUT` with `stdout_fd` as its standard output,
+/// standard error to /dev/null and every signal at its default action (a test runner
+/// may have set some to be ignored, and the child would inherit that). Returns its pid.
+pid_t start_render(const fs::path& scene, const fs::path& out, int stdout_fd) {
+    const pid_t child = ::fork();
+    if (child == 0) {
+        for (const int signal : {SIGINT, SIGTERM, SIGHUP, SIGPIPE}) {
+            std::signal(signal, SIG_DFL);
+        }
+        sigset_t none;
+        sigemptyset(&none);
+        ::sigprocmask(SIG_SETMASK, &none, nullptr);
+        const int null = ::open("/dev/null", O_RDWR);
+        ::dup2(null, 0);
+        ::dup2(stdout_fd, 1);
+        ::dup2(null, 2);
+        ::execl(EXACTPIXELS_CLI, EXACTPIXELS_CLI, "render", scene.c_str(), "-o",
+                out.c_str(), static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    REQUIRE(child > 0);
+    return child;
+}
+
+/// Whether a temporary file (".ep-...") is in `folder`.
+bool has_temporary(const fs::path& folder) {
+    for (const std::string& name : names_in(folder)) {
+        if (name.starts_with(".ep-")) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/// Waits until a temporary file appears in `folder`, at most `limit`; whether it did.
+bool wait_for_temporary(const fs::path& folder, std::chrono::milliseconds limit) {
+    const auto end = std::chrono::steady_clock::now() + limit;
+    while (!has_temporary(folder)) {
+        if (std::chrono::steady_clock::now() > end) {
+            return false;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return true;
+}
+
+/// The signal that ended the child `pid` (0 if it exited).
+int wait_for_signal(pid_t pid) {
+    int status = 0;
+    REQUIRE(::waitpid(pid, &status, 0) == pid);
+    return WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+}
+
+/// The permission bits of `path`.
+mode_t mode_of(const fs::path& path) {
+    struct stat info {};
+    REQUIRE(::stat(path.c_str(), &info) == 0);
+    return info.st_mode & 0777;
 }
 
 } // namespace
@@ -291,5 +371,79 @@ TEST_CASE("a written file gets the usual permissions, not a temporary's") {
     REQUIRE(::stat((folder / "t.txt").c_str(), &info) == 0);
     CHECK((info.st_mode & 0777) == 0644);
     CHECK(slurp(folder / "t.txt") == "hello\n");
+    fs::remove_all(folder);
+}
+
+TEST_CASE("a render whose standard output fails writes no file and replaces none") {
+    const auto folder = scratch_folder("stdout-first");
+    const fs::path scene = write_textured_scene(folder);
+    std::ofstream(folder / "old.png") << "old picture";
+    for (const char* out : {"new.png", "old.png"}) {
+        for (const std::string flags : {"", " --report", " --check"}) {
+            CAPTURE(out);
+            CAPTURE(flags);
+            const auto result =
+                run_command("sh -c \"" + cli_path() + " render " + quoted(scene) + flags +
+                            " -o " + quoted(folder / out) + " >/dev/full\"");
+            CHECK(result.exit_code == 2);
+            CHECK(result.err.find("standard output") != std::string::npos);
+        }
+    }
+    CHECK(slurp(folder / "old.png") == "old picture");
+    CHECK(names_in(folder) == std::set<std::string>{"scene.toml", "wall.png", "old.png"});
+    fs::remove_all(folder);
+}
+
+TEST_CASE("a signal while the output is unfinished removes its temporary file") {
+    const auto folder = scratch_folder("signal");
+    const fs::path scene = write_textured_scene(folder);
+    const std::set<std::string> before = names_in(folder);
+    // The render prints its last line before it renames the PNG into place: on a full
+    // pipe it waits there, its temporary file written, until the signal comes.
+    for (const int signal : {SIGTERM, SIGINT, SIGHUP}) {
+        CAPTURE(signal);
+        const std::array<int, 2> pipe = full_pipe();
+        const pid_t child = start_render(scene, folder / "out.png", pipe[1]);
+        ::close(pipe[1]);
+        CHECK(wait_for_temporary(folder, std::chrono::seconds(10)));
+        ::kill(child, signal);
+        CHECK(wait_for_signal(child) == signal);
+        ::close(pipe[0]);
+        REQUIRE(names_in(folder) == before); // a temporary left would fool the next wait
+    }
+    // A pipe nobody reads any more: printing the last line raises SIGPIPE.
+    std::array<int, 2> closed = full_pipe();
+    ::close(closed[0]);
+    const pid_t child = start_render(scene, folder / "out.png", closed[1]);
+    ::close(closed[1]);
+    CHECK(wait_for_signal(child) == SIGPIPE);
+    CHECK(names_in(folder) == before);
+    fs::remove_all(folder);
+}
+
+TEST_CASE("a replaced file keeps its mode, a new one gets 0666 less the umask") {
+    const auto folder = scratch_folder("keep-mode");
+    std::ofstream(folder / "secret.txt") << "old";
+    fs::permissions(folder / "secret.txt", fs::perms(0600));
+    std::ofstream(folder / "shared.txt") << "old";
+    fs::permissions(folder / "shared.txt", fs::perms(0664));
+    const mode_t mask = ::umask(027);
+    write_file_atomically(folder / "new.txt", "text", "new\n");
+    write_file_atomically(folder / "secret.txt", "text", "new\n");
+    write_file_atomically(folder / "shared.txt", "text", "new\n");
+    ::umask(mask);
+    CHECK(mode_of(folder / "new.txt") == 0640);
+    CHECK(mode_of(folder / "secret.txt") == 0600);
+    CHECK(mode_of(folder / "shared.txt") == 0664);
+    CHECK(slurp(folder / "secret.txt") == "new\n");
+
+    // Through a command, replacing its own earlier output.
+    const fs::path png = folder / "f.png";
+    REQUIRE(run_command(cli_path() + " pattern -o " + quoted(png)).exit_code == 0);
+    fs::permissions(png, fs::perms(0600));
+    REQUIRE(run_command(cli_path() + " pattern --cell 2 -o " + quoted(png)).exit_code ==
+            0);
+    CHECK(mode_of(png) == 0600);
+    CHECK(read_png(png) == draw_f_pattern(2));
     fs::remove_all(folder);
 }

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -27,6 +28,13 @@ std::string one_line(std::string_view message);
 /// Never throws: when even standard error cannot be written there is nobody to tell,
 /// and the exit code still says what happened.
 void print_error(std::string_view command, std::string_view message);
+
+/// Runs a command's `body` and reports what it throws as bad input (exit_bad_input and
+/// one line on standard error): an Error, and std::bad_alloc, an input whose work needs
+/// more memory than the process may have (`ulimit -v`). Whatever the body had written is
+/// removed as it unwinds (a PendingFile), so nothing is left.
+void report_errors(std::string_view command, int& exit_code,
+                   const std::function<void()>& body);
 
 /// Registers `exactpixels pattern`: writes the chapter 0 "F" test pattern as a PNG.
 void add_pattern_command(CLI::App& app, int& exit_code);

@@ -105,7 +105,7 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
         "-o,--output", options->output,
         "Write the counts to this file, all or nothing (default: standard output)");
     command->callback([options, output_option, &exit_code] {
-        try {
+        report_errors("coverage", exit_code, [&] {
             const bool fast = options->rasterizer == CoverageRasterizer::runs ||
                               options->rasterizer == CoverageRasterizer::masks;
             if (fast && options->precision != CoveragePrecision::fixed) {
@@ -151,10 +151,7 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
             } else {
                 write_standard_output(out);
             }
-        } catch (const Error& error) {
-            print_error("coverage", error.what());
-            exit_code = exit_bad_input;
-        }
+        });
     });
 }
 

@@ -4,6 +4,8 @@
 // write, with one line on standard error naming the file, line, option or value.
 #include "commands.hpp"
 
+#include "exactpixels/base/atomic_file.hpp"
+
 #include <fmt/format.h>
 
 #include <cerrno>
@@ -16,6 +18,9 @@ int main(int argc, char** argv) {
     // A file size limit (ulimit -f) must fail a write with EFBIG, which the writers
     // report and clean up after, rather than kill the program half way through a file.
     std::signal(SIGXFSZ, SIG_IGN);
+    // Killed while a file is being written (Ctrl-C, kill, a closed pipe): its temporary
+    // file goes too.
+    exactpixels::remove_temporaries_on_signals();
 
     CLI::App app{"Exact Pixels: the book's rasterizers and texture mappers from the "
                  "command line"};

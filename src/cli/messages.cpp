@@ -1,7 +1,10 @@
 // Messages of build/bin/exactpixels: one line each, never a whole huge token.
 #include "commands.hpp"
 
+#include "exactpixels/base/error.hpp"
+
 #include <cstdio>
+#include <new>
 
 namespace exactpixels::cli {
 
@@ -36,6 +39,20 @@ void print_error(std::string_view command, std::string_view message) {
     }
     text += ": " + one_line(message) + "\n";
     std::fputs(text.c_str(), stderr);
+}
+
+void report_errors(std::string_view command, int& exit_code,
+                   const std::function<void()>& body) {
+    try {
+        body();
+    } catch (const Error& error) {
+        print_error(command, error.what());
+        exit_code = exit_bad_input;
+    } catch (const std::bad_alloc&) { // the memory it failed to get is free again
+        print_error(command, "out of memory: this input needs more memory than the "
+                             "process may have");
+        exit_code = exit_bad_input;
+    }
 }
 
 } // namespace exactpixels::cli

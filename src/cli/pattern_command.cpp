@@ -1,6 +1,5 @@
 #include "commands.hpp"
 
-#include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/base/test_pattern.hpp"
 
@@ -25,12 +24,8 @@ void add_pattern_command(CLI::App& app, int& exit_code) {
         ->check(CLI::Range(1, 256))
         ->capture_default_str();
     command->callback([options, &exit_code] {
-        try {
-            write_png(options->output, draw_f_pattern(options->cell));
-        } catch (const Error& error) {
-            print_error("pattern", error.what());
-            exit_code = exit_bad_input;
-        }
+        report_errors("pattern", exit_code,
+                      [&] { write_png(options->output, draw_f_pattern(options->cell)); });
     });
 }
 

@@ -8,7 +8,6 @@
 
 #include <fmt/format.h>
 
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -37,7 +36,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
     command->add_flag("--check", options->check,
                       "Also render the exact reference and print the texel error");
     command->callback([options, output_option, &exit_code] {
-        try {
+        report_errors("render", exit_code, [&] {
             const std::filesystem::path scene_path =
                 options->scene.empty() ? shipped_scenes().front()
                                        : std::filesystem::path(options->scene);
@@ -50,27 +49,28 @@ void add_render_command(CLI::App& app, int& exit_code) {
             check_output(output, "PNG", inputs); // not a scene, texture or device
             const RenderResult result = render_scene(scene);
             if (options->report) {
-                std::fputs(format_report(result.report).c_str(), stdout);
+                write_standard_output(format_report(result.report));
             }
             if (options->check) {
                 // The scene is not needed after the check: moved in, its textures are
                 // not copied (max_check_peak_bytes).
                 const TexelError e = check_against_exact(std::move(scene));
-                fmt::print("texel error against exact: worst {:.6f}, mean {:.6f} over {} "
-                           "pixels\n",
-                           e.worst, e.mean, e.pixels);
+                write_standard_output(
+                    fmt::format("texel error against exact: worst {:.6f}, mean {:.6f} "
+                                "over {} pixels\n",
+                                e.worst, e.mean, e.pixels));
                 if (e.not_finite > 0) { // NaN or infinity: a failure, not a large error
                     throw Error(fmt::format("--check: {} pixels have texel coordinates "
                                             "that are not finite",
                                             e.not_finite));
                 }
             }
-            write_png(output, result.image, inputs); // all or nothing
-            fmt::print("wrote {}\n", output.string());
-        } catch (const Error& error) {
-            print_error("render", error.what());
-            exit_code = exit_bad_input;
-        }
+            // All or nothing, with what it prints: the PNG is written beside its target,
+            // the last line must reach standard output, and only then is it renamed.
+            PendingFile png = prepare_png(output, result.image, inputs);
+            write_standard_output(fmt::format("wrote {}\n", output.string()));
+            png.commit();
+        });
     });
 }
 //< render-command

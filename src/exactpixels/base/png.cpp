@@ -30,8 +30,8 @@ std::string encode_png(const Framebuffer& frame) {
     return bytes;
 }
 
-void write_png(const std::filesystem::path& path, const Framebuffer& frame,
-               std::span<const std::filesystem::path> inputs) {
+PendingFile prepare_png(const std::filesystem::path& path, const Framebuffer& frame,
+                        std::span<const std::filesystem::path> inputs) {
     if (frame.width() <= 0 || frame.height() <= 0) {
         throw Error(fmt::format("{}: cannot write an empty {}x{} image", path.string(),
                                 frame.width(), frame.height()));
@@ -43,7 +43,12 @@ void write_png(const std::filesystem::path& path, const Framebuffer& frame,
     } catch (const Error& error) {
         throw Error(fmt::format("{}: {}", path.string(), error.what()));
     }
-    write_file_atomically(path, "PNG", bytes, inputs);
+    return PendingFile(path, "PNG", bytes, inputs);
+}
+
+void write_png(const std::filesystem::path& path, const Framebuffer& frame,
+               std::span<const std::filesystem::path> inputs) {
+    prepare_png(path, frame, inputs).commit();
 }
 
 Framebuffer read_png(const std::filesystem::path& path,

@@ -18,6 +18,7 @@
 // bottom.
 #pragma once
 
+#include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/framebuffer.hpp"
 
 #include <cstddef>
@@ -32,6 +33,11 @@ namespace exactpixels {
 /// The bytes of `frame` as an 8-bit RGBA PNG file (stb's encoder: filter and deflate),
 /// in memory: write_png's first half. Throws Error for an empty frame.
 std::string encode_png(const Framebuffer& frame);
+
+/// write_png's work but the rename: `frame` encoded and written beside `path`, which it
+/// replaces only at commit() (for a command that prints before its output is done).
+PendingFile prepare_png(const std::filesystem::path& path, const Framebuffer& frame,
+                        std::span<const std::filesystem::path> inputs = {});
 
 /// Writes `frame` as an 8-bit RGBA PNG. Throws Error (naming the path) on failure, in
 /// which case the target is left as it was and no temporary file is left behind. The
