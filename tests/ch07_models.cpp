@@ -233,6 +233,29 @@ TEST_CASE("given normals are the OBJ's, with z negated") {
     fs::remove_all(folder);
 }
 
+TEST_CASE("every number drawn is the number the check read") {
+    // tinyobjloader reads 0.3 as 3 * 0.1, one bit above the double nearest 0.3, and a
+    // normal of 401 digits as infinity; the model holds the check's values, bit for bit.
+    long long texture_bytes = 0;
+    const Model model = read_obj_model(models / "numbers.obj", texture_bytes);
+    REQUIRE(model.parts.size() == 1);
+    const ModelPart& part = model.parts[0];
+    CHECK(part.colour == Colour{0.3, 0.7, 0.9});
+    REQUIRE(part.triangles.size() == 2);
+    const std::array<SceneVertex, 3>& first = part.triangles[0];
+    CHECK(first[0].position == glm::dvec3{0.3, 0.0, -0.0});
+    CHECK(first[1].position == glm::dvec3{0.0, 0.7, -0.0});
+    CHECK(first[2].position == glm::dvec3{0.0, 0.0, -0.3});
+    CHECK(first[0].uv == glm::dvec2{0.0, 0.0}); // no texture: uv are texels of none
+    for (const SceneVertex& v : first) {        // (1, 0, 1), z negated, of length 1
+        CHECK(v.normal == glm::normalize(glm::dvec3{1.0, 0.0, -1.0}));
+    }
+    // A leading +, leading zeros, "1."; and a denormal normal, which has a direction.
+    const std::array<SceneVertex, 3>& second = part.triangles[1];
+    CHECK(second[0].position == glm::dvec3{0.5, 7.0, -1.0});
+    CHECK(second[0].normal == glm::dvec3{0.0, 1.0, -0.0});
+}
+
 TEST_CASE("a model quad lit head-on gives exactly its diffuse colour") {
     const fs::path folder = fs::temp_directory_path() /
                             ("exactpixels-ch07-head-on-" + std::to_string(::getpid()));
@@ -352,6 +375,23 @@ std::vector<BadModel> bad_models() {
         {"a non-numeric coordinate", "v 0 zero 0\n", "", "model.obj:1",
          "'zero' is not a number"},
         {"a NaN", "v nan 0 0\n", "", "model.obj:1", "nan is out of range"},
+        // Forms that tinyobjloader reads as a number (or as 0) and the check refuses.
+        {"a plus before a minus", "v +-1 -1 0\n", "", "model.obj:1",
+         "'+-1' is not a number"},
+        {"two plus signs", "v 0 ++1 0\n", "", "model.obj:1", "'++1' is not a number"},
+        {"an exponent without digits", "v 1e 0 0\n", "", "model.obj:1",
+         "'1e' is not a number"},
+        {"a point alone", "vt . 0\n", "", "model.obj:1", "'.' is not a number"},
+        {"a minus alone", "vn 0 - 1\n", "", "model.obj:1", "'-' is not a number"},
+        {"a hexadecimal number", "v 0x1p3 0 0\n", "", "model.obj:1",
+         "'0x1p3' is not a number"},
+        {"infinity", "vn inf 0 0\n", "", "model.obj:1", "inf is out of range"},
+        {"a number that reads as 0", "v 1e-400 0 0\n", "", "model.obj:1",
+         "1e-400 is out of range (beyond a double, or so close to 0"},
+        {"a number beyond a double", "vt 0 1e309\n", "", "model.obj:1",
+         "1e309 is out of range (beyond a double"},
+        {"a plus before a minus in a colour", "mtllib model.mtl\n" + triangle,
+         "newmtl a\nKd 0 +-1 0\n", "model.mtl:2", "'+-1' is not a number"},
         {"a coordinate beyond the world", "v 2e6 0 0\n", "", "model.obj:1",
          "2e6 is out of range"},
         {"a control character", "v 0 0\x01 0\n", "", "model.obj:1",
