@@ -256,6 +256,16 @@ TEST_CASE("every number drawn is the number the check read") {
     CHECK(second[0].normal == glm::dvec3{0.0, 1.0, -0.0});
 }
 
+TEST_CASE("a byte-order mark at the start of an OBJ or MTL file is skipped") {
+    long long texture_bytes = 0;
+    const Model model = read_obj_model(models / "bom.obj", texture_bytes);
+    REQUIRE(model.parts.size() == 1);
+    CHECK(model.parts[0].material == "a");
+    CHECK(model.parts[0].colour == Colour{0.5, 0.25, 1.0});
+    REQUIRE(model.parts[0].triangles.size() == 1);
+    CHECK(model.parts[0].triangles[0][1].position == glm::dvec3{1.0, 0.0, -0.0});
+}
+
 TEST_CASE("a model quad lit head-on gives exactly its diffuse colour") {
     const fs::path folder = fs::temp_directory_path() /
                             ("exactpixels-ch07-head-on-" + std::to_string(::getpid()));

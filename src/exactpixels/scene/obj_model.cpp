@@ -51,6 +51,13 @@ std::vector<std::string_view> words_of(std::string_view line) {
     return words;
 }
 
+/// `text` without a UTF-8 byte-order mark at its start (some editors write one; it is
+/// not part of the first statement). Both readers are given the text without it.
+std::string_view without_bom(std::string_view text) {
+    const std::string_view bom = "\xEF\xBB\xBF";
+    return text.substr(0, bom.size()) == bom ? text.substr(bom.size()) : text;
+}
+
 /// Calls `each(place, words)` for every line of `text` that is not blank or a comment.
 /// Lines end as tinyobjloader ends them, at "\n", "\r\n" or a lone "\r", so that both
 /// see the same statements; a control character (other than a tab) is an Error, since
@@ -350,6 +357,7 @@ CheckedObj check_obj(std::string_view text, const std::string& file,
             if (checked.mtl_texts.count(name) != 0) {
                 at.fail(fmt::format("mtllib '{}' is named twice", name));
             }
+            mtl = std::string(without_bom(mtl));
             check_mtl(mtl, path.string(), path.parent_path(), checked.materials,
                       texture_bytes);
             checked.mtl_texts[name] = std::move(mtl);
@@ -459,6 +467,7 @@ void check_convex(const Place& at, const std::vector<glm::dvec3>& p) {
 Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
                       const std::filesystem::path& folder, long long& texture_bytes) {
     const std::string name = file.string();
+    text = without_bom(text);
     CheckedObj checked = check_obj(text, name, folder, texture_bytes);
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;

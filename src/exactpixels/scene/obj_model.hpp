@@ -2,7 +2,7 @@
 // @sec:scene-models), every line checked before tinyobjloader reads the structure (which
 // elements each face corner names, which material each face uses). Every number in the
 // model is the check's reading of it, never tinyobjloader's, which differs (it reads
-// 0.3 as 3 * 0.1).
+// 0.3 as 3 * 0.1). A UTF-8 byte-order mark at the start of a file is skipped.
 //
 // Usage:
 //   long long texture_bytes = 0; // the scene's texel memory so far
