@@ -266,6 +266,21 @@ TEST_CASE("a byte-order mark at the start of an OBJ or MTL file is skipped") {
     CHECK(model.parts[0].triangles[0][1].position == glm::dvec3{1.0, 0.0, -0.0});
 }
 
+TEST_CASE("a file named by mtllib that is not a material library is named, not quoted") {
+    long long texture_bytes = 0;
+    try {
+        (void)read_obj_model(models / "not-a-library.obj", texture_bytes);
+        FAIL("the model loaded");
+    } catch (const Error& error) {
+        const std::string message = error.what();
+        INFO(message);
+        CHECK(message.find((models / "accounts.txt").string() + ":1: ") !=
+              std::string::npos);
+        CHECK(message.find("not a material library") != std::string::npos);
+        CHECK(message.find("root") == std::string::npos); // the file's text
+    }
+}
+
 TEST_CASE("a model quad lit head-on gives exactly its diffuse colour") {
     const fs::path folder = fs::temp_directory_path() /
                             ("exactpixels-ch07-head-on-" + std::to_string(::getpid()));

@@ -173,7 +173,9 @@ void check_mtl(std::string_view text, const std::string& file,
             return;
         }
         if (current == nullptr) {
-            at.fail(fmt::format("'{}' before any newmtl", key));
+            // A material library starts with newmtl (after comments); a file that does
+            // not may be anything, so its text is not quoted.
+            at.fail("a statement before any newmtl: not a material library");
         }
         if (key == "Kd") {
             expect_fields(at, words, 3, 3);
