@@ -281,6 +281,42 @@ TEST_CASE("a file named by mtllib that is not a material library is named, not q
     }
 }
 
+TEST_CASE("a model triangle the scale takes beyond doubles names its face's line") {
+    const std::string face = (models / "scaled-face.obj").string() + ":9)";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"scale = 1e6\ntranslate = [0, 1, 0]", "reaches 1000001 after the transform"},
+        {"scale = 1e-300", "is degenerate"},
+        {"scale = [1, 1e-320, 1]",
+         "takes the normal of triangle 0 (the face at " + face + " beyond the doubles"},
+    };
+    for (const auto& [scale, reason] : cases) {
+        INFO(scale);
+        try {
+            (void)parse_scene("[[mesh]]\nfile = \"scaled-face.obj\"\n" + scale + "\n",
+                              "s.toml", models);
+            FAIL("the scene loaded");
+        } catch (const Error& error) {
+            const std::string message = error.what();
+            INFO(message);
+            CHECK(message.rfind("s.toml:1:1: mesh[0]: ", 0) == 0);
+            CHECK(message.find("triangle 0 (the face at " + face) != std::string::npos);
+            CHECK(message.find(reason) != std::string::npos);
+        }
+    }
+}
+
+TEST_CASE("a normal the scale stretches beyond 1e154 keeps its direction") {
+    // (0, 1, 0) / 1e-160: glm::normalize squares 1e160 to infinity, and gave 0.
+    const Scene scene = parse_scene("[[mesh]]\nfile = \"scaled-face.obj\"\n"
+                                    "normals = \"given\"\nscale = [1, 1e-160, 1]\n",
+                                    "s.toml", models);
+    for (const CornerNormals& corners : mesh_normals(scene.meshes[0])) {
+        for (const glm::dvec3& n : corners) {
+            CHECK(n == glm::dvec3{0.0, 1.0, 0.0});
+        }
+    }
+}
+
 TEST_CASE("a model quad lit head-on gives exactly its diffuse colour") {
     const fs::path folder = fs::temp_directory_path() /
                             ("exactpixels-ch07-head-on-" + std::to_string(::getpid()));

@@ -2,6 +2,7 @@
 
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/input_file.hpp"
+#include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 
 #include <fmt/format.h>
@@ -407,13 +408,6 @@ class CheckedMaterials : public tinyobj::MaterialReader {
     std::string model_; ///< the OBJ file, for the message
 };
 
-/// A normal of length 1 in the direction of `n` (not zero: the check refuses that).
-/// Divided first by its largest component, so that the sum of squares can neither
-/// overflow nor underflow to 0, whatever finite numbers the file gave.
-glm::dvec3 unit(const glm::dvec3& n) {
-    return glm::normalize(n / std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)}));
-}
-
 /// The element `i` (0-based, as tinyobjloader gives it) of what the check read. The
 /// check has bounded every index, so an `i` outside is tinyobjloader reading the
 /// file otherwise than the check: an Error, never a read out of bounds.
@@ -534,8 +528,8 @@ Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
                     v.uv = {uv.x * texels.x, (1.0 - uv.y) * texels.y};
                 }
                 if (index.normal_index >= 0) {
-                    v.normal =
-                        unit(flip_z(element(at, checked.normals, index.normal_index)));
+                    v.normal = unit_normal(
+                        flip_z(element(at, checked.normals, index.normal_index)));
                 } else if (model.normals) {
                     model.normals = false;
                     model.line_without_normal = at.line;
@@ -545,6 +539,7 @@ Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
             check_convex(at, positions);
             for (std::size_t k = 1; k + 1 < n; ++k) { // the fan from corner 0
                 part.triangles.push_back({corners[0], corners[k], corners[k + 1]});
+                part.lines.push_back(at.line);
             }
         }
     }

@@ -66,6 +66,7 @@ struct ModelPart {
     Colour colour = {1.0, 1.0, 1.0};                   ///< Kd, sRGB code / 255
     std::optional<SceneTexture> texture;               ///< map_Kd, read from its PNG
     std::vector<std::array<SceneVertex, 3>> triangles; ///< uv in texels of `texture`
+    std::vector<std::size_t> lines; ///< for each triangle, the line of its face
 };
 
 /// A model: its parts, one per material its faces use, in order of first use.
