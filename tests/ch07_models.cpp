@@ -233,6 +233,90 @@ TEST_CASE("given normals are the OBJ's, with z negated") {
     fs::remove_all(folder);
 }
 
+TEST_CASE("every number drawn is the number the check read") {
+    // tinyobjloader reads 0.3 as 3 * 0.1, one bit above the double nearest 0.3, and a
+    // normal of 401 digits as infinity; the model holds the check's values, bit for bit.
+    long long texture_bytes = 0;
+    const Model model = read_obj_model(models / "numbers.obj", texture_bytes);
+    REQUIRE(model.parts.size() == 1);
+    const ModelPart& part = model.parts[0];
+    CHECK(part.colour == Colour{0.3, 0.7, 0.9});
+    REQUIRE(part.triangles.size() == 2);
+    const std::array<SceneVertex, 3>& first = part.triangles[0];
+    CHECK(first[0].position == glm::dvec3{0.3, 0.0, -0.0});
+    CHECK(first[1].position == glm::dvec3{0.0, 0.7, -0.0});
+    CHECK(first[2].position == glm::dvec3{0.0, 0.0, -0.3});
+    CHECK(first[0].uv == glm::dvec2{0.0, 0.0}); // no texture: uv are texels of none
+    for (const SceneVertex& v : first) {        // (1, 0, 1), z negated, of length 1
+        CHECK(v.normal == glm::normalize(glm::dvec3{1.0, 0.0, -1.0}));
+    }
+    // A leading +, leading zeros, "1."; and a denormal normal, which has a direction.
+    const std::array<SceneVertex, 3>& second = part.triangles[1];
+    CHECK(second[0].position == glm::dvec3{0.5, 7.0, -1.0});
+    CHECK(second[0].normal == glm::dvec3{0.0, 1.0, -0.0});
+}
+
+TEST_CASE("a byte-order mark at the start of an OBJ or MTL file is skipped") {
+    long long texture_bytes = 0;
+    const Model model = read_obj_model(models / "bom.obj", texture_bytes);
+    REQUIRE(model.parts.size() == 1);
+    CHECK(model.parts[0].material == "a");
+    CHECK(model.parts[0].colour == Colour{0.5, 0.25, 1.0});
+    REQUIRE(model.parts[0].triangles.size() == 1);
+    CHECK(model.parts[0].triangles[0][1].position == glm::dvec3{1.0, 0.0, -0.0});
+}
+
+TEST_CASE("a file named by mtllib that is not a material library is named, not quoted") {
+    long long texture_bytes = 0;
+    try {
+        (void)read_obj_model(models / "not-a-library.obj", texture_bytes);
+        FAIL("the model loaded");
+    } catch (const Error& error) {
+        const std::string message = error.what();
+        INFO(message);
+        CHECK(message.find((models / "accounts.txt").string() + ":1: ") !=
+              std::string::npos);
+        CHECK(message.find("not a material library") != std::string::npos);
+        CHECK(message.find("root") == std::string::npos); // the file's text
+    }
+}
+
+TEST_CASE("a model triangle the scale takes beyond doubles names its face's line") {
+    const std::string face = (models / "scaled-face.obj").string() + ":9)";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"scale = 1e6\ntranslate = [0, 1, 0]", "reaches 1000001 after the transform"},
+        {"scale = 1e-300", "is degenerate"},
+        {"scale = [1, 1e-320, 1]",
+         "takes the normal of triangle 0 (the face at " + face + " beyond the doubles"},
+    };
+    for (const auto& [scale, reason] : cases) {
+        INFO(scale);
+        try {
+            (void)parse_scene("[[mesh]]\nfile = \"scaled-face.obj\"\n" + scale + "\n",
+                              "s.toml", models);
+            FAIL("the scene loaded");
+        } catch (const Error& error) {
+            const std::string message = error.what();
+            INFO(message);
+            CHECK(message.rfind("s.toml:1:1: mesh[0]: ", 0) == 0);
+            CHECK(message.find("triangle 0 (the face at " + face) != std::string::npos);
+            CHECK(message.find(reason) != std::string::npos);
+        }
+    }
+}
+
+TEST_CASE("a normal the scale stretches beyond 1e154 keeps its direction") {
+    // (0, 1, 0) / 1e-160: glm::normalize squares 1e160 to infinity, and gave 0.
+    const Scene scene = parse_scene("[[mesh]]\nfile = \"scaled-face.obj\"\n"
+                                    "normals = \"given\"\nscale = [1, 1e-160, 1]\n",
+                                    "s.toml", models);
+    for (const CornerNormals& corners : mesh_normals(scene.meshes[0])) {
+        for (const glm::dvec3& n : corners) {
+            CHECK(n == glm::dvec3{0.0, 1.0, 0.0});
+        }
+    }
+}
+
 TEST_CASE("a model quad lit head-on gives exactly its diffuse colour") {
     const fs::path folder = fs::temp_directory_path() /
                             ("exactpixels-ch07-head-on-" + std::to_string(::getpid()));
@@ -352,6 +436,23 @@ std::vector<BadModel> bad_models() {
         {"a non-numeric coordinate", "v 0 zero 0\n", "", "model.obj:1",
          "'zero' is not a number"},
         {"a NaN", "v nan 0 0\n", "", "model.obj:1", "nan is out of range"},
+        // Forms that tinyobjloader reads as a number (or as 0) and the check refuses.
+        {"a plus before a minus", "v +-1 -1 0\n", "", "model.obj:1",
+         "'+-1' is not a number"},
+        {"two plus signs", "v 0 ++1 0\n", "", "model.obj:1", "'++1' is not a number"},
+        {"an exponent without digits", "v 1e 0 0\n", "", "model.obj:1",
+         "'1e' is not a number"},
+        {"a point alone", "vt . 0\n", "", "model.obj:1", "'.' is not a number"},
+        {"a minus alone", "vn 0 - 1\n", "", "model.obj:1", "'-' is not a number"},
+        {"a hexadecimal number", "v 0x1p3 0 0\n", "", "model.obj:1",
+         "'0x1p3' is not a number"},
+        {"infinity", "vn inf 0 0\n", "", "model.obj:1", "inf is out of range"},
+        {"a number that reads as 0", "v 1e-400 0 0\n", "", "model.obj:1",
+         "1e-400 is out of range (beyond a double, or so close to 0"},
+        {"a number beyond a double", "vt 0 1e309\n", "", "model.obj:1",
+         "1e309 is out of range (beyond a double"},
+        {"a plus before a minus in a colour", "mtllib model.mtl\n" + triangle,
+         "newmtl a\nKd 0 +-1 0\n", "model.mtl:2", "'+-1' is not a number"},
         {"a coordinate beyond the world", "v 2e6 0 0\n", "", "model.obj:1",
          "2e6 is out of range"},
         {"a control character", "v 0 0\x01 0\n", "", "model.obj:1",

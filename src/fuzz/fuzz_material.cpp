@@ -8,15 +8,10 @@
 // mutates the OBJ text; this target mutates what it reads through mtllib.
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/scene/obj_model.hpp"
-
-#include <unistd.h>
+#include "material_file.hpp"
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <string_view>
 
@@ -41,19 +36,7 @@ std::string first_material(std::string_view text) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view text(reinterpret_cast<const char*>(data), size);
-    const std::filesystem::path folder = EXACTPIXELS_MODEL_FIXTURES;
-    // Not .mtl: the seed pattern must not pick a mutated file up on a later run.
-    const std::string name = "fuzz-" + std::to_string(::getpid()) + ".material";
-    {
-        std::ofstream out(folder / name, std::ios::binary | std::ios::trunc);
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        if (!out.flush()) {
-            std::fprintf(stderr, "fuzz_material: cannot write %s\n", name.c_str());
-            std::abort(); // the harness, not the reader, failed
-        }
-    }
-    std::string obj = "mtllib " + name + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\n" +
-                      "vt 0 0\nvt 1 0\nvt 0 1\n";
+    std::string obj = fuzz::write_material_file(text, "fuzz_material");
     const std::string material = first_material(text);
     if (!material.empty() && material.find('\0') == std::string::npos) {
         obj += "usemtl " + material + "\n";
@@ -61,8 +44,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     obj += "f 1/1 2/2 3/3\n";
     try {
         long long texture_bytes = 0;
-        const exactpixels::Model model =
-            exactpixels::parse_obj_model(obj, "fuzz.obj", folder, texture_bytes);
+        const exactpixels::Model model = exactpixels::parse_obj_model(
+            obj, "fuzz.obj", EXACTPIXELS_MODEL_FIXTURES, texture_bytes);
         (void)model;
     } catch (const exactpixels::Error&) {
         // bad input, reported as it should be

@@ -1,5 +1,9 @@
 #include "exactpixels/scene/mesh_transform.hpp"
 
+#include "exactpixels/base/error.hpp"
+
+#include <fmt/format.h>
+
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -41,13 +45,25 @@ glm::dvec3 transform_point(const MeshTransform& t, const glm::dvec3& p) {
     return t.translate + rotation_matrix(t.rotate_degrees) * (t.scale * p);
 }
 
+glm::dvec3 unit_normal(const glm::dvec3& n) {
+    return glm::normalize(n / std::max({std::abs(n.x), std::abs(n.y), std::abs(n.z)}));
+}
+
 void transform_mesh(SceneMesh& mesh, const MeshTransform& t) {
     const glm::dmat3 rotation = rotation_matrix(t.rotate_degrees);
-    for (auto& triangle : mesh.triangles) {
-        for (SceneVertex& v : triangle) {
+    for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
+        for (SceneVertex& v : mesh.triangles[k]) {
             v.position = t.translate + rotation * (t.scale * v.position);
             if (v.normal != glm::dvec3{0.0}) { // inverse transpose of rotation * scale
-                v.normal = glm::normalize(rotation * (v.normal / t.scale));
+                const glm::dvec3 n = rotation * (v.normal / t.scale);
+                // Only a factor near the smallest normal double (2.2e-308) can take a
+                // component of a unit normal beyond the doubles.
+                if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) {
+                    throw Error(fmt::format("the scale takes the normal of {} beyond "
+                                            "the doubles",
+                                            triangle_name(mesh, k)));
+                }
+                v.normal = unit_normal(n);
             }
         }
     }

@@ -36,8 +36,15 @@ glm::dmat3 rotation_matrix(const glm::dvec3& degrees);
 /// The point `p` placed by `t`: translate + Rz Ry Rx (scale * p).
 glm::dvec3 transform_point(const MeshTransform& t, const glm::dvec3& p);
 
-/// Moves every vertex of `mesh` by `t`; normals by the inverse transpose, normalised
-/// (a zero normal stays zero).
+/// The vector of length 1 in the direction of `n` (finite, not zero). It is divided by
+/// its largest component first, so that the sum of squares can neither overflow nor
+/// underflow to 0, whatever finite numbers `n` holds.
+glm::dvec3 unit_normal(const glm::dvec3& n);
+
+/// Moves every vertex of `mesh` by `t`; normals by the inverse transpose, made of
+/// length 1 by unit_normal (a zero normal stays zero). Throws Error, naming the
+/// triangle, when a scale factor below the smallest normal double takes a normal
+/// beyond the doubles.
 void transform_mesh(SceneMesh& mesh, const MeshTransform& t);
 
 /// Fills mesh.positions with the distinct corner positions of mesh.triangles (equal bit

@@ -2,6 +2,7 @@
 
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/input_file.hpp"
+#include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 
 #include <fmt/format.h>
@@ -51,6 +52,13 @@ std::vector<std::string_view> words_of(std::string_view line) {
     return words;
 }
 
+/// `text` without a UTF-8 byte-order mark at its start (some editors write one; it is
+/// not part of the first statement). Both readers are given the text without it.
+std::string_view without_bom(std::string_view text) {
+    const std::string_view bom = "\xEF\xBB\xBF";
+    return text.substr(0, bom.size()) == bom ? text.substr(bom.size()) : text;
+}
+
 /// Calls `each(place, words)` for every line of `text` that is not blank or a comment.
 /// Lines end as tinyobjloader ends them, at "\n", "\r\n" or a lone "\r", so that both
 /// see the same statements; a control character (other than a tab) is an Error, since
@@ -78,16 +86,25 @@ void for_each_statement(std::string_view text, const std::string& file, Each eac
 }
 
 //> obj-number
-/// A decimal number, the whole word and nothing else, finite, within +-limit.
+/// A decimal number, the whole word and nothing else, finite, within +-limit: an
+/// optional sign, digits with an optional point (or a point and digits), an optional
+/// exponent. This is the only reading of a number: the model is built from the values
+/// it returns, never from tinyobjloader's (see parse_obj_model).
 double read_number(const Place& at, std::string_view word, double limit) {
     std::string_view digits = word;
-    if (!digits.empty() && digits[0] == '+') {
-        digits.remove_prefix(1);
+    if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') {
+        digits.remove_prefix(1); // from_chars takes '-' but not '+'
     }
     double value = 0.0;
     const auto [end, error] =
         std::from_chars(digits.data(), digits.data() + digits.size(), value);
-    if (digits.empty() || error != std::errc{} || end != digits.data() + digits.size()) {
+    const bool whole = end == digits.data() + digits.size();
+    if (error == std::errc::result_out_of_range && whole) {
+        at.fail(fmt::format("{} is out of range (beyond a double, or so close to 0 that "
+                            "it reads as 0)",
+                            word));
+    }
+    if (digits.empty() || error != std::errc{} || !whole) {
         at.fail(fmt::format("'{}' is not a number", word));
     }
     if (!std::isfinite(value) || std::abs(value) > limit) {
@@ -97,6 +114,17 @@ double read_number(const Place& at, std::string_view word, double limit) {
     return value;
 }
 //< obj-number
+
+/// The N numbers after a statement's keyword, each read by read_number.
+template <int N>
+glm::vec<N, double>
+read_vector(const Place& at, const std::vector<std::string_view>& words, double limit) {
+    glm::vec<N, double> v;
+    for (int k = 0; k < N; ++k) {
+        v[k] = read_number(at, words[static_cast<std::size_t>(k) + 1], limit);
+    }
+    return v;
+}
 
 /// Checks that a statement has from `lo` to `hi` words after its keyword.
 void expect_fields(const Place& at, const std::vector<std::string_view>& words,
@@ -109,9 +137,10 @@ void expect_fields(const Place& at, const std::vector<std::string_view>& words,
     }
 }
 
-/// One MTL file's materials as the check saw them: name, line, texture.
+/// One MTL file's materials as the check saw them: name, line, colour, texture.
 struct CheckedMaterial {
     Place place;                         ///< where `newmtl` named it
+    std::optional<Colour> kd;            ///< its last Kd, as read_number read it
     std::optional<SceneTexture> texture; ///< its map_Kd
 };
 
@@ -145,16 +174,20 @@ void check_mtl(std::string_view text, const std::string& file,
             return;
         }
         if (current == nullptr) {
-            at.fail(fmt::format("'{}' before any newmtl", key));
+            // A material library starts with newmtl (after comments); a file that does
+            // not may be anything, so its text is not quoted.
+            at.fail("a statement before any newmtl: not a material library");
         }
         if (key == "Kd") {
             expect_fields(at, words, 3, 3);
-            for (std::size_t k = 1; k <= 3; ++k) {
-                if (read_number(at, words[k], 1.0) < 0.0) {
-                    at.fail(
-                        fmt::format("Kd {} is out of range (allowed: 0 to 1)", words[k]));
+            const Colour kd = read_vector<3>(at, words, 1.0);
+            for (int k = 0; k < 3; ++k) {
+                if (kd[k] < 0.0) {
+                    at.fail(fmt::format("Kd {} is out of range (allowed: 0 to 1)",
+                                        words[k + 1]));
                 }
             }
+            current->kd = kd;
         } else if (key == "map_Kd") {
             expect_fields(at, words, 1, 1);
             if (words[1][0] == '-') {
@@ -203,11 +236,15 @@ void check_mtl(std::string_view text, const std::string& file,
 //< mtl-check
 
 /// What the check of an OBJ file found: the MTL texts for tinyobjloader, each
-/// material's texture, and the line of every face in file order.
+/// material's colour and texture, every v, vt and vn as read_number read it, and the
+/// line of every face in file order.
 struct CheckedObj {
     std::map<std::string, std::string> mtl_texts;
     std::map<std::string, CheckedMaterial> materials;
     std::vector<std::filesystem::path> files;
+    std::vector<glm::dvec3> positions; ///< as in the file (z not yet flipped)
+    std::vector<glm::dvec2> texcoords; ///< u and v (a w is checked and dropped)
+    std::vector<glm::dvec3> normals;   ///< as in the file, not normalized
     std::vector<std::size_t> face_lines;
 };
 
@@ -252,26 +289,22 @@ CheckedObj check_obj(std::string_view text, const std::string& file,
         if (key == "v") {
             expect_fields(at, words, 3, 3);
             count(at, positions, "positions");
-            for (std::size_t k = 1; k <= 3; ++k) {
-                (void)read_number(at, words[k], max_model_coordinate);
-            }
+            checked.positions.push_back(read_vector<3>(at, words, max_model_coordinate));
         } else if (key == "vt") {
             expect_fields(at, words, 2, 3);
             count(at, texcoords, "texture coordinates");
-            for (std::size_t k = 1; k < words.size(); ++k) {
-                (void)read_number(at, words[k], max_model_texcoord);
+            checked.texcoords.push_back(read_vector<2>(at, words, max_model_texcoord));
+            if (words.size() == 4) {
+                (void)read_number(at, words[3], max_model_texcoord);
             }
         } else if (key == "vn") {
             expect_fields(at, words, 3, 3);
             count(at, normals, "normals");
-            double length2 = 0.0;
-            for (std::size_t k = 1; k <= 3; ++k) {
-                const double x = read_number(at, words[k], max_model_coordinate);
-                length2 += x * x;
-            }
-            if (!(length2 > 0.0)) {
+            const glm::dvec3 n = read_vector<3>(at, words, max_model_coordinate);
+            if (n == glm::dvec3{0.0}) {
                 at.fail("a normal of length 0 has no direction");
             }
+            checked.normals.push_back(n);
         } else if (key == "f") {
             const std::size_t corners = words.size() - 1;
             if (corners < 3 || corners > static_cast<std::size_t>(max_face_corners)) {
@@ -327,6 +360,7 @@ CheckedObj check_obj(std::string_view text, const std::string& file,
             if (checked.mtl_texts.count(name) != 0) {
                 at.fail(fmt::format("mtllib '{}' is named twice", name));
             }
+            mtl = std::string(without_bom(mtl));
             check_mtl(mtl, path.string(), path.parent_path(), checked.materials,
                       texture_bytes);
             checked.mtl_texts[name] = std::move(mtl);
@@ -374,6 +408,22 @@ class CheckedMaterials : public tinyobj::MaterialReader {
     std::string model_; ///< the OBJ file, for the message
 };
 
+/// The element `i` (0-based, as tinyobjloader gives it) of what the check read. The
+/// check has bounded every index, so an `i` outside is tinyobjloader reading the
+/// file otherwise than the check: an Error, never a read out of bounds.
+template <class T> const T& element(const Place& at, const std::vector<T>& read, int i) {
+    if (i < 0 || static_cast<std::size_t>(i) >= read.size()) {
+        at.fail(fmt::format("tinyobjloader gave index {} of {} read by the check", i,
+                            read.size()));
+    }
+    return read[static_cast<std::size_t>(i)];
+}
+
+/// OBJ's right-handed coordinates in the scene's left-handed world: z negated.
+glm::dvec3 flip_z(const glm::dvec3& p) {
+    return {p.x, p.y, -p.z};
+}
+
 //> fan
 /// Checks that a face is a strictly convex polygon (every corner turns the same way as
 /// the face's Newell normal, and the turns add up to one full turn), so that the fan
@@ -413,6 +463,7 @@ void check_convex(const Place& at, const std::vector<glm::dvec3>& p) {
 Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
                       const std::filesystem::path& folder, long long& texture_bytes) {
     const std::string name = file.string();
+    text = without_bom(text);
     CheckedObj checked = check_obj(text, name, folder, texture_bytes);
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
@@ -443,8 +494,13 @@ Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
                     const tinyobj::material_t& m =
                         materials[static_cast<std::size_t>(id)];
                     part.material = m.name;
-                    part.colour = {m.diffuse[0], m.diffuse[1], m.diffuse[2]};
-                    part.texture = checked.materials.at(m.name).texture;
+                    const CheckedMaterial& checked_material =
+                        checked.materials.at(m.name);
+                    // Without a Kd, tinyobjloader's default (0, or 0.6 for a material
+                    // with a map_Kd before any Kd): a constant, not a number it read.
+                    part.colour = checked_material.kd.value_or(
+                        Colour{m.diffuse[0], m.diffuse[1], m.diffuse[2]});
+                    part.texture = checked_material.texture;
                     if (part.texture) {
                         part.texture->name = name + ":" + m.name;
                     }
@@ -460,20 +516,20 @@ Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
             std::vector<SceneVertex> corners(n);
             std::vector<glm::dvec3> positions(n);
             for (std::size_t k = 0; k < n; ++k) {
+                // tinyobjloader gives the structure (which v, vt and vn each corner
+                // names); the numbers are the check's own.
                 const tinyobj::index_t index = shape.mesh.indices[offset + k];
-                const auto at3 = [](const std::vector<tinyobj::real_t>& v, int i) {
-                    const auto j = 3 * static_cast<std::size_t>(i);
-                    return glm::dvec3{v[j], v[j + 1], -v[j + 2]}; // z flipped
-                };
                 SceneVertex& v = corners[k];
-                v.position = positions[k] = at3(attrib.vertices, index.vertex_index);
+                v.position = positions[k] =
+                    flip_z(element(at, checked.positions, index.vertex_index));
                 if (index.texcoord_index >= 0) {
-                    const auto j = 2 * static_cast<std::size_t>(index.texcoord_index);
-                    v.uv = {attrib.texcoords[j] * texels.x,
-                            (1.0 - attrib.texcoords[j + 1]) * texels.y};
+                    const glm::dvec2 uv =
+                        element(at, checked.texcoords, index.texcoord_index);
+                    v.uv = {uv.x * texels.x, (1.0 - uv.y) * texels.y};
                 }
                 if (index.normal_index >= 0) {
-                    v.normal = glm::normalize(at3(attrib.normals, index.normal_index));
+                    v.normal = unit_normal(
+                        flip_z(element(at, checked.normals, index.normal_index)));
                 } else if (model.normals) {
                     model.normals = false;
                     model.line_without_normal = at.line;
@@ -483,6 +539,7 @@ Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
             check_convex(at, positions);
             for (std::size_t k = 1; k + 1 < n; ++k) { // the fan from corner 0
                 part.triangles.push_back({corners[0], corners[k], corners[k + 1]});
+                part.lines.push_back(at.line);
             }
         }
     }

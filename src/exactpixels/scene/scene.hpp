@@ -160,7 +160,22 @@ struct SceneMesh {
     Colour specular = {0.0, 0.0, 0.0};         ///< Blinn-Phong highlight colour
     double shininess = 32.0;                   ///< Blinn-Phong exponent
     std::string origin; ///< "FILE:LINE:COLUMN: mesh[k]", where the mesh was defined
+    /// For a mesh read from an OBJ file: the file, and for each triangle the line of
+    /// the face it was cut from, so that a message about a triangle can name it.
+    std::string model;
+    std::vector<std::size_t> model_lines;
 };
+
+/// How a message names triangle `k` of `mesh`: "triangle k", and for a model's
+/// triangle also the OBJ file and line of its face.
+inline std::string triangle_name(const SceneMesh& mesh, std::size_t k) {
+    std::string name = "triangle " + std::to_string(k);
+    if (k < mesh.model_lines.size()) {
+        name += " (the face at " + mesh.model + ":" +
+                std::to_string(mesh.model_lines[k]) + ")";
+    }
+    return name;
+}
 
 /// A loaded, checked scene.
 struct Scene {

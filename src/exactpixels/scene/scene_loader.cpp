@@ -696,16 +696,21 @@ MeshTransform read_transform(const TableReader& t) {
 /// coordinates within the world limit, no triangle of zero area.
 void place_and_check(const Context& c, const toml::table& table, const std::string& path,
                      SceneMesh& mesh, const MeshTransform& transform) {
-    transform_mesh(mesh, transform);
+    try {
+        transform_mesh(mesh, transform);
+    } catch (const Error& error) {
+        c.fail(table.source(), path, error.what());
+    }
     for (std::size_t k = 0; k < mesh.triangles.size(); ++k) {
         const auto& tri = mesh.triangles[k];
         for (const SceneVertex& v : tri) {
             for (int i = 0; i < 3; ++i) {
                 if (!(std::abs(v.position[i]) <= world_limit)) {
                     c.fail(table.source(), path,
-                           fmt::format("triangle {} reaches {} after the transform, "
+                           fmt::format("{} reaches {} after the transform, "
                                        "beyond the world's +-{}",
-                                       k, v.position[i], world_limit));
+                                       triangle_name(mesh, k), v.position[i],
+                                       world_limit));
                 }
             }
         }
@@ -716,9 +721,9 @@ void place_and_check(const Context& c, const toml::table& table, const std::stri
         const double area2 = glm::length(glm::cross(e1, e2));
         if (!(area2 > 1e-12 * glm::length(e1) * glm::length(e2))) {
             c.fail(table.source(), path,
-                   fmt::format("triangle {} is degenerate (its corners are collinear or "
+                   fmt::format("{} is degenerate (its corners are collinear or "
                                "coincide, so it has no area)",
-                               k));
+                               triangle_name(mesh, k)));
         }
     }
     share_positions(mesh); // the geometry stage moves each distinct position once
@@ -950,7 +955,9 @@ void read_model(const Context& c, const toml::table& table, const std::string& p
         mesh.name = part.material.empty() ? name : name + "/" + part.material;
         mesh.origin = fmt::format("{}:{}:{}: {}", c.file, table.source().begin.line,
                                   table.source().begin.column, path);
-        mesh.triangles = part.triangles; // a copy: each reference is placed on its own
+        mesh.triangles = part.triangles; // copies: each reference is placed on its own
+        mesh.model = model_path.string();
+        mesh.model_lines = part.lines;
         mesh.colour = part.colour;
         mesh.texture = loaded.textures[k];
         mesh.wrap = wrap;
