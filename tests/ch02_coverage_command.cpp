@@ -5,7 +5,10 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <utility>
 
 using exactpixels::testing::cli_path;
 using exactpixels::testing::run_command;
@@ -164,4 +167,29 @@ TEST_CASE("coverage refuses a frame of more than 2^24 pixels and an endless line
     const auto largest = run_command(cli_path() + " coverage", "16384 1\n");
     CHECK(largest.exit_code == 0);
     CHECK(largest.out.size() == 2 * 16384);
+}
+
+namespace {
+
+/// `exactpixels coverage OPTIONS` with tests/fixtures/coverage/NAME as its input.
+exactpixels::testing::CommandResult cover_fixture(const std::string& name,
+                                                  const std::string& options = "") {
+    std::ifstream file(std::string(EXACTPIXELS_SOURCE_DIR) + "/tests/fixtures/coverage/" +
+                           name,
+                       std::ios::binary);
+    REQUIRE(file);
+    const std::string text{std::istreambuf_iterator<char>(file), {}};
+    return run_command(cli_path() + " coverage " + options, text);
+}
+
+} // namespace
+
+TEST_CASE("coverage: control characters in a line are escaped in its message") {
+    // The line's last word is '1', NUL, ESC "[31m" (red text) and BEL. The message was
+    // cut at the NUL; now every control character is written out and the line is whole.
+    const auto result = cover_fixture("control_characters.txt");
+    CHECK(result.exit_code == 2);
+    CHECK(result.out.empty());
+    CHECK(result.err == "exactpixels coverage: line 2: expected a number, found "
+                        "'1\\0\\x1b[31m\\x07'\n");
 }

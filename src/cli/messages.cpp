@@ -1,6 +1,8 @@
 // Messages of build/bin/exactpixels: one line each, never a whole huge token.
 #include "commands.hpp"
 
+#include "exactpixels/base/printable.hpp"
+
 #include <cstdio>
 
 namespace exactpixels::cli {
@@ -34,7 +36,8 @@ void print_error(std::string_view command, std::string_view message) {
         text += ' ';
         text += command;
     }
-    text += ": " + one_line(message) + "\n";
+    // An Error's message is printable already; CLI11's quotes the command line raw.
+    text += ": " + printable(one_line(message)) + "\n";
     std::fputs(text.c_str(), stderr);
 }
 
