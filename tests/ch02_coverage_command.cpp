@@ -184,6 +184,30 @@ exactpixels::testing::CommandResult cover_fixture(const std::string& name,
 
 } // namespace
 
+TEST_CASE("coverage: a number has at most one sign, in the documented form") {
+    // "+-0.5" was read as -0.5: the sign '+' was dropped and from_chars took the '-'.
+    for (const auto& [name, word] : {std::pair{"two_signs_plus_minus.txt", "+-0.5"},
+                                     std::pair{"two_signs_minus_plus.txt", "-+1"},
+                                     std::pair{"two_signs_plus_plus.txt", "++0"}}) {
+        CAPTURE(name);
+        const auto result = cover_fixture(name);
+        CHECK(result.exit_code == 2);
+        CHECK(result.out.empty());
+        CHECK(result.err ==
+              fmt::format("exactpixels coverage: line 2: expected a number, "
+                          "found '{}'\n",
+                          word));
+    }
+    // Every form the format allows, one sign at most, reads as the plain numbers do.
+    const auto signed_forms = cover_fixture("signed_numbers.txt");
+    const auto plain = run_command(cli_path() + " coverage", "4 4\n0 0 4 0 0 4\n");
+    CHECK(signed_forms.exit_code == 0);
+    CHECK(signed_forms.out == plain.out);
+    CHECK(plain.out != "0 0 0 0\n0 0 0 0\n0 0 0 0\n0 0 0 0\n");
+    check_malformed("4 4\n0 0 3 0 3 1e400\n",
+                    "line 2: '1e400' is too large or too small for a double");
+}
+
 TEST_CASE("coverage: control characters in a line are escaped in its message") {
     // The line's last word is '1', NUL, ESC "[31m" (red text) and BEL. The message was
     // cut at the NUL; now every control character is written out and the line is whole.

@@ -8,9 +8,11 @@
 //
 // The input: a first line "W H" (the frame's size in pixels, whole numbers from 1 to
 // max_frame_side, at most max_frame_pixels in all), then one triangle per line,
-// "x0 y0 x1 y1 x2 y2" (pixels, origin top-left, y down, decimal numbers). Blank lines are
-// skipped. Counts are row by row, top to bottom. Malformed input is an Error whose
-// message starts "line N:" and names the value.
+// "x0 y0 x1 y1 x2 y2" (pixels, origin top-left, y down). A number is decimal: one
+// optional sign, digits with an optional point, an optional exponent (3, -0.5, +.25,
+// 1e-3); "+-0.5", "0x10" and "inf" are not numbers. Words are separated by spaces and
+// tabs; blank lines are skipped. Counts are row by row, top to bottom. Malformed input is
+// an Error whose message starts "line N:" and quotes the value as written.
 #pragma once
 
 #include "exactpixels/raster/edge_rasterizer.hpp"
