@@ -217,3 +217,18 @@ TEST_CASE("coverage: control characters in a line are escaped in its message") {
     CHECK(result.err == "exactpixels coverage: line 2: expected a number, found "
                         "'1\\0\\x1b[31m\\x07'\n");
 }
+
+TEST_CASE("coverage: a value beyond float's range is named as read, not as inf") {
+    // 1e39 is more than float's largest value: converted first, it was named "inf".
+    for (const char* rasterizer : {"edge", "edge8x8"}) {
+        CAPTURE(rasterizer);
+        const auto result =
+            cover_fixture("beyond_float.txt",
+                          std::string("--precision float --rasterizer ") + rasterizer);
+        CHECK(result.exit_code == 2);
+        CHECK(result.out.empty());
+        CHECK(result.err ==
+              "exactpixels coverage: line 2: vertex 2: coordinate 1e+39 px is "
+              "outside the float rasterizers' range [-1048576, 1048576]\n");
+    }
+}
