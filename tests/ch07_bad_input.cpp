@@ -345,3 +345,13 @@ TEST_CASE("a control character in a scene string is escaped in the message") {
           "exactpixels render: bad.toml:4:1: image.\\x1b]0;title\\x07: unknown key "
           "(allowed here: width, height, background)\n");
 }
+
+TEST_CASE("a key defined twice is named as the scene wrote it") {
+    // toml++ named the key from a record holding its first characters twice: '"memesh"'.
+    CHECK(render_fixture_message("redefined_quoted_table.toml") ==
+          "exactpixels render: bad.toml:6:1: (syntax): Error while parsing table header: "
+          "cannot redefine existing array '\"mesh\"' as table\n");
+    CHECK(render_fixture_message("redefined_quoted_key.toml") ==
+          "exactpixels render: bad.toml:4:25: (syntax): Error while parsing key-value "
+          "pair: cannot redefine existing integer '\"w\"'\n");
+}
