@@ -5,7 +5,10 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <utility>
 
 using exactpixels::testing::cli_path;
 using exactpixels::testing::run_command;
@@ -198,4 +201,68 @@ TEST_CASE("coverage refuses an input over the fill-work limit before drawing it"
     }
     CHECK(at.out == expected_counts);
 #endif
+}
+
+namespace {
+
+/// `exactpixels coverage OPTIONS` with tests/fixtures/coverage/NAME as its input.
+exactpixels::testing::CommandResult cover_fixture(const std::string& name,
+                                                  const std::string& options = "") {
+    std::ifstream file(std::string(EXACTPIXELS_SOURCE_DIR) + "/tests/fixtures/coverage/" +
+                           name,
+                       std::ios::binary);
+    REQUIRE(file);
+    const std::string text{std::istreambuf_iterator<char>(file), {}};
+    return run_command(cli_path() + " coverage " + options, text);
+}
+
+} // namespace
+
+TEST_CASE("coverage: a number has at most one sign, in the documented form") {
+    // "+-0.5" was read as -0.5: the sign '+' was dropped and from_chars took the '-'.
+    for (const auto& [name, word] : {std::pair{"two_signs_plus_minus.txt", "+-0.5"},
+                                     std::pair{"two_signs_minus_plus.txt", "-+1"},
+                                     std::pair{"two_signs_plus_plus.txt", "++0"}}) {
+        CAPTURE(name);
+        const auto result = cover_fixture(name);
+        CHECK(result.exit_code == 2);
+        CHECK(result.out.empty());
+        CHECK(result.err ==
+              fmt::format("exactpixels coverage: line 2: expected a number, "
+                          "found '{}'\n",
+                          word));
+    }
+    // Every form the format allows, one sign at most, reads as the plain numbers do.
+    const auto signed_forms = cover_fixture("signed_numbers.txt");
+    const auto plain = run_command(cli_path() + " coverage", "4 4\n0 0 4 0 0 4\n");
+    CHECK(signed_forms.exit_code == 0);
+    CHECK(signed_forms.out == plain.out);
+    CHECK(plain.out != "0 0 0 0\n0 0 0 0\n0 0 0 0\n0 0 0 0\n");
+    check_malformed("4 4\n0 0 3 0 3 1e400\n",
+                    "line 2: '1e400' is too large or too small for a double");
+}
+
+TEST_CASE("coverage: control characters in a line are escaped in its message") {
+    // The line's last word is '1', NUL, ESC "[31m" (red text) and BEL. The message was
+    // cut at the NUL; now every control character is written out and the line is whole.
+    const auto result = cover_fixture("control_characters.txt");
+    CHECK(result.exit_code == 2);
+    CHECK(result.out.empty());
+    CHECK(result.err == "exactpixels coverage: line 2: expected a number, found "
+                        "'1\\0\\x1b[31m\\x07'\n");
+}
+
+TEST_CASE("coverage: a value beyond float's range is named as read, not as inf") {
+    // 1e39 is more than float's largest value: converted first, it was named "inf".
+    for (const char* rasterizer : {"edge", "edge8x8"}) {
+        CAPTURE(rasterizer);
+        const auto result =
+            cover_fixture("beyond_float.txt",
+                          std::string("--precision float --rasterizer ") + rasterizer);
+        CHECK(result.exit_code == 2);
+        CHECK(result.out.empty());
+        CHECK(result.err ==
+              "exactpixels coverage: line 2: vertex 2: coordinate 1e+39 px is "
+              "outside the float rasterizers' range [-1048576, 1048576]\n");
+    }
 }

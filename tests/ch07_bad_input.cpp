@@ -314,3 +314,44 @@ TEST_CASE("a triangle beyond the rasterizer's range is clipped and drawn, not an
     CHECK(fs::exists(folder / "far.png"));
     fs::remove_all(folder);
 }
+
+namespace {
+
+/// The message `render` prints for tests/fixtures/scenes/NAME, named as "bad.toml",
+/// after checking that it is one line, exit code 2 and no output.
+std::string render_fixture_message(const std::string& name) {
+    const fs::path folder = scratch_folder("fixture");
+    const fs::path scene = folder / "bad.toml";
+    fs::copy_file(fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/scenes" / name,
+                  scene);
+    const auto result =
+        testing::run_command("cd '" + folder.string() + "' && " + testing::cli_path() +
+                             " render bad.toml -o out.png");
+    CHECK(result.exit_code == 2);
+    CHECK(result.out.empty());
+    CHECK_FALSE(fs::exists(folder / "out.png"));
+    fs::remove_all(folder);
+    return result.err;
+}
+
+} // namespace
+
+TEST_CASE("a control character in a scene string is escaped in the message") {
+    // ESC and BEL reached the terminal raw: the red text and the title change acted.
+    CHECK(render_fixture_message("escape_in_texture_name.toml") ==
+          "exactpixels render: bad.toml:5:11: mesh[0].texture: no texture named "
+          "'a\\x1b[31mb\\x07' under [textures]\n");
+    CHECK(render_fixture_message("escape_in_key.toml") ==
+          "exactpixels render: bad.toml:4:1: image.\\x1b]0;title\\x07: unknown key "
+          "(allowed here: width, height, background)\n");
+}
+
+TEST_CASE("a key defined twice is named as the scene wrote it") {
+    // toml++ named the key from a record holding its first characters twice: '"memesh"'.
+    CHECK(render_fixture_message("redefined_quoted_table.toml") ==
+          "exactpixels render: bad.toml:6:1: (syntax): Error while parsing table header: "
+          "cannot redefine existing array '\"mesh\"' as table\n");
+    CHECK(render_fixture_message("redefined_quoted_key.toml") ==
+          "exactpixels render: bad.toml:4:25: (syntax): Error while parsing key-value "
+          "pair: cannot redefine existing integer '\"w\"'\n");
+}

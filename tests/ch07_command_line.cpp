@@ -2,6 +2,8 @@
 // suite, whose kit has every layer): every usage mistake on the command line is bad
 // input like any other:
 // exit code 2 and one line on standard error that names the option, with long words cut.
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/printable.hpp"
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>
@@ -63,4 +65,39 @@ TEST_CASE("a huge token is cut with an ellipsis in the message") {
     CHECK(input.exit_code == 2);
     CHECK(input.err.size() < 300);
     CHECK(input.err.find("...") != std::string::npos);
+}
+
+TEST_CASE("a message escapes every control character and keeps UTF-8 letters") {
+    using exactpixels::printable;
+    const std::string every_c0 = [] {
+        std::string text;
+        for (int c = 0; c < 0x20; ++c) {
+            text += static_cast<char>(c);
+        }
+        return text + '\x7f';
+    }();
+    const std::string escaped = printable(every_c0);
+    CHECK(escaped == "\\0\\x01\\x02\\x03\\x04\\x05\\x06\\x07\\x08\\t\\n\\x0b\\x0c\\r"
+                     "\\x0e\\x0f\\x10\\x11\\x12\\x13\\x14\\x15\\x16\\x17\\x18\\x19"
+                     "\\x1a\\x1b\\x1c\\x1d\\x1e\\x1f\\x7f");
+    // UTF-8 letters stay; the C1 controls (U+0080 to U+009F, 0x9b begins an escape
+    // sequence) and bytes that are not UTF-8 are written out.
+    CHECK(printable("caf\xc3\xa9 \xe2\x82\xac") == "caf\xc3\xa9 \xe2\x82\xac");
+    CHECK(printable("a\xc2\x9b"
+                    "31m") == "a\\u009b31m");
+    CHECK(printable("\xff\xc3(\xe2\x82") == "\\xff\\xc3(\\xe2\\x82");
+    // Applied twice it changes nothing, so a message wrapped in another stays as it was.
+    CHECK(printable(escaped) == escaped);
+    // Every Error escapes its message, and keeps what follows a NUL.
+    CHECK(std::string(exactpixels::Error(std::string("a\0b\x1b", 4)).what()) ==
+          "a\\0b\\x1b");
+}
+
+TEST_CASE("a control character on the command line is escaped in the message") {
+    // CLI11 quotes the argument raw; the message must still be one visible line.
+    const auto result = run_command(cli_path() + " coverage --rasterizer \"$(printf "
+                                                 "'a\\033[31mb\\007')\"");
+    CHECK(result.exit_code == 2);
+    CHECK(lines_in(result.err) == 1);
+    CHECK(result.err.find("a\\x1b[31mb\\x07") != std::string::npos);
 }

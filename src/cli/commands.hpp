@@ -24,7 +24,8 @@ inline constexpr std::size_t max_word_chars = 80;
 /// max_word_chars is cut to that many characters followed by "...".
 std::string one_line(std::string_view message);
 
-/// Prints "exactpixels[ COMMAND]: MESSAGE" as one_line(message) on standard error.
+/// Prints "exactpixels[ COMMAND]: MESSAGE" as one_line(message), control characters
+/// escaped (printable.hpp), on standard error.
 /// Never throws: when even standard error cannot be written there is nobody to tell,
 /// and the exit code still says what happened.
 void print_error(std::string_view command, std::string_view message);

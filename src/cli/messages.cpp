@@ -2,6 +2,7 @@
 #include "commands.hpp"
 
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/printable.hpp"
 
 #include <cstdio>
 #include <new>
@@ -37,7 +38,8 @@ void print_error(std::string_view command, std::string_view message) {
         text += ' ';
         text += command;
     }
-    text += ": " + one_line(message) + "\n";
+    // An Error's message is printable already; CLI11's quotes the command line raw.
+    text += ": " + printable(one_line(message)) + "\n";
     std::fputs(text.c_str(), stderr);
 }
 

@@ -34,21 +34,28 @@ std::vector<std::string_view> words_of(std::string_view line) {
     return words;
 }
 
-/// The finite decimal number `word` on line `line`, or an Error naming both.
+/// The finite decimal number `word` on line `line`, or an Error naming both. The form is
+/// the one coverage_reader.hpp states: one optional sign, then digits with an optional
+/// point and exponent, as from_chars reads them. from_chars takes no '+' and a '-' of its
+/// own, so the sign is taken here, once: "+-0.5" and "-+1" have two and are refused.
 double parse_number(std::string_view word, int line) {
-    const std::string_view digits = word.size() > 1 && word[0] == '+'
-                                        ? word.substr(1)
-                                        : word; // from_chars has no '+'
+    const bool has_sign = !word.empty() && (word[0] == '+' || word[0] == '-');
+    const std::string_view digits = has_sign ? word.substr(1) : word;
     double value = 0.0;
     const char* last = digits.data() + digits.size();
     const auto [end, status] = std::from_chars(digits.data(), last, value);
-    if (status != std::errc() || end != last) {
+    if (digits.empty() || digits[0] == '-' || status == std::errc::invalid_argument ||
+        end != last) {
         throw Error(fmt::format("line {}: expected a number, found '{}'", line, word));
+    }
+    if (status == std::errc::result_out_of_range) {
+        throw Error(fmt::format("line {}: '{}' is too large or too small for a double",
+                                line, word));
     }
     if (!std::isfinite(value)) {
         throw Error(fmt::format("line {}: '{}' is not a finite number", line, word));
     }
-    return value;
+    return word[0] == '-' ? -value : value;
 }
 
 /// The frame size from the header line "W H", at most `max_pixels` pixels.

@@ -8,13 +8,15 @@
 //
 // The input: a first line "W H" (the frame's size in pixels, whole numbers from 1 to
 // max_frame_side, at most max_frame_pixels in all), then one triangle per line,
-// "x0 y0 x1 y1 x2 y2" (pixels, origin top-left, y down, decimal numbers). Blank lines are
-// skipped. Counts are row by row, top to bottom. Malformed input is an Error whose
-// message starts "line N:" and names the value. The whole input is read before anything
-// is drawn: at most max_coverage_triangles triangles, whose fill work together
-// (fill_work.hpp: the pixels of their bounding boxes in the frame) is at most
-// max_fill_work, so an input that asks for more is refused at the line that passes the
-// limit, before the count grid is allocated.
+// "x0 y0 x1 y1 x2 y2" (pixels, origin top-left, y down). A number is decimal: one
+// optional sign, digits with an optional point, an optional exponent (3, -0.5, +.25,
+// 1e-3); "+-0.5", "0x10" and "inf" are not numbers. Words are separated by spaces and
+// tabs; blank lines are skipped. Counts are row by row, top to bottom. Malformed input is
+// an Error whose message starts "line N:" and quotes the value as written. The whole input
+// is read before anything is drawn: at most max_coverage_triangles triangles, whose fill
+// work together (fill_work.hpp: the pixels of their bounding boxes in the frame) is at
+// most max_fill_work, so an input that asks for more is refused at the line that passes
+// the limit, before the count grid is allocated.
 #pragma once
 
 #include "exactpixels/raster/edge_rasterizer.hpp"

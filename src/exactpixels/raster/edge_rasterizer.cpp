@@ -19,9 +19,13 @@ void check_fixed_triangle(const std::array<FixedPoint2, 3>& v) {
     }
 }
 
-void check_float_triangle(const std::array<Point2f, 3>& v) {
+namespace {
+
+/// check_float_triangle for a triangle of either precision: the value named is the one
+/// given, so a double beyond float's range is named as it is, not as infinity.
+template <class Point> void check_float_range(const std::array<Point, 3>& v) {
     for (int i = 0; i < 3; ++i) {
-        for (const float value : {v[i].x, v[i].y}) {
+        for (const auto value : {v[i].x, v[i].y}) {
             if (!std::isfinite(value)) {
                 throw Error(fmt::format(
                     "vertex {}: coordinate {} px is not a finite number", i, value));
@@ -34,6 +38,16 @@ void check_float_triangle(const std::array<Point2f, 3>& v) {
             }
         }
     }
+}
+
+} // namespace
+
+void check_float_triangle(const std::array<Point2f, 3>& v) {
+    check_float_range(v);
+}
+
+void check_float_triangle(const std::array<Point2, 3>& v) {
+    check_float_range(v);
 }
 
 void add_coverage(std::vector<int>& counts, Viewport viewport,
@@ -71,6 +85,9 @@ void add_coverage(std::vector<int>& counts, Viewport viewport,
             break;
         }
         return;
+    }
+    if (kind != RasterizerKind::scanline) { // the scanline walk reads v in double
+        check_float_triangle(v);            // before float would turn 1e39 into infinity
     }
     const std::array<Point2f, 3> f{Point2f(v[0]), Point2f(v[1]), Point2f(v[2])};
     switch (kind) {

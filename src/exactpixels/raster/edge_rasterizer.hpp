@@ -99,6 +99,10 @@ inline constexpr float max_float_coordinate = 1048576.0f;
 /// and within +-max_float_coordinate px.
 void check_float_triangle(const std::array<Point2f, 3>& v);
 
+/// The same for a triangle in double, checked before it is converted to float: a value
+/// beyond float's range is named as it is (1e+39), not as the infinity it would become.
+void check_float_triangle(const std::array<Point2, 3>& v);
+
 //> traverse-pixels
 /// Emits every pixel of `r` whose centre passes all three edge tests. Each edge value
 /// is evaluated once at the top-left pixel, then stepped: + step_x per pixel right,

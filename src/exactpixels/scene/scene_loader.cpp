@@ -974,6 +974,22 @@ void read_model(const Context& c, const toml::table& table, const std::string& p
 
 } // namespace
 
+/// The index just past the TOML string that opens at text[i] (a '"' or a '\''), one line
+/// or three-quoted; for a string never closed, the line break or the end that cuts it.
+std::size_t past_string(std::string_view text, std::size_t i) {
+    const char quote = text[i];
+    const bool triple = text.substr(i, 3) == std::string(3, quote);
+    const std::string close = triple ? std::string(3, quote) : std::string(1, quote);
+    std::size_t j = i + close.size();
+    while (j < text.size() && text.compare(j, close.size(), close) != 0 &&
+           (triple || text[j] != '\n')) {
+        j += quote == '"' && text[j] == '\\' ? 2 : 1; // an escape in a basic string
+    }
+    return j < text.size() && text.compare(j, close.size(), close) == 0
+               ? j + close.size()
+               : std::min(j, text.size());
+}
+
 /// Rejects a dotted key of more than max_key_parts parts anywhere in `text`, before the
 /// parser (which recurses once per part) sees it. Outside strings and comments, a dot
 /// joins two parts of one key or the two halves of a float; a run of dots is broken only
@@ -983,15 +999,10 @@ void check_key_depth(const Context& c, std::string_view text) {
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char ch = text[i];
         if (ch == '"' || ch == '\'') { // skip a string, one line or three-quoted
-            const bool triple = text.substr(i, 3) == std::string(3, ch);
-            const std::string close = triple ? std::string(3, ch) : std::string(1, ch);
-            std::size_t j = i + close.size();
-            while (j < text.size() && text.compare(j, close.size(), close) != 0 &&
-                   (triple || text[j] != '\n')) {
-                line += text[j] == '\n';
-                j += ch == '"' && text[j] == '\\' ? 2 : 1; // an escape in a basic string
-            }
-            i = std::min(j + close.size(), text.size()) - 1;
+            const std::size_t end = past_string(text, i);
+            line +=
+                static_cast<int>(std::count(text.begin() + i, text.begin() + end, '\n'));
+            i = end - 1;
         } else if (ch == '#') {
             while (i + 1 < text.size() && text[i + 1] != '\n') {
                 ++i;
@@ -1009,6 +1020,66 @@ void check_key_depth(const Context& c, std::string_view text) {
     }
 }
 
+/// The key as written on `line` (one line of a scene) that a toml++ error at `column`
+/// (from 1) is about: the last key before the column that ends at an unquoted '=' (a
+/// key-value pair) or ']' (a table header), or the first one when the error points
+/// before it (at a header's '['). Empty when the line has none.
+std::string key_written_on(std::string_view line, std::size_t column) {
+    std::string key;
+    std::size_t start = 0; // where the key being scanned begins
+    for (std::size_t i = 0; i < line.size() && line[i] != '#'; ++i) {
+        const char ch = line[i];
+        if (ch == '"' || ch == '\'') {
+            i = past_string(line, i) - 1;
+        } else if (ch == '[' || ch == '{' || ch == ',') {
+            start = i + 1;
+        } else if (ch == '=' || ch == ']') {
+            const std::size_t first = line.find_first_not_of(" \t", start);
+            const std::size_t last = line.find_last_not_of(" \t", i - 1);
+            const bool before = i + 1 < column;
+            if (first < i && (before || key.empty())) {
+                key = line.substr(first, last + 1 - first);
+            }
+            if (!before && !key.empty()) {
+                break;
+            }
+            start = i + 1;
+        }
+    }
+    return key;
+}
+
+/// toml++'s description of a parse error, with the key of a redefinition named as the
+/// scene wrote it. toml++ 3.3 quotes that key ("cannot redefine existing array '...' as
+/// table", "cannot insert '...' into existing inline table") from a record of the text
+/// that holds a quoted key's first characters twice: ["mesh"] after [[mesh]] is named
+/// '"memesh"'. The key between its first and last quote is replaced by the key read
+/// from the line the error points at.
+std::string toml_message(const toml::parse_error& error, std::string_view text) {
+    std::string message(error.description());
+    const std::size_t open = message.find('\'');
+    const std::size_t close = message.rfind('\'');
+    if (message.find("cannot redefine existing") == std::string::npos &&
+        message.find("cannot insert") == std::string::npos) {
+        return message;
+    }
+    if (open == std::string::npos || open == close) {
+        return message;
+    }
+    std::size_t begin = 0; // of the error's line in text
+    for (auto n = error.source().begin.line; n > 1 && begin != std::string_view::npos;
+         --n) {
+        begin = text.find('\n', begin);
+        begin = begin == std::string_view::npos ? begin : begin + 1;
+    }
+    if (begin == std::string_view::npos) {
+        return message;
+    }
+    const std::string_view line = text.substr(begin, text.find('\n', begin) - begin);
+    const std::string key = key_written_on(line, error.source().begin.column);
+    return key.empty() ? message : message.replace(open + 1, close - open - 1, key);
+}
+
 Scene parse_scene(std::string_view text, const std::filesystem::path& file,
                   const std::filesystem::path& folder) {
     const Context c{file.string(), folder};
@@ -1017,7 +1088,7 @@ Scene parse_scene(std::string_view text, const std::filesystem::path& file,
     try {
         root = toml::parse(text, file.string());
     } catch (const toml::parse_error& error) {
-        c.fail(error.source(), "(syntax)", std::string(error.description()));
+        c.fail(error.source(), "(syntax)", toml_message(error, text));
     }
     Scene scene;
     scene.file = file;

@@ -1,0 +1,25 @@
+// printable.hpp: input text made safe to quote in a message.
+//
+// Usage:
+//   printable("a\x1b[31mb\tc")  // "a\x1b[31mb\tc" with the ESC and the tab written out:
+//                               // a\x1b[31mb\tc
+//
+// A message quotes what the input said (a key, a word, a file name), and the input may
+// hold any byte. Written to a terminal raw, ESC and BEL act instead of showing, a NUL
+// ends a C string and a line break splits the message. printable() writes every control
+// character as an escape, so a message is always one line of visible text: \0, \t, \n,
+// \r, and \xNN for the other C0 controls and DEL (0x00-0x1f, 0x7f); \u0080 to \u009f for
+// the C1 controls of UTF-8; and \xNN for each byte that is not part of valid UTF-8. All
+// other text, UTF-8 letters included, is kept. A backslash is kept as it is, so the
+// result is unchanged by a second printable(): Error applies it to every message.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace exactpixels {
+
+/// `text` with every control character and every byte of invalid UTF-8 escaped.
+std::string printable(std::string_view text);
+
+} // namespace exactpixels
