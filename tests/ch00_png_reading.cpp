@@ -10,12 +10,14 @@
 
 #include <doctest/doctest.h>
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <vector>
 
 using namespace exactpixels;
 using namespace exactpixels::testing;
@@ -118,4 +120,76 @@ TEST_CASE("a PNG path that is a FIFO or a directory is refused without blocking"
     fs::remove(fifo);
     CHECK_THROWS_WITH_AS(read_png(fs::temp_directory_path()),
                          doctest::Contains("directory"), Error);
+}
+
+namespace {
+
+/// A 256 x 256 16-bit grey PNG holding every sample value once, 0 to 65535 row by row
+/// (pixel (x, y) holds 256 y + x), with the chunks `before_idat`.
+std::string every_16bit_sample(const std::string& before_idat) {
+    std::string rows;
+    for (int y = 0; y < 256; ++y) {
+        rows += '\0'; // filter type 0: the samples as they are
+        for (int x = 0; x < 256; ++x) {
+            rows += static_cast<char>(y); // big-endian: the high byte first
+            rows += static_cast<char>(x);
+        }
+    }
+    return png_file(256, 256, 16, 0, before_idat, zlib_stream(rows));
+}
+
+/// The 8-bit code nearest to the 16-bit sample v, code c standing for 257 c: round(v /
+/// 257), never a tie since v / 257 is never a half.
+int nearest_code(int v) {
+    return (v + 128) / 257;
+}
+
+/// The sample values whose pixel in `image` (from every_16bit_sample) is not the grey
+/// code `expected(v)`, opaque.
+std::vector<int> wrong_samples(const Framebuffer& image, int (*expected)(int)) {
+    std::vector<int> wrong;
+    for (int v = 0; v < 65536; ++v) {
+        const auto c = static_cast<std::uint8_t>(expected(v));
+        if (image.at(v % 256, v / 256) != rgba(c, c, c, 255)) {
+            wrong.push_back(v);
+        }
+    }
+    return wrong;
+}
+
+const std::string srgb_chunk = png_chunk("sRGB", std::string(1, '\0'));
+
+/// A gAMA chunk: the file's gamma times 100000 (45455: sRGB's 1/2.2; 100000: linear).
+std::string gama_chunk(std::uint32_t gamma) {
+    std::string data(4, '\0');
+    write_u32(data, 0, gamma);
+    return png_chunk("gAMA", data);
+}
+
+} // namespace
+
+TEST_CASE("a 16-bit PNG's samples are sRGB codes, each read as the nearest 8-bit code") {
+    // Without a gAMA or sRGB chunk a 16-bit file is sRGB like an 8-bit one, and says the
+    // same as with an sRGB chunk or a gAMA of 1/2.2.
+    for (const std::string& chunks :
+         {std::string(), srgb_chunk, gama_chunk(45455), srgb_chunk + gama_chunk(45455)}) {
+        CAPTURE(chunks.size());
+        const Framebuffer image = read_bytes(every_16bit_sample(chunks));
+        CHECK(image.at(0x80, 0x80) == rgba(0x80, 0x80, 0x80, 255)); // sample 0x8080
+        CHECK(wrong_samples(image, nearest_code).empty());
+    }
+}
+
+TEST_CASE("a PNG whose gAMA says linear is converted to sRGB codes at 8 and 16 bits") {
+    // The file says that its values are light, not codes, so libpng encodes them as
+    // codes with its approximation of sRGB, a power of 1/2.2: the light 0x80 / 255 is
+    // code 0xBA (186.4), at 8 bits as at 16, where an sRGB file keeps 0x80.
+    const Framebuffer wide = read_bytes(every_16bit_sample(gama_chunk(100000)));
+    CHECK(wide.at(0x80, 0x80) == rgba(0xBA, 0xBA, 0xBA, 255)); // sample 0x8080
+    const std::string row = std::string(1, '\0') + static_cast<char>(0x80);
+    const Framebuffer narrow =
+        read_bytes(png_file(1, 1, 8, 0, gama_chunk(100000), zlib_stream(row)));
+    CHECK(narrow.at(0, 0) == rgba(0xBA, 0xBA, 0xBA, 255));
+    CHECK(read_bytes(png_file(1, 1, 8, 0, srgb_chunk, zlib_stream(row))).at(0, 0) ==
+          rgba(0x80, 0x80, 0x80, 255));
 }

@@ -81,6 +81,10 @@ Framebuffer decode_png(std::string_view bytes, const std::string& name,
     if (check_size) {
         check_size(width, height);
     }
+    // A 16-bit file without a gAMA or sRGB chunk holds sRGB codes like an 8-bit one
+    // (libpng would take it as linear light); each sample is read as the nearest 8-bit
+    // code, round(v / 257).
+    image.flags |= PNG_IMAGE_FLAG_16BIT_sRGB;
     image.format = PNG_FORMAT_RGBA; // 8 bits per channel, sRGB values as stored
     std::vector<std::uint8_t> data(PNG_IMAGE_SIZE(image));
     if (png_image_finish_read(&image, nullptr, data.data(), 0, nullptr) == 0) {

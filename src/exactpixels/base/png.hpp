@@ -15,7 +15,9 @@
 // Adler-32 checksum, so a corrupt file is an Error, never an image with wrong pixels. The
 // size in the header is checked (against max_png_pixels, and by the caller's check)
 // before any pixel memory is allocated. Pixels come out as 8-bit RGBA, rows top to
-// bottom.
+// bottom, as sRGB codes: a file without a gAMA or sRGB chunk is sRGB whatever its depth
+// (a 16-bit sample v becomes the nearest code, round(v / 257)); libpng converts a file
+// whose gAMA says another gamma.
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
