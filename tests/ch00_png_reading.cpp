@@ -9,7 +9,9 @@
 #include "support/png_chunks.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +19,7 @@
 #include <string>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <utility>
 #include <vector>
 
 using namespace exactpixels;
@@ -192,4 +195,58 @@ TEST_CASE("a PNG whose gAMA says linear is converted to sRGB codes at 8 and 16 b
     CHECK(narrow.at(0, 0) == rgba(0xBA, 0xBA, 0xBA, 255));
     CHECK(read_bytes(png_file(1, 1, 8, 0, srgb_chunk, zlib_stream(row))).at(0, 0) ==
           rgba(0x80, 0x80, 0x80, 255));
+}
+
+TEST_CASE("a PNG whose data inflates far beyond its image is refused before inflating") {
+    // An 8 x 8 RGBA image (8 rows of a filter byte and 32 bytes) followed in the same
+    // zlib stream by 256 MiB of zeros, in a file of about 256 KiB: zlib packs up to 258
+    // zeros into about a bit, so a file of the 80 MiB allowed could inflate to 80 GiB.
+    // Made here, not a fixture: tests/fixtures/png/ seeds the fuzzer and is kept small.
+    std::string rows;
+    for (int y = 0; y < 8; ++y) {
+        rows += '\0' + std::string(32, static_cast<char>(0x40 + y));
+    }
+    const std::size_t zeros = std::size_t{256} << 20;
+    const std::string bomb = png_file(8, 8, 8, 6, "", zlib_stream(rows, zeros));
+    CAPTURE(bomb.size());
+    CHECK(bomb.size() < (std::size_t{1} << 20));
+
+    const auto start = std::chrono::steady_clock::now();
+    CHECK_THROWS_WITH_AS(read_bytes(bomb), doctest::Contains("inflates to more than"),
+                         Error);
+    const std::chrono::duration<double> took = std::chrono::steady_clock::now() - start;
+    CHECK(took.count() < 0.1); // inflating the zeros took half a second
+
+    // The same image without the zeros reads, so the zeros are what was refused.
+    const Framebuffer image = read_bytes(png_file(8, 8, 8, 6, "", zlib_stream(rows)));
+    CHECK(image.at(5, 7) == rgba(0x47, 0x47, 0x47, 0x47));
+}
+
+TEST_CASE(
+    "a PNG's data may inflate to its rows and the stated extra bytes, and no more") {
+    // An 8 x 8 RGBA image is 8 rows of a filter byte and 32 bytes, 264 bytes; interlaced,
+    // its seven passes have rows of 1, 1, 2, 2, 4, 4 and 8 pixels, in 1, 1, 1, 2, 2, 4
+    // and 4 rows: 5 + 5 + 9 + 18 + 34 + 68 + 132 = 271 bytes. All zeros is a black,
+    // transparent image.
+    for (const std::pair<bool, int>& image :
+         {std::pair{false, 264}, std::pair{true, 271}}) {
+        const bool interlaced = image.first;
+        const int row_bytes = image.second;
+        CAPTURE(interlaced);
+        const auto png = [&](long long extra) {
+            return png_file(
+                8, 8, 8, 6, "",
+                zlib_stream(std::string(static_cast<std::size_t>(row_bytes), '\0'),
+                            static_cast<std::size_t>(extra)),
+                interlaced);
+        };
+        CHECK(read_bytes(png(0)).at(7, 7) == rgba(0, 0, 0, 0));
+        CHECK(read_bytes(png(max_png_extra_inflated_bytes)).at(7, 7) == rgba(0, 0, 0, 0));
+        CHECK_THROWS_WITH_AS(
+            read_bytes(png(max_png_extra_inflated_bytes + 1)),
+            doctest::Contains(
+                fmt::format("more than the {} bytes of its 8x8 pixels", row_bytes)
+                    .c_str()),
+            Error);
+    }
 }
