@@ -9,6 +9,7 @@
 #include <stb_image_write.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -110,16 +111,16 @@ bool inflates_within(std::string_view bytes, long long limit) {
     std::array<unsigned char, 1 << 16> scratch{};
     long long inflated = 0;
     std::size_t at = 8; // after the signature: chunks of length, type, data, CRC
-    while (at + 12 <= bytes.size()) {
+    while (at + 8 <= bytes.size()) {
         const std::size_t length = big_endian_u32(bytes, at);
-        if (length > bytes.size() - at - 12) {
-            return true; // cut short: libpng's error
-        }
+        // A chunk cut short by the end of the file still counts for what it holds:
+        // libpng inflates that much before it finds the end.
+        const std::size_t held = std::min<std::size_t>(length, bytes.size() - at - 8);
         if (bytes.compare(at + 4, 4, "IDAT") == 0) {
             z.next_in =
                 reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data() + at + 8));
-            z.avail_in = static_cast<uInt>(length);
-            while (z.avail_in > 0) {
+            z.avail_in = static_cast<uInt>(held);
+            do { // until the chunk is used up and zlib holds back no output
                 z.next_out = scratch.data();
                 z.avail_out = static_cast<uInt>(scratch.size());
                 const int status = inflate(&z, Z_NO_FLUSH);
@@ -127,10 +128,16 @@ bool inflates_within(std::string_view bytes, long long limit) {
                 if (inflated > limit) {
                     return false;
                 }
+                if (status == Z_BUF_ERROR) {
+                    break; // no progress without the next chunk's bytes
+                }
                 if (status != Z_OK) {
                     return true; // the stream's end, or an error libpng reports
                 }
-            }
+            } while (z.avail_in > 0 || z.avail_out == 0);
+        }
+        if (held < length) {
+            return true; // the file ends inside this chunk: libpng's error
         }
         at += 12 + length;
     }
