@@ -65,7 +65,8 @@ TEST_CASE("every shipped scene loads and renders at its size") {
     }
 }
 
-TEST_CASE("a texture's alpha is not drawn: textures are opaque, as is the frame") {
+TEST_CASE("a texture's alpha is not drawn: textures are opaque, as is the frame" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     // A 2 x 2 PNG whose texels are transparent to opaque, drawn 2 pixels a texel over
     // the whole 4 x 4 image (world (-2, 2) is pixel (0, 0)'s corner, uv in texels).
     const std::filesystem::path folder =
