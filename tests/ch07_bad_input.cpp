@@ -286,6 +286,45 @@ TEST_CASE(
     fs::remove_all(folder);
 }
 
+TEST_CASE("a PNG texture over a limit is reported with its place once") {
+    // The size checks run inside the PNG reader, whose errors the loader prefixes with
+    // the place: they once named it themselves as well, so it came twice.
+    const fs::path folder = scratch_folder("once");
+    write_png(folder / "small.png", Framebuffer(1, 1));
+    const std::string wide = scene_with("[textures.wide]\nkind = \"png\"\nfile = "
+                                        "\"wide.png\"\n",
+                                        "");
+    const std::string wide_message =
+        "bad.toml:6:8: textures.wide.file: " + (folder / "wide.png").string() +
+        ": 4097x1 texels is larger than the 4096 allowed "
+        "per side";
+    CHECK_THROWS_WITH_AS((void)parse_scene(wide, "bad.toml", folder),
+                         wide_message.c_str(), Error);
+    // Two 4096 x 4096 textures fill the 128 MiB of texels; one texel more is refused
+    // (toml++ keeps a table's keys in order: t0, t1, u).
+    const std::string full =
+        scene_with(many_textures(2, "kind = \"checkerboard\", size = [4096, 4096], "
+                                    "square = 64") +
+                       "u = { kind = \"png\", file = \"small.png\" }\n",
+                   "");
+    CHECK_THROWS_WITH_AS(
+        (void)parse_scene(full, "bad.toml", folder),
+        "bad.toml:7:28: textures.u.file: a 1x1 texture takes the scene's "
+        "textures beyond the 134217728 bytes allowed",
+        Error);
+
+    // The command prints the same message, once, on one line.
+    const fs::path scene = folder / "bad.toml";
+    std::ofstream(scene) << wide;
+    const auto result =
+        testing::run_command(testing::cli_path() + " render '" + scene.string() +
+                             "' -o '" + (folder / "out.png").string() + "'");
+    CHECK(result.exit_code == 2);
+    CHECK(result.err == "exactpixels render: " + (folder / wide_message).string() + "\n");
+    CHECK_FALSE(fs::exists(folder / "out.png"));
+    fs::remove_all(folder);
+}
+
 TEST_CASE("a missing scene file is named, exit code 2, no output") {
     const fs::path folder = scratch_folder("missing");
     const auto result = testing::run_command(

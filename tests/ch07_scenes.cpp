@@ -1,5 +1,6 @@
 // Chapter 7 tests: the shipped scenes render; each mesh runs only the stages it calls
 // for; `auto` stays within its budget; the derived bounds and divide counts hold.
+#include "exactpixels/base/png.hpp"
 #include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/gouraud_error.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
@@ -15,9 +16,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
+#include <unistd.h>
 
 using namespace exactpixels;
 
@@ -60,6 +63,60 @@ TEST_CASE("every shipped scene loads and renders at its size") {
         CHECK(result.image.height() == scene.height);
         CHECK(result.report.raster.pixels > scene.width * scene.height / 20);
     }
+}
+
+TEST_CASE("a texture's alpha is not drawn: textures are opaque, as is the frame" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+    // A 2 x 2 PNG whose texels are transparent to opaque, drawn 2 pixels a texel over
+    // the whole 4 x 4 image (world (-2, 2) is pixel (0, 0)'s corner, uv in texels).
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() /
+        ("exactpixels-alpha-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    Framebuffer texels(2, 2);
+    texels.at(0, 0) = rgba(200, 10, 10, 0);
+    texels.at(1, 0) = rgba(10, 200, 10, 1);
+    texels.at(0, 1) = rgba(10, 10, 200, 128);
+    texels.at(1, 1) = rgba(90, 90, 90, 255);
+    write_png(folder / "glass.png", texels);
+    for (const std::string filter : {"nearest", "bilinear"}) {
+        CAPTURE(filter);
+        const Scene scene = parse_scene(fmt::format(R"(
+[image]
+width = 4
+height = 4
+background = [1, 1, 1]
+[camera]
+projection = "orthographic"
+view_height = 4
+[render]
+filter = "{}"
+[textures.glass]
+kind = "png"
+file = "glass.png"
+[[mesh]]
+primitive = "quad"
+texture = "glass"
+corners = [[-2, 2, 0], [2, 2, 0], [2, -2, 0], [-2, -2, 0]]
+uv = [[0, 0], [2, 0], [2, 2], [0, 2]]
+)",
+                                                    filter),
+                                        "alpha.toml", folder);
+        const Framebuffer image = render_scene(scene).image;
+        for (int y = 0; y < 4; ++y) {
+            for (int x = 0; x < 4; ++x) {
+                CAPTURE(x);
+                CAPTURE(y);
+                const Rgba8 pixel = image.at(x, y);
+                CHECK(pixel.a == 255);
+                if (filter == "nearest") {
+                    const Rgba8 texel = texels.at(x / 2, y / 2);
+                    CHECK(pixel == rgba(texel.r, texel.g, texel.b, 255));
+                }
+            }
+        }
+    }
+    std::filesystem::remove_all(folder);
 }
 
 TEST_CASE("a flat orthographic quad covers exactly the pixels whose centres it holds") {

@@ -7,7 +7,10 @@
 #include <fmt/format.h>
 #include <png.h>
 #include <stb_image_write.h>
+#include <zlib.h>
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -51,6 +54,103 @@ void write_png(const std::filesystem::path& path, const Framebuffer& frame,
     prepare_png(path, frame, inputs).commit();
 }
 
+namespace {
+
+/// The big-endian 32-bit number at `at` in `bytes` (the caller checks the bounds).
+std::uint32_t big_endian_u32(std::string_view bytes, std::size_t at) {
+    std::uint32_t value = 0;
+    for (std::size_t k = 0; k < 4; ++k) {
+        value = (value << 8) | static_cast<unsigned char>(bytes[at + k]);
+    }
+    return value;
+}
+
+/// The bytes an honest zlib stream of this PNG inflates to: for every row (of every
+/// Adam7 pass, when interlaced), a filter byte and the row's packed samples. Read from
+/// the IHDR chunk, which always comes first and which libpng has already checked.
+long long inflated_image_bytes(std::string_view bytes) {
+    constexpr std::size_t ihdr = 16; // signature, then the chunk's length and type
+    const long long width = big_endian_u32(bytes, ihdr);
+    const long long height = big_endian_u32(bytes, ihdr + 4);
+    const int bit_depth = static_cast<unsigned char>(bytes[ihdr + 8]);
+    const int colour_type = static_cast<unsigned char>(bytes[ihdr + 9]);
+    const bool interlaced = bytes[ihdr + 12] != 0;
+    // Samples per pixel for colour types 0 (grey), 2 (RGB), 3 (palette), 4 (grey and
+    // alpha) and 6 (RGBA).
+    const std::array<int, 7> channels{1, 0, 3, 1, 2, 0, 4};
+    const long long bits_per_pixel = channels.at(colour_type) * bit_depth;
+    const auto rows_bytes = [&](long long pass_width, long long pass_height) {
+        if (pass_width == 0 || pass_height == 0) {
+            return 0LL; // an empty pass has no rows at all, not even filter bytes
+        }
+        return pass_height * (1 + (pass_width * bits_per_pixel + 7) / 8);
+    };
+    if (!interlaced) {
+        return rows_bytes(width, height);
+    }
+    // Adam7: pass k takes every step_x-th pixel from start_x in every step_y-th row
+    // from start_y.
+    const std::array<int, 7> start_x{0, 4, 0, 2, 0, 1, 0}, start_y{0, 0, 4, 0, 2, 0, 1};
+    const std::array<int, 7> step_x{8, 8, 4, 4, 2, 2, 1}, step_y{8, 8, 8, 4, 4, 2, 2};
+    long long total = 0;
+    for (std::size_t k = 0; k < 7; ++k) {
+        const auto count = [](long long size, int start, int step) {
+            return size > start ? (size - start + step - 1) / step : 0LL;
+        };
+        total += rows_bytes(count(width, start_x[k], step_x[k]),
+                            count(height, start_y[k], step_y[k]));
+    }
+    return total;
+}
+
+/// Inflates the IDAT chunks of `bytes` into a small scratch buffer, counting bytes but
+/// keeping none, and returns whether the stream ends within `limit` bytes. A stream
+/// that is corrupt or cut short also returns true: libpng reports those when it reaches
+/// the same byte, and it inflates no further than this did.
+bool inflates_within(std::string_view bytes, long long limit) {
+    z_stream z{};
+    if (inflateInit(&z) != Z_OK) {
+        throw Error("cannot start zlib to read a PNG file");
+    }
+    const std::unique_ptr<z_stream, int (*)(z_streamp)> guard(&z, inflateEnd);
+    std::array<unsigned char, 1 << 16> scratch{};
+    long long inflated = 0;
+    std::size_t at = 8; // after the signature: chunks of length, type, data, CRC
+    while (at + 8 <= bytes.size()) {
+        const std::size_t length = big_endian_u32(bytes, at);
+        // A chunk cut short by the end of the file still counts for what it holds:
+        // libpng inflates that much before it finds the end.
+        const std::size_t held = std::min<std::size_t>(length, bytes.size() - at - 8);
+        if (bytes.compare(at + 4, 4, "IDAT") == 0) {
+            z.next_in =
+                reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data() + at + 8));
+            z.avail_in = static_cast<uInt>(held);
+            do { // until the chunk is used up and zlib holds back no output
+                z.next_out = scratch.data();
+                z.avail_out = static_cast<uInt>(scratch.size());
+                const int status = inflate(&z, Z_NO_FLUSH);
+                inflated += static_cast<long long>(scratch.size() - z.avail_out);
+                if (inflated > limit) {
+                    return false;
+                }
+                if (status == Z_BUF_ERROR) {
+                    break; // no progress without the next chunk's bytes
+                }
+                if (status != Z_OK) {
+                    return true; // the stream's end, or an error libpng reports
+                }
+            } while (z.avail_in > 0 || z.avail_out == 0);
+        }
+        if (held < length) {
+            return true; // the file ends inside this chunk: libpng's error
+        }
+        at += 12 + length;
+    }
+    return true;
+}
+
+} // namespace
+
 Framebuffer read_png(const std::filesystem::path& path,
                      const std::function<void(int width, int height)>& check_size) {
     const std::string bytes =
@@ -86,6 +186,18 @@ Framebuffer decode_png(std::string_view bytes, const std::string& name,
     if (check_size) {
         check_size(width, height);
     }
+    // libpng inflates the whole stream to check its Adler-32, however far it goes on
+    // past the image, so a small file could cost minutes: bound it first.
+    const long long image_bytes = inflated_image_bytes(bytes);
+    if (!inflates_within(bytes, image_bytes + max_png_extra_inflated_bytes)) {
+        fail(fmt::format("its image data inflates to more than the {} bytes of its {}x{} "
+                         "pixels and {} to spare",
+                         image_bytes, width, height, max_png_extra_inflated_bytes));
+    }
+    // A 16-bit file without a gAMA or sRGB chunk holds sRGB codes like an 8-bit one
+    // (libpng would take it as linear light); each sample is read as the nearest 8-bit
+    // code, round(v / 257).
+    image.flags |= PNG_IMAGE_FLAG_16BIT_sRGB;
     image.format = PNG_FORMAT_RGBA; // 8 bits per channel, sRGB values as stored
     std::vector<std::uint8_t> data(PNG_IMAGE_SIZE(image));
     if (png_image_finish_read(&image, nullptr, data.data(), 0, nullptr) == 0) {

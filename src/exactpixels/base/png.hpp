@@ -14,8 +14,12 @@
 // starts with the PNG signature; libpng checks every chunk's CRC and the zlib stream's
 // Adler-32 checksum, so a corrupt file is an Error, never an image with wrong pixels. The
 // size in the header is checked (against max_png_pixels, and by the caller's check)
-// before any pixel memory is allocated. Pixels come out as 8-bit RGBA, rows top to
-// bottom.
+// before any pixel memory is allocated, and so is the zlib stream: it may inflate to at
+// most max_png_extra_inflated_bytes more than the image's rows, else the file is refused
+// before libpng inflates it. Pixels come out as 8-bit RGBA, rows top to bottom, as sRGB
+// codes: a file without a gAMA or sRGB chunk is sRGB whatever its depth (a 16-bit sample
+// v becomes the nearest code, round(v / 257)); libpng converts a file whose gAMA says
+// another gamma.
 #pragma once
 
 #include "exactpixels/base/atomic_file.hpp"
@@ -51,6 +55,10 @@ void write_png(const std::filesystem::path& path, const Framebuffer& frame,
 inline constexpr std::size_t max_png_file_bytes = std::size_t{80} << 20;
 /// The most pixels read_png decodes (2^24: 64 MiB of RGBA8).
 inline constexpr long long max_png_pixels = 1LL << 24;
+/// How many bytes a PNG's zlib stream may inflate to beyond its image's own rows (a
+/// filter byte and the packed samples of each): an honest stream has none, and a
+/// "decompression bomb" is refused after at most this much work.
+inline constexpr long long max_png_extra_inflated_bytes = 1LL << 20;
 
 /// Decodes the PNG `bytes` as RGBA8, as read_png does after reading the file; `name`
 /// names it in messages.

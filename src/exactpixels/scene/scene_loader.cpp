@@ -452,18 +452,27 @@ SceneLight read_light(const Context& c, const toml::table& table,
 }
 //< read-light
 
+/// Counts a width x height texture against the scene's texel memory `texture_bytes`,
+/// before the texture exists. The Error names no place: its caller's does.
+void count_texture_bytes(long long& texture_bytes, long long width, long long height) {
+    texture_bytes += width * height * 4;
+    if (texture_bytes > max_scene_texture_bytes) {
+        throw Error(
+            fmt::format("a {}x{} texture takes the scene's textures beyond the {} "
+                        "bytes allowed",
+                        width, height, max_scene_texture_bytes));
+    }
+}
+
 //> read-texture
 Texture read_texture(const TableReader& t, long long& texture_bytes) {
     const Context& c = t.context();
-    // Counts a width x height texture against the scene's texel memory, before it exists.
     const auto take = [&](const toml::node& where, const std::string& path,
                           long long width, long long height) {
-        texture_bytes += width * height * 4;
-        if (texture_bytes > max_scene_texture_bytes) {
-            c.fail(where.source(), path,
-                   fmt::format("a {}x{} texture takes the scene's textures beyond the "
-                               "{} bytes allowed",
-                               width, height, max_scene_texture_bytes));
+        try {
+            count_texture_bytes(texture_bytes, width, height);
+        } catch (const Error& error) {
+            c.fail(where.source(), path, error.what());
         }
     };
     const std::size_t kind = read_choice(c, t.require("kind"), t.child("kind"),
@@ -504,17 +513,16 @@ Texture read_texture(const TableReader& t, long long& texture_bytes) {
     const toml::node& file = t.require("file");
     const std::filesystem::path path = c.folder / read_string(c, file, t.child("file"));
     t.finish();
-    try {
+    try { // every Error below names the path and the reason, and the catch its place
         return load_texture(path, [&](int width, int height) { // before decoding
             if (width > max_texture_side || height > max_texture_side) {
-                c.fail(
-                    file.source(), t.child("file"),
+                throw Error(
                     fmt::format("{}: {}x{} texels is larger than the {} allowed per side",
                                 path.string(), width, height, max_texture_side));
             }
-            take(file, t.child("file"), width, height);
+            count_texture_bytes(texture_bytes, width, height);
         });
-    } catch (const Error& error) { // names the path and the reason
+    } catch (const Error& error) {
         c.fail(file.source(), t.child("file"), error.what());
     }
 }

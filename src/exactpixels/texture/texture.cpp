@@ -92,9 +92,16 @@ Texture f_texture(int cell) {
 
 Texture load_texture(const std::filesystem::path& path,
                      const std::function<void(int width, int height)>& check_size) {
-    const Framebuffer image = read_png(path, check_size); // throws Error naming the path
+    Framebuffer image = read_png(path, check_size); // throws Error naming the path
     if (image.width() < 1 || image.height() < 1) {
         throw Error(fmt::format("{}: texture has zero size", path.string()));
+    }
+    // A textured surface is opaque: nothing is drawn behind it to show through, and the
+    // frame stays opaque. A texel's colour is kept as stored, its alpha is dropped.
+    for (int y = 0; y < image.height(); ++y) {
+        for (int x = 0; x < image.width(); ++x) {
+            image.at(x, y).a = 255;
+        }
     }
     return Texture(image);
 }

@@ -100,8 +100,9 @@ Texture checkerboard_texture(int width, int height, int square,
 Texture f_texture(int cell);
 
 /// Reads a PNG file as a texture (read_png: the header's size is passed to
-/// `check_size`, which may throw, before any texel is decoded). Throws Error naming the
-/// path when the file is missing, not a regular file, not a PNG, corrupt or too large.
+/// `check_size`, which may throw, before any texel is decoded). Textures are opaque: the
+/// file's alpha is dropped, every texel's alpha is 255. Throws Error naming the path
+/// when the file is missing, not a regular file, not a PNG, corrupt or too large.
 Texture load_texture(const std::filesystem::path& path,
                      const std::function<void(int width, int height)>& check_size = {});
 
