@@ -266,7 +266,7 @@ TEST_CASE("a byte-order mark at the start of an OBJ or MTL file is skipped") {
     CHECK(model.parts[0].triangles[0][1].position == glm::dvec3{1.0, 0.0, -0.0});
 }
 
-TEST_CASE("a file named by mtllib that is not a material library is named, not quoted") {
+TEST_CASE("a file that is not a model or not a material library is named, not quoted") {
     long long texture_bytes = 0;
     try {
         (void)read_obj_model(models / "not-a-library.obj", texture_bytes);
@@ -278,6 +278,18 @@ TEST_CASE("a file named by mtllib that is not a material library is named, not q
               std::string::npos);
         CHECK(message.find("not a material library") != std::string::npos);
         CHECK(message.find("root") == std::string::npos); // the file's text
+    }
+    // The same file named as the model itself: named, not quoted ("'root:x:0:0:...' is
+    // not supported" before).
+    try {
+        (void)read_obj_model(models / "accounts.txt", texture_bytes);
+        FAIL("the model loaded");
+    } catch (const Error& error) {
+        const std::string message = error.what();
+        INFO(message);
+        CHECK(message == (models / "accounts.txt").string() +
+                             ":1: the line does not start with a statement name: not "
+                             "an OBJ model");
     }
 }
 

@@ -235,6 +235,23 @@ void check_mtl(std::string_view text, const std::string& file,
 }
 //< mtl-check
 
+/// Whether `word` could be the name of an OBJ statement (`v`, `curv`, `usemap`...):
+/// a letter, then at most 15 letters, digits or underscores.
+bool is_statement_name(std::string_view word) {
+    const auto letter = [](char c) {
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+    };
+    if (word.empty() || word.size() > 16 || !letter(word[0])) {
+        return false;
+    }
+    for (const char c : word) {
+        if (!letter(c) && !(c >= '0' && c <= '9') && c != '_') {
+            return false;
+        }
+    }
+    return true;
+}
+
 /// What the check of an OBJ file found: the MTL texts for tinyobjloader, each
 /// material's colour and texture, every v, vt and vn as read_number read it, and the
 /// line of every face in file order.
@@ -375,10 +392,14 @@ CheckedObj check_obj(std::string_view text, const std::string& file,
             // names: any words
         } else if (key == "s") {
             expect_fields(at, words, 1, 1);
-        } else {
+        } else if (is_statement_name(key)) {
             at.fail(fmt::format("'{}' is not supported (supported: v, vt, vn, f, usemtl, "
                                 "mtllib, o, g, s)",
                                 key));
+        } else {
+            // Not even a statement's name: the file may be anything (a scene can name
+            // any file), so its text is not quoted.
+            at.fail("the line does not start with a statement name: not an OBJ model");
         }
     });
     return checked;
