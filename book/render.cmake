@@ -1,7 +1,13 @@
 # render.cmake: renders the HTML book and the PDF book (run by the `book` target).
 # Inputs (-D): ROOT, BOOK_DIR, FIGURE_DIR, PANDOC, PDFLATEX, MAKEINDEX, RSVG_CONVERT, PAPER,
-# and TEACHER (ON for the teacher's edition, run by `book-teacher`: the worked solutions
-# of the exercises are kept; the student book drops them).
+# and EDITION, one of
+#   public   the public book (`book`): every listing whole, no worked solutions;
+#   course   the course edition (`book-course`): every exercise region in a listing shown
+#            as its stub, as the students' kits have it; no worked solutions;
+#   teacher  the teacher's edition (`book-teacher`): the public book plus the worked
+#            solutions.
+# The course and teacher's editions say which they are on every HTML page (a banner) and
+# at the foot of every PDF page, so that neither is mistaken for the other.
 cmake_minimum_required(VERSION 3.25)
 
 function(run_or_fail what)
@@ -38,12 +44,34 @@ set(filter_env EP_ROOT=${ROOT} EP_FIGURES=${FIGURE_DIR} EP_ALL_CHAPTERS=${all_di
 # (no network); each chapter page and the PDF end with the works they cite.
 set(citation_options --citeproc --bibliography=${ROOT}/book/references.bib
     --csl=${ROOT}/book/exact-pixels.csl -M reference-section-title=References)
-if(TEACHER)
+set(edition_banner)
+if(EDITION STREQUAL "teacher")
   list(APPEND filter_env EP_TEACHER=1)
+  set(edition_banner "Teacher's edition — not for students")
+elseif(EDITION STREQUAL "course")
+  list(APPEND filter_env EP_COURSE=1)
+  set(edition_banner "Course edition")
+elseif(NOT EDITION STREQUAL "public")
+  message(FATAL_ERROR "EDITION must be public, course or teacher, not '${EDITION}'")
+endif()
+set(edition_html)
+set(edition_latex)
+file(MAKE_DIRECTORY ${BOOK_DIR}/latex)
+file(WRITE ${BOOK_DIR}/latex/edition.tex "% The public book has no edition line.\n")
+if(edition_banner)
+  list(APPEND filter_env "EP_EDITION=${edition_banner}")
+  set(edition_html "-Vedition=${edition_banner}")
+  # At the foot of every page, below the page number, chapter openings included: a
+  # shipout hook, which no page style can leave out.
+  string(REPLACE "—" "---" latex_banner "${edition_banner}")
+  file(WRITE ${BOOK_DIR}/latex/edition.tex
+    "\\AddToHook{shipout/foreground}{%\n"
+    "  \\put(0,0){\\raisebox{\\dimexpr-\\paperheight+12mm\\relax}[0pt][0pt]{%\n"
+    "    \\makebox[\\paperwidth]{\\small\\sffamily\\bfseries ${latex_banner}}}}}\n")
 endif()
 set(html_options --from=markdown --to=html5 --standalone --mathml
     --template=${ROOT}/book/template.html --lua-filter=${ROOT}/book/filters/exactpixels.lua
-    ${citation_options}
+    ${citation_options} ${edition_html}
     --highlight-style=pygments --metadata-file=${ROOT}/book/metadata.yaml)
 
 # One HTML page per chapter, with previous/next links.
@@ -137,6 +165,7 @@ run_or_fail("LaTeX of the book"
   --lua-filter=${ROOT}/book/filters/exactpixels.lua ${citation_options}
   --metadata-file=${ROOT}/book/metadata.yaml
   --include-in-header=${ROOT}/book/latex/header.tex
+  --include-in-header=${BOOK_DIR}/latex/edition.tex
   --include-after-body=${BOOK_DIR}/latex/back-matter.tex
   -V documentclass=book -V classoption=oneside -V papersize=${papersize}
   -V fontsize=11pt -V geometry=textwidth=155mm -V geometry=top=25mm

@@ -114,6 +114,35 @@ TEST_CASE("a listing is the source region minus every marker and stub line") {
     CHECK(result.out.find("src/demo.hpp") != std::string::npos);
 }
 
+TEST_CASE(
+    "the course edition shows an exercise region as its stub, named by its number") {
+    FixtureBook book;
+    book.write("chapters/07-demo/chapter.md",
+               title +
+                   "```{.snippet file=\"src/demo.hpp\" name=\"answer\"}\n```\n\n"
+                   "## Notes\n\n::: summary\n- the answer\n:::\n\n## Exercises\n\n"
+                   "1. []{.exercise kind=derive marks=1} Think.\n"
+                   "2. []{.exercise kind=implement marks=2 region=ch07-demo} Write.\n");
+    const auto course = book.run_filter("chapters/07-demo/chapter.md", "html",
+                                        "EP_CHAPTERS=07-demo EP_COURSE=1");
+    REQUIRE(course.exit_code == 0);
+    const std::string text = without_tags(course.out);
+    // The kit's view of the region: its stub between comments naming exercise 7.2; none
+    // of the solution. The code around the region is kept.
+    CHECK(text.find("int answer() {") != std::string::npos);
+    CHECK(text.find("// Exercise 7.2 (ch07-demo): your code here.") != std::string::npos);
+    CHECK(text.find("// Hint: return the answer") != std::string::npos);
+    CHECK(text.find("return 0;") != std::string::npos);
+    CHECK(text.find("// End of exercise 7.2 (ch07-demo).") != std::string::npos);
+    CHECK(text.find("return 42;") == std::string::npos);
+    // The same chapter in the public book: the solution, no stub.
+    const auto public_book =
+        book.run_filter("chapters/07-demo/chapter.md", "html", "EP_CHAPTERS=07-demo");
+    REQUIRE(public_book.exit_code == 0);
+    CHECK(without_tags(public_book.out).find("return 42;") != std::string::npos);
+    CHECK(without_tags(public_book.out).find("Exercise 7.2") == std::string::npos);
+}
+
 TEST_CASE("a missing snippet region fails naming the chapter file, line and region") {
     FixtureBook book;
     const auto result = book.render(

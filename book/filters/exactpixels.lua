@@ -16,6 +16,11 @@
 --   EP_LATEX_FIGURES the folder where SVG figures were converted to PDF (LaTeX only)
 --   EP_TEACHER       "1" for the teacher's edition: `::: solution` blocks are kept (the
 --                    student book drops them)
+--   EP_COURSE        "1" for the course edition: every exercise region in a listing is
+--                    shown as its stub, as the student's kit has it (see "Listings pulled
+--                    from source" below); the public book shows the solution
+--   EP_EDITION       the edition's banner ("Course edition", ...), shown on the source
+--                    pages this filter writes (the chapters get it from the template)
 --   EP_PAGE          set for a page that is not a chapter (the contents page, the
 --                    glossary, "Build and run"): the path of its Markdown file, for error
 --                    messages. Its headings are not numbered, its references and named
@@ -286,6 +291,35 @@ local function label_of(block)
   return table_label(block)
 end
 
+-- The course edition gives students the book without the answers to their assignments:
+-- an exercise region (`//> exercise ID: hint` ... `//< exercise ID`, book/AUTHORING.md)
+-- inside a listing is shown as the kit shows it, its stub lines (`//|`, uncommented)
+-- between comments that name the exercise by its number in the chapter's Exercises list,
+-- and none of its solution lines. The other editions show the solution and drop the stub.
+local course = os.getenv("EP_COURSE") == "1"
+
+-- Exercise region ID -> "2.3": chapter number and place in the chapter's Exercises list,
+-- read from the []{.exercise ... region=ID} tags (filled by collect_labels).
+local exercise_numbers = {}
+local function collect_exercise_numbers(dir, blocks)
+  local in_exercises = false
+  for _, block in ipairs(blocks) do
+    if block.t == "Header" and block.level <= 2 then
+      in_exercises = block.level == 2 and pandoc.utils.stringify(block.content) == "Exercises"
+    elseif in_exercises and block.t == "OrderedList" then
+      local start = block.listAttributes and block.listAttributes.start or 1
+      for index, item in ipairs(block.content) do
+        local first = item[1]
+        local span = first and (first.t == "Para" or first.t == "Plain") and first.content[1]
+        if span and span.t == "Span" and span.attributes.region then
+          exercise_numbers[span.attributes.region] =
+            string.format("%d.%d", chapter_number(dir), start + index - 1)
+        end
+      end
+    end
+  end
+end
+
 -- Every label of the book: label -> { kind, number, dir }.
 local labels = {}
 local function collect_labels()
@@ -293,6 +327,7 @@ local function collect_labels()
     local text = read_file(root .. "/" .. chapter_file(dir))
     if text then
       local doc = pandoc.read(text, "markdown")
+      collect_exercise_numbers(dir, doc.blocks)
       local state = { h1 = 0, dirs = { dir } }
       each_block(doc.blocks, state, function(block, counters)
         local kind, number = number_of(block, counters)
@@ -367,19 +402,55 @@ end
 local language_of = { hpp = "cpp", cpp = "cpp", h = "cpp", txt = "text", toml = "toml",
                       cmake = "cmake", lua = "lua", sh = "bash", gp = "gnuplot" }
 
+-- The lines a course-edition listing shows for exercise `id` (at `indent`): a comment
+-- naming it, its hint, its stub and a closing comment.
+local function exercise_stub(id, indent, hint, stub)
+  local number = exercise_numbers[id]
+  local name = number and ("Exercise " .. number .. " (" .. id .. ")") or ("Exercise " .. id)
+  local lines = { indent .. "// " .. name .. ": your code here." }
+  if hint ~= "" then lines[#lines + 1] = indent .. "// Hint: " .. hint end
+  for _, line in ipairs(stub) do lines[#lines + 1] = line end
+  lines[#lines + 1] = indent .. "// End of " .. name:gsub("^E", "e") .. "."
+  return lines
+end
+
 local function extract_region(dir, file, name)
   local text = read_file(root .. "/" .. file)
   if not text then fail(dir, file, "snippet file '" .. file .. "' does not exist") end
   local region, inside, found = {}, false, false
+  local exercise -- the exercise region being read: { id, indent, hint, stub }
+  local hint_goes_on = false -- the line before opened an exercise or continued its hint
   for _, line in ipairs(lines_of(text)) do
     local open = line:match("^%s*//>%s*(.-)%s*$")
     local close = line:match("^%s*//<%s*(.-)%s*$")
+    local indent, stub = line:match("^(%s*)//| ?(.*)$")
+    -- clang-format wraps a hint too long for its line onto lines "//word" (no space after
+    -- the slashes), as make-kit reads them.
+    local continuation = hint_goes_on and line:match("^%s*//([^ /<>|!].*)$")
+    hint_goes_on = false
     if open == name then
       if found then fail(dir, name, "region '" .. name .. "' appears twice in " .. file) end
       inside, found = true, true
     elseif close == name and inside then
       inside = false
-    elseif inside and not open and not close and not line:match("^%s*//|") then
+    elseif continuation then
+      if exercise then exercise.hint = exercise.hint .. " " .. continuation end
+      hint_goes_on = true
+    elseif inside and open and open:match("^exercise%s") then
+      exercise = { id = open:match("^exercise%s+([%w%-]+)"), indent = line:match("^%s*"),
+                   hint = open:match(":%s*(.-)$") or "", stub = {} }
+      hint_goes_on = true
+    elseif inside and close and exercise and close:match("^exercise%s") then
+      if course then
+        for _, l in ipairs(exercise_stub(exercise.id, exercise.indent, exercise.hint,
+                                         exercise.stub)) do
+          region[#region + 1] = l
+        end
+      end
+      exercise = nil
+    elseif inside and stub then
+      if exercise then exercise.stub[#exercise.stub + 1] = indent .. stub end
+    elseif inside and not open and not close and not (course and exercise) then
       region[#region + 1] = line
     end
   end
@@ -597,6 +668,10 @@ local function reference(label, from_dir)
   return pandoc.Link({ pandoc.Str(text) }, href, "", { class = "ref" })
 end
 
+-- The course and teacher's editions mark every page, these too (EP_EDITION).
+local edition = os.getenv("EP_EDITION") or ""
+local edition_banner = edition == "" and ""
+  or ('<p class="edition-banner">' .. edition:gsub("&", "&amp;"):gsub("<", "&lt;") .. "</p>\n")
 local source_pages = {}
 local function source_page(file)
   if source_pages[file] then return end
@@ -607,7 +682,7 @@ local function source_page(file)
   local body = pandoc.write(doc, "html5")
   local page = '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8">\n'
     .. "<title>" .. file .. " · Exact Pixels</title>\n"
-    .. '<link rel="stylesheet" href="../style.css">\n</head>\n<body>\n'
+    .. '<link rel="stylesheet" href="../style.css">\n</head>\n<body>\n' .. edition_banner
     .. '<nav class="pager"><a href="../index.html">Contents</a></nav>\n<main class="source">\n'
     .. body .. "\n</main>\n</body>\n</html>\n"
   local path = out_dir .. "/source/" .. file:gsub("/", "_") .. ".html"
