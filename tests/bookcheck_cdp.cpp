@@ -1,5 +1,7 @@
 #include "bookcheck_cdp.hpp"
 
+#include "support/text_file.hpp"
+
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -74,28 +76,12 @@ struct Parser {
         }
         return false;
     }
-    static void append_utf8(std::string& out, unsigned code) {
-        if (code < 0x80) {
-            out += static_cast<char>(code);
-        } else if (code < 0x800) {
-            out += static_cast<char>(0xC0 | (code >> 6));
-            out += static_cast<char>(0x80 | (code & 0x3F));
-        } else if (code < 0x10000) {
-            out += static_cast<char>(0xE0 | (code >> 12));
-            out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
-            out += static_cast<char>(0x80 | (code & 0x3F));
-        } else {
-            out += static_cast<char>(0xF0 | (code >> 18));
-            out += static_cast<char>(0x80 | ((code >> 12) & 0x3F));
-            out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
-            out += static_cast<char>(0x80 | (code & 0x3F));
-        }
-    }
     unsigned hex4() {
         if (at + 4 > text.size()) {
             fail("short \\u escape");
         }
-        const unsigned value = static_cast<unsigned>(std::stoul(text.substr(at, 4), nullptr, 16));
+        const unsigned value =
+            static_cast<unsigned>(std::stoul(text.substr(at, 4), nullptr, 16));
         at += 4;
         return value;
     }
@@ -119,21 +105,33 @@ struct Parser {
             }
             const char e = text[at++];
             switch (e) {
-            case 'n': out += '\n'; break;
-            case 't': out += '\t'; break;
-            case 'r': out += '\r'; break;
-            case 'b': out += '\b'; break;
-            case 'f': out += '\f'; break;
+            case 'n':
+                out += '\n';
+                break;
+            case 't':
+                out += '\t';
+                break;
+            case 'r':
+                out += '\r';
+                break;
+            case 'b':
+                out += '\b';
+                break;
+            case 'f':
+                out += '\f';
+                break;
             case 'u': {
                 unsigned code = hex4();
                 if (code >= 0xD800 && code < 0xDC00 && literal("\\u")) {
                     const unsigned low = hex4();
                     code = 0x10000 + ((code - 0xD800) << 10) + (low - 0xDC00);
                 }
-                append_utf8(out, code);
+                exactpixels::testing::append_utf8(out, code);
                 break;
             }
-            default: out += e; break;
+            default:
+                out += e;
+                break;
             }
         }
     }
@@ -221,11 +219,21 @@ std::string json_quote(const std::string& text) {
     std::string out = "\"";
     for (const char c : text) {
         switch (c) {
-        case '"': out += "\\\""; break;
-        case '\\': out += "\\\\"; break;
-        case '\n': out += "\\n"; break;
-        case '\r': out += "\\r"; break;
-        case '\t': out += "\\t"; break;
+        case '"':
+            out += "\\\"";
+            break;
+        case '\\':
+            out += "\\\\";
+            break;
+        case '\n':
+            out += "\\n";
+            break;
+        case '\r':
+            out += "\\r";
+            break;
+        case '\t':
+            out += "\\t";
+            break;
         default:
             if (static_cast<unsigned char>(c) < 0x20) {
                 char code[8];
@@ -246,11 +254,16 @@ namespace {
 
 std::string base64_decode(const std::string& text) {
     auto value = [](char c) -> int {
-        if (c >= 'A' && c <= 'Z') return c - 'A';
-        if (c >= 'a' && c <= 'z') return c - 'a' + 26;
-        if (c >= '0' && c <= '9') return c - '0' + 52;
-        if (c == '+') return 62;
-        if (c == '/') return 63;
+        if (c >= 'A' && c <= 'Z')
+            return c - 'A';
+        if (c >= 'a' && c <= 'z')
+            return c - 'a' + 26;
+        if (c >= '0' && c <= '9')
+            return c - '0' + 52;
+        if (c == '+')
+            return 62;
+        if (c == '/')
+            return 63;
         return -1;
     };
     std::string out;
@@ -271,12 +284,7 @@ std::string base64_decode(const std::string& text) {
     return out;
 }
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
+using exactpixels::testing::read_text;
 
 constexpr auto wait_limit = std::chrono::seconds(60);
 
@@ -298,7 +306,8 @@ struct Browser::Impl {
         if (log.size() > 2000) {
             log = log.substr(log.size() - 2000);
         }
-        throw std::runtime_error("Chromium: " + what + "\n--- chromium.log (end) ---\n" + log);
+        throw std::runtime_error("Chromium: " + what + "\n--- chromium.log (end) ---\n" +
+                                 log);
     }
 
     void start(int width, int height) {
@@ -311,17 +320,30 @@ struct Browser::Impl {
         }
         const char* env = std::getenv("EXACTPIXELS_CHROMIUM");
         const std::string program = env != nullptr && *env != '\0' ? env : "chromium";
-        const std::string size = "--window-size=" + std::to_string(width) + "," +
-                                 std::to_string(height);
+        const std::string size =
+            "--window-size=" + std::to_string(width) + "," + std::to_string(height);
         const std::string data = "--user-data-dir=" + (profile / "data").string();
         std::vector<std::string> args = {
-            program, "--headless", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
-            "--remote-debugging-pipe", "--no-first-run", "--no-default-browser-check",
-            "--disable-background-networking", "--disable-component-update",
-            "--disable-sync", "--disable-extensions", "--disable-default-apps",
+            program,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--disable-dev-shm-usage",
+            "--remote-debugging-pipe",
+            "--no-first-run",
+            "--no-default-browser-check",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            "--disable-extensions",
+            "--disable-default-apps",
             "--disable-features=Translate,OptimizationHints,MediaRouter",
-            "--host-resolver-rules=MAP * ~NOTFOUND", "--proxy-server=127.0.0.1:9",
-            "--hide-scrollbars", "--force-device-scale-factor=1", size, data,
+            "--host-resolver-rules=MAP * ~NOTFOUND",
+            "--proxy-server=127.0.0.1:9",
+            "--hide-scrollbars",
+            "--force-device-scale-factor=1",
+            size,
+            data,
             "about:blank"};
         const std::string log = (profile / "chromium.log").string();
         pid = ::fork();
@@ -348,7 +370,8 @@ struct Browser::Impl {
             }
             argv.push_back(nullptr);
             ::execvp(argv[0], argv.data());
-            const std::string message = "cannot run " + program + ": " + std::strerror(errno) +
+            const std::string message = "cannot run " + program + ": " +
+                                        std::strerror(errno) +
                                         " (install Debian's chromium package)\n";
             (void)!::write(2, message.data(), message.size());
             ::_exit(127);
@@ -360,7 +383,8 @@ struct Browser::Impl {
         ::fcntl(to_chrome, F_SETFD, FD_CLOEXEC);
         ::fcntl(from_chrome, F_SETFD, FD_CLOEXEC);
 
-        const Json target = call("Target.createTarget", R"({"url":"about:blank"})", false);
+        const Json target =
+            call("Target.createTarget", R"({"url":"about:blank"})", false);
         const Json attached = call("Target.attachToTarget",
                                    R"({"flatten":true,"targetId":)" +
                                        json_quote(target["targetId"].str()) + "}",
@@ -461,8 +485,9 @@ struct Browser::Impl {
     // Sends a command and waits for its answer; fails on a protocol error.
     Json call(const std::string& method, const std::string& params, bool in_tab = true) {
         const int id = next_id++;
-        std::string message = "{\"id\":" + std::to_string(id) + ",\"method\":" +
-                              json_quote(method) + ",\"params\":" + params;
+        std::string message = "{\"id\":" + std::to_string(id) +
+                              ",\"method\":" + json_quote(method) +
+                              ",\"params\":" + params;
         if (in_tab) {
             message += ",\"sessionId\":" + json_quote(session);
         }
@@ -537,7 +562,9 @@ Browser::Browser(const fs::path& profile, int width, int height)
     }
 }
 
-Browser::~Browser() { impl_->stop(); }
+Browser::~Browser() {
+    impl_->stop();
+}
 
 PageVisit Browser::open(const std::string& url, const std::string& script,
                         const fs::path& screenshot) {
@@ -551,8 +578,9 @@ PageVisit Browser::open(const std::string& url, const std::string& script,
         return visit;
     }
     b.wait_for("Page.loadEventFired");
-    b.call("Runtime.evaluate",
-           R"cdp({"expression":"document.fonts.ready.then(() => true)","awaitPromise":true})cdp");
+    b.call(
+        "Runtime.evaluate",
+        R"cdp({"expression":"document.fonts.ready.then(() => true)","awaitPromise":true})cdp");
     const Json evaluated =
         b.call("Runtime.evaluate", "{\"expression\":" + json_quote(script) +
                                        ",\"returnByValue\":true,\"awaitPromise\":true}");

@@ -9,6 +9,8 @@
 // A solution line counts when it is code: not blank, not braces alone, not a comment.
 //
 // Label `bookcheck`: runs in the `book` workflow after the editions are built.
+#include "support/text_file.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -25,12 +27,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
+using exactpixels::testing::read_text;
 
 std::string trimmed(const std::string& line) {
     const auto first = line.find_first_not_of(" \t\r");
@@ -62,21 +59,7 @@ std::string collapsed(const std::string& text) {
 /// One code point as UTF-8.
 std::string utf8(std::uint32_t code) {
     std::string out;
-    if (code < 0x80) {
-        out += static_cast<char>(code);
-    } else if (code < 0x800) {
-        out += static_cast<char>(0xC0 | (code >> 6));
-        out += static_cast<char>(0x80 | (code & 0x3F));
-    } else if (code < 0x10000) {
-        out += static_cast<char>(0xE0 | (code >> 12));
-        out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
-        out += static_cast<char>(0x80 | (code & 0x3F));
-    } else {
-        out += static_cast<char>(0xF0 | (code >> 18));
-        out += static_cast<char>(0x80 | ((code >> 12) & 0x3F));
-        out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
-        out += static_cast<char>(0x80 | (code & 0x3F));
-    }
+    exactpixels::testing::append_utf8(out, code);
     return out;
 }
 

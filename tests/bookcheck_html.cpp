@@ -9,6 +9,8 @@
 // in the `test` workflow.
 #include "bookcheck_cdp.hpp"
 
+#include "support/text_file.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -31,12 +33,7 @@ namespace {
 constexpr int viewport_width = 1200;
 constexpr int viewport_height = 900;
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
+using exactpixels::testing::read_text;
 
 std::string percent_decode(const std::string& text) {
     std::string out;

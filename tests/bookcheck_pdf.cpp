@@ -20,6 +20,8 @@
 
 #include "exactpixels/base/png.hpp"
 
+#include "support/text_file.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -46,12 +48,7 @@ constexpr double overfull_limit_pt = 5.0;
 // LaTeX leaves on each side of a column, so the word never touches its neighbour.
 constexpr double table_overfull_limit_pt = 1.0;
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
+using exactpixels::testing::read_text;
 
 // (Built up step by step: GCC 12 warns wrongly about "'" + string + "'" at -O2.)
 std::string quoted(const fs::path& path) {
@@ -215,7 +212,8 @@ std::vector<std::string> table_number_problems(const std::string& pdf_text) {
     std::map<int, int> last; // chapter -> its last caption's number
     std::set<std::pair<int, int>> captions;
     static const std::regex caption(R"(Table ([0-9]+)\.([0-9]+):)");
-    for (std::sregex_iterator it(text.begin(), text.end(), caption), end; it != end; ++it) {
+    for (std::sregex_iterator it(text.begin(), text.end(), caption), end; it != end;
+         ++it) {
         const int chapter = std::stoi((*it)[1]), number = std::stoi((*it)[2]);
         if (number != last[chapter] + 1) {
             problems.push_back("table caption " + (*it)[1].str() + "." + (*it)[2].str() +

@@ -9,6 +9,8 @@
 // white space are removed.
 //
 // Label `bookcheck`: runs in the `book` workflow after both books are built.
+#include "support/text_file.hpp"
+
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -24,12 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
+using exactpixels::testing::read_text;
 
 /// Tags and LaTeX commands removed, the entities of quote marks undone, white space
 /// collapsed. (A loop, not std::regex: libstdc++'s regex recurses per character and
