@@ -938,15 +938,130 @@ TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, 
     const auto [solved, solved_json] = autograde(root);
     CHECK(solved == "score 6 of 6, 4 tests");
 
-    // Not compiling: one failed entry worth every point, with the compiler's first error.
+    // Not compiling: one failed entry worth every point, with the compiler's first error,
+    // on the kit's line of the region's text (the rest of the file is the kit's).
     write_file(root / "submission/ch07/src/exactpixels/answer.cpp",
-               "#include \"exactpixels/answer.hpp\"\nnamespace fake {\n"
-               "int triangle_number(int n) { return n +; }\n} // namespace fake\n");
+               "int triangle_number(int n) {\n"
+               "    // EXERCISE ch07-triangle: add 1, 2, ..., n.\n"
+               "    return n +;\n"
+               "    // END EXERCISE ch07-triangle\n");
     const auto [broken, broken_json] = autograde(root);
     CHECK(broken == "score 0 of 6, 1 tests");
     CHECK(broken_json.find("does not compile") != std::string::npos);
-    CHECK(broken_json.find("| src/exactpixels/answer.cpp:3:") != std::string::npos);
+    CHECK(broken_json.find("| src/exactpixels/answer.cpp:8:") != std::string::npos);
     CHECK(broken_json.find("error:") != std::string::npos);
     CHECK(read_file(root / "results/grade.txt")
               .find("FAIL 0/6 - the submission compiles") == 0);
+}
+
+TEST_CASE("a submission cannot give itself marks: only its exercise regions are taken, "
+          "and the grader alone decides each test case") {
+    const fs::path out = scratch("forging-assignments");
+    const auto made = run_command(cmake() + " -DMAKE_KIT='" + EXACTPIXELS_MAKE_KIT +
+                                  "' -DSOURCE=" + quoted(fixture_tree()) +
+                                  " -DCHAPTER=07 -DOUTPUT=" + quoted(out) + " -P '" +
+                                  EXACTPIXELS_KIT_SCRIPT + "'");
+    INFO(made.out << made.err);
+    REQUIRE(made.exit_code == 0);
+    const fs::path root = scratch("forging-root");
+    REQUIRE(run_command("mkdir -p " + quoted(root / "source") + " && cd " +
+                        quoted(root / "source") + " && " + cmake() + " -E tar xf " +
+                        quoted(out / "ch07-gradescope.zip"))
+                .exit_code == 0);
+
+    // The forgery of issue 31 (tests/fixtures/kits/forging): an unsolved kit whose
+    // answer.hpp includes a header that rewrites the test program's report as it exits,
+    // and whose ch07-triangle region tries to include it as well. A grade left from an
+    // earlier run must not survive either.
+    fs::create_directories(root / "results");
+    write_file(root / "results/grade.txt", "TOTAL 6/6 points; 4/4 test cases passed\n");
+    fs::copy(source_root / "tests/fixtures/kits/forging", root / "submission",
+             fs::copy_options::recursive);
+    const auto [forged, forged_json] = autograde(root);
+    // Only the point of the test that checks no exercise: 0 for both exercises.
+    CHECK(forged == "score 1 of 6, 4 tests");
+    CHECK(forged_json.find("ch07-answer: taken from the submission") !=
+          std::string::npos);
+    CHECK(forged_json.find("ch07-triangle: not taken, it holds a preprocessor line; "
+                           "graded with its stub") != std::string::npos);
+    const std::string grade = read_file(root / "results/grade.txt");
+    CHECK(grade.find("FAIL 0/3 ch07-answer the answer is 42\n") != std::string::npos);
+    CHECK(grade.find("FAIL 0/2 ch07-triangle triangle numbers\n") != std::string::npos);
+    CHECK(grade.find("TOTAL 1/6 points") != std::string::npos);
+}
+
+TEST_CASE("a submitted region is refused when it could reach outside its region") {
+    // Each region below is written into the fixture kit's ch07-answer region; the
+    // grader takes the good ones and keeps the stub for the others.
+    const auto& fixture = built_fixture_kit();
+    const auto runner_built = run_command(cmake() + " --build " + quoted(fixture.build) +
+                                          " --target grade-runner");
+    INFO(runner_built.out << runner_built.err);
+    REQUIRE(runner_built.exit_code == 0);
+    const fs::path fresh_kit = scratch("region-fresh") / "ch07";
+    REQUIRE(make_kit(fixture_tree(), "07", fresh_kit).exit_code == 0);
+    const fs::path submission = scratch("region-submission");
+    const std::string kit_header = read_file(fresh_kit / "src/exactpixels/answer.hpp");
+    const std::string stub = "    return 0; // stub: a neutral value\n";
+    REQUIRE(kit_header.find(stub) != std::string::npos);
+    struct Example {
+        std::string region, note;
+    };
+    const Example examples[] = {
+        {"    const int six = 6'0 / 1'0; // {\n    return six * 7; /* } */\n", "taken"},
+        {"    return std::string(\"}\").size() == 1 ? R\"x(})x\"[0] : '}';\n", "taken"},
+        {"#define CHECK(x) (void)0\n    return 42;\n", "it holds a preprocessor line"},
+        {"    %:include <cstdio>\n    return 42;\n", "it holds a preprocessor line"},
+        {"    return 42;\n}\nint cheat = 0;\ninline int more() {\n    return 1;\n",
+         "it closes a brace that it did not open"},
+        {"    return 42; /*\n", "it leaves a comment or a literal open"},
+        {"    asm(\"nop\");\n    return 42;\n", "it uses asm"},
+        {"    return 42; \\\n", "it holds a line continuation"},
+        {"    if (true) {\n        return 42;\n", "it leaves a brace open"},
+    };
+    for (const auto& example : examples) {
+        CAPTURE(example.region);
+        std::string header = kit_header;
+        header.replace(header.find(stub), stub.size(), example.region);
+        write_file(submission / "src/exactpixels/answer.hpp", header);
+        const fs::path kit = scratch("region-kit");
+        fs::copy(fresh_kit, kit, fs::copy_options::recursive);
+        const auto ran = run_command(quoted(fixture.build / "bin/grade-runner") +
+                                     " --tests /nonexistent" + " --grade-file " +
+                                     quoted(kit / "grade.txt") + " --source-dir " +
+                                     quoted(kit) + " --submission " + quoted(submission));
+        const std::string taken = read_file(kit / "src/exactpixels/answer.hpp");
+        if (example.note == "taken") {
+            CHECK(ran.out.find("ch07-answer: taken from the submission") !=
+                  std::string::npos);
+            CHECK(taken == header);
+        } else {
+            CHECK(ran.out.find("ch07-answer: not taken, " + example.note) !=
+                  std::string::npos);
+            CHECK(taken == kit_header);
+        }
+        // The other region was not in this submission: its stub stays.
+        CHECK(ran.out.find("ch07-triangle: not found in the submission's "
+                           "src/exactpixels/answer.cpp, graded with its stub") !=
+              std::string::npos);
+    }
+}
+
+TEST_CASE("code under test cannot speak for the grade reporter: no report file to "
+          "rewrite, and lines without the grader's key are not the reporter's") {
+    // The forging files whole, as if they had reached the test program (the grader
+    // takes only regions, so they cannot): the header rewrites the --out= file at exit
+    // and prints PASS lines of its own.
+    const auto& fixture = built_fixture_kit();
+    const fs::path forging = source_root / "tests/fixtures/kits/forging/src/exactpixels";
+    write_file(fixture.kit / "src/exactpixels/forge.hpp",
+               read_file(forging / "forge.hpp"));
+    const Grade grade = grade_broken(read_file(forging / "answer.hpp"),
+                                     read_file(forging / "answer.cpp"), 10);
+    fs::remove(fixture.kit / "src/exactpixels/forge.hpp");
+    REQUIRE(grade.well_formed);
+    REQUIRE(grade.cases.size() == 5);
+    CHECK(grade.cases[0].status == "FAIL");
+    CHECK(grade.cases[1].status == "FAIL");
+    CHECK(grade.earned == 1);
 }

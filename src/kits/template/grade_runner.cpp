@@ -32,14 +32,18 @@
 // (bad options, a file that cannot be written, a test program that cannot list its
 // tests), with a message naming what failed.
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string.h>
@@ -108,9 +112,52 @@ struct Ended {
     int exit_code = 0; ///< when it exited by itself
 };
 
+/// The private line from the grader to one test process: the grade reporter
+/// (tests/support/grade_reporter.cpp) reads a fresh random key from one pipe and writes
+/// its lines, each starting with that key, into another; it finds the two descriptors in
+/// EXACTPIXELS_GRADE_CHANNEL. No file name is passed, so there is no report file for the
+/// code under test to rewrite, and a line without the key is not the reporter's: only
+/// the grader writes the grade, after the test process ended.
+struct Channel {
+    std::string key;  ///< 32 hex digits from /dev/urandom
+    std::string text; ///< what came back, every line, keyed or not
+};
+
+std::string fresh_key() {
+    std::ifstream random("/dev/urandom", std::ios::binary);
+    unsigned char bytes[16] = {};
+    if (!random.read(reinterpret_cast<char*>(bytes), sizeof bytes)) {
+        throw GradeError("cannot read /dev/urandom");
+    }
+    std::string key;
+    for (const unsigned char byte : bytes) {
+        key += "0123456789abcdef"[byte >> 4];
+        key += "0123456789abcdef"[byte & 15];
+    }
+    return key;
+}
+
+/// The lines of `channel` that carry its key, without it.
+std::vector<std::string> keyed_lines(const Channel& channel) {
+    std::vector<std::string> lines;
+    const std::string prefix = channel.key + " ";
+    for (const auto& line : lines_of(channel.text)) {
+        if (starts_with(line, prefix)) {
+            lines.push_back(line.substr(prefix.size()));
+        }
+    }
+    return lines;
+}
+
 /// Runs `argv` with standard output and error going to `output`, in a process group of
-/// its own that is killed whole after `seconds`.
-Ended run(const std::vector<std::string>& argv, const fs::path& output, int seconds) {
+/// its own that is killed whole after `seconds`; with `channel`, the process gets its
+/// key and gives back its lines through two pipes (see Channel).
+Ended run(const std::vector<std::string>& argv, const fs::path& output, int seconds,
+          Channel* channel = nullptr) {
+    int key_pipe[2] = {-1, -1}, report_pipe[2] = {-1, -1};
+    if (channel != nullptr && (::pipe(key_pipe) != 0 || ::pipe(report_pipe) != 0)) {
+        throw GradeError(std::string("cannot make a pipe: ") + std::strerror(errno));
+    }
     const pid_t pid = ::fork();
     if (pid < 0) {
         throw GradeError(std::string("cannot start a process: ") + std::strerror(errno));
@@ -120,6 +167,13 @@ Ended run(const std::vector<std::string>& argv, const fs::path& output, int seco
         std::FILE* out = std::freopen(output.c_str(), "w", stdout);
         if (out == nullptr || ::dup2(::fileno(stdout), 2) < 0) {
             ::_exit(126);
+        }
+        if (channel != nullptr) {
+            ::close(key_pipe[1]);
+            ::close(report_pipe[0]);
+            const std::string fds =
+                std::to_string(key_pipe[0]) + "," + std::to_string(report_pipe[1]);
+            ::setenv("EXACTPIXELS_GRADE_CHANNEL", fds.c_str(), 1);
         }
         std::vector<char*> args;
         for (const auto& arg : argv) {
@@ -131,11 +185,32 @@ Ended run(const std::vector<std::string>& argv, const fs::path& output, int seco
         ::_exit(127);
     }
     ::setpgid(pid, pid);
+    if (channel != nullptr) {
+        ::close(key_pipe[0]);
+        ::close(report_pipe[1]);
+        // 32 bytes fit in any pipe's buffer: this write does not wait for the reader.
+        const std::string key = channel->key + "\n";
+        [[maybe_unused]] const auto written =
+            ::write(key_pipe[1], key.data(), key.size());
+        ::close(key_pipe[1]);
+        ::fcntl(report_pipe[0], F_SETFL, O_NONBLOCK);
+    }
+    // Read while the process runs, so that a full pipe never stops it.
+    const auto drain = [&] {
+        if (channel == nullptr) {
+            return;
+        }
+        char buffer[4096];
+        for (ssize_t got; (got = ::read(report_pipe[0], buffer, sizeof buffer)) > 0;) {
+            channel->text.append(buffer, static_cast<std::size_t>(got));
+        }
+    };
     const auto deadline =
         std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
     Ended ended;
     int status = 0;
     for (;;) {
+        drain();
         const pid_t done = ::waitpid(pid, &status, WNOHANG);
         if (done == pid) {
             break;
@@ -148,16 +223,23 @@ Ended run(const std::vector<std::string>& argv, const fs::path& output, int seco
             ::kill(pid, SIGKILL);
             ::waitpid(pid, &status, 0);
             ended.timed_out = true;
-            return ended;
+            break;
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ::kill(-pid, SIGKILL); // anything the test left running in its group
+    drain();
+    if (channel != nullptr) {
+        ::close(report_pipe[0]);
+    }
+    if (ended.timed_out) {
+        return ended;
     }
     if (WIFSIGNALED(status)) {
         ended.signal = WTERMSIG(status);
     } else if (WIFEXITED(status)) {
         ended.exit_code = WEXITSTATUS(status);
     }
-    ::kill(-pid, SIGKILL); // anything the test left running in its group
     return ended;
 }
 
@@ -219,17 +301,17 @@ struct Case {
 /// --reporters=grade`.
 std::vector<Case> list_cases(const fs::path& program, const fs::path& scratch,
                              int seconds) {
-    const fs::path listing = scratch / "list.txt";
-    const Ended ended = run({program.string(), "--list-test-cases", "--no-skip",
-                             "--reporters=grade", "--out=" + listing.string()},
-                            scratch / "list-output.txt", seconds);
+    Channel channel{fresh_key(), {}};
+    const Ended ended =
+        run({program.string(), "--list-test-cases", "--no-skip", "--reporters=grade"},
+            scratch / "list-output.txt", seconds, &channel);
     if (ended.timed_out || ended.signal != 0 || ended.exit_code != 0) {
         throw GradeError(program.string() + " could not list its test cases" +
                          (ended.timed_out ? " (it timed out)" : "") + "; its output:\n" +
                          read_text(scratch / "list-output.txt"));
     }
     std::vector<Case> cases;
-    for (const auto& line : lines_of(read_text(listing))) {
+    for (const auto& line : keyed_lines(channel)) {
         std::istringstream in(line);
         std::string word, mode;
         Case test;
@@ -248,18 +330,28 @@ std::vector<Case> list_cases(const fs::path& program, const fs::path& scratch,
 /// Runs test case number `index` (1-based, in listing order) in a process of its own.
 void run_case(const fs::path& program, std::size_t index, Case& test,
               const fs::path& scratch, int seconds) {
-    const fs::path report = scratch / "case.txt";
     const fs::path output = scratch / "case-output.txt";
-    fs::remove(report);
     const std::string n = std::to_string(index);
-    const Ended ended =
-        run({program.string(), "--reporters=grade", "--no-skip", "--no-exitcode",
-             "--first=" + n, "--last=" + n, "--out=" + report.string()},
-            output, seconds);
+    // Without --no-exitcode: a test case that fails makes the program exit non-zero, so
+    // a PASS line needs the exit status to agree with it.
+    Channel channel{fresh_key(), {}};
+    const Ended ended = run({program.string(), "--reporters=grade", "--no-skip",
+                             "--first=" + n, "--last=" + n},
+                            output, seconds, &channel);
     // The reporter's line for this test case and the reasons below it.
     bool found = false, reported_pass = false;
+    int results = 0;
     std::vector<std::string> reported;
-    for (const auto& line : lines_of(read_text(report))) {
+    const auto lines = keyed_lines(channel);
+    for (const auto& line : lines) {
+        if ((starts_with(line, "PASS ") || starts_with(line, "FAIL ")) &&
+            line.size() >= test.name.size() &&
+            line.compare(line.size() - test.name.size(), test.name.size(), test.name) ==
+                0) {
+            ++results;
+        }
+    }
+    for (const auto& line : lines) {
         if (found && starts_with(line, "  ")) {
             reported.push_back(line.substr(2));
             continue;
@@ -284,20 +376,221 @@ void run_case(const fs::path& program, std::size_t index, Case& test,
     } else if (ended.signal != 0) {
         test.reasons.push_back("crashed: the test program died of " +
                                signal_name(ended.signal));
-    } else if (ended.exit_code != 0) {
+    } else if (ended.exit_code != 0 && !found) {
         test.reasons.push_back("the test program stopped early with exit status " +
                                std::to_string(ended.exit_code) +
                                " (exit() or std::terminate in the code under test?)");
     } else if (!found) {
         test.reasons.push_back("the test program reported no result for this test case");
+    } else if (results != 1) {
+        test.reasons.push_back("the test program reported " + std::to_string(results) +
+                               " results for this one test case");
+    } else if (reported_pass != (ended.exit_code == 0)) {
+        test.reasons.push_back(
+            "the test program's exit status disagrees with its report");
     } else {
         test.passed = reported_pass;
     }
     test.reasons.insert(test.reasons.end(), reported.begin(), reported.end());
-    if (!test.passed && (ended.timed_out || ended.signal != 0 || ended.exit_code != 0)) {
+    if (!test.passed &&
+        (ended.timed_out || ended.signal != 0 || (ended.exit_code != 0 && !found))) {
         const auto tail = output_tail(output);
         test.reasons.insert(test.reasons.end(), tail.begin(), tail.end());
     }
+}
+
+/// Why the text of a submitted exercise region cannot be taken, or "" when it can. A
+/// region's text goes into the kit's file in place of the stub, so it must stay inside
+/// its region: no preprocessor line (an #include of the grader's files, a #define of
+/// CHECK), no line continuation that could make one, no brace closed that it did not
+/// open (to leave the function and add code that runs before main), no comment or
+/// literal left open past the end marker, no inline assembly or _Pragma.
+std::string region_refusal(const std::vector<std::string>& lines) {
+    enum class In { code, block_comment, string, character, raw_string };
+    In in = In::code;
+    std::string raw_end; // )delimiter" of the raw string literal being read
+    int depth = 0;
+    for (const auto& line : lines) {
+        const auto first = line.find_first_not_of(" \t");
+        if (in == In::code && first != std::string::npos &&
+            (line[first] == '#' || line.compare(first, 2, "%:") == 0)) {
+            return "it holds a preprocessor line";
+        }
+        if (!line.empty() && line.back() == '\\') {
+            return "it holds a line continuation (a backslash at the end of a line)";
+        }
+        std::string word;
+        for (std::size_t i = 0; i <= line.size(); ++i) {
+            const char c = i < line.size() ? line[i] : '\n';
+            const char next = i + 1 < line.size() ? line[i + 1] : '\n';
+            if (in == In::code &&
+                (std::isalnum(static_cast<unsigned char>(c)) || c == '_')) {
+                word += c;
+                continue;
+            }
+            // In 1'000 the quote separates digits; it opens no character literal.
+            const bool digit_separator =
+                in == In::code && c == '\'' && !word.empty() &&
+                std::isdigit(static_cast<unsigned char>(word[0]));
+            if (in == In::code && !word.empty()) {
+                static const std::set<std::string> refused = {"asm", "__asm", "__asm__",
+                                                              "_Pragma", "__attribute__"};
+                if (refused.count(word) != 0) {
+                    return "it uses " + word;
+                }
+                const bool raw = word.back() == 'R' && c == '"';
+                word.clear();
+                if (raw) {
+                    const auto open = line.find('(', i);
+                    if (open == std::string::npos) {
+                        return "it holds a raw string literal cut by a line end";
+                    }
+                    raw_end = ")" + line.substr(i + 1, open - i - 1) + "\"";
+                    in = In::raw_string;
+                    i = open;
+                    continue;
+                }
+            }
+            switch (in) {
+            case In::code:
+                if (c == '/' && next == '/') {
+                    i = line.size(); // a line comment: the rest of the line
+                } else if (c == '/' && next == '*') {
+                    in = In::block_comment;
+                    ++i;
+                } else if (c == '"') {
+                    in = In::string;
+                } else if (c == '\'' && !digit_separator) {
+                    in = In::character;
+                } else if (c == '{' || (c == '<' && next == '%')) {
+                    ++depth;
+                } else if (c == '}' || (c == '%' && next == '>')) {
+                    if (--depth < 0) {
+                        return "it closes a brace that it did not open";
+                    }
+                }
+                break;
+            case In::block_comment:
+                if (c == '*' && next == '/') {
+                    in = In::code;
+                    ++i;
+                }
+                break;
+            case In::string:
+            case In::character:
+                if (c == '\\') {
+                    ++i;
+                } else if (c == (in == In::string ? '"' : '\'')) {
+                    in = In::code;
+                } else if (c == '\n') {
+                    return "it holds a literal cut by a line end";
+                }
+                break;
+            case In::raw_string:
+                if (line.compare(i, raw_end.size(), raw_end) == 0) {
+                    i += raw_end.size() - 1;
+                    in = In::code;
+                }
+                break;
+            }
+        }
+    }
+    if (in != In::code) {
+        return "it leaves a comment or a literal open";
+    }
+    if (depth != 0) {
+        return "it leaves a brace open";
+    }
+    return "";
+}
+
+/// The exercise regions of a file's lines: id -> the line numbers (0-based) of its
+/// "// EXERCISE id: hint" and "// END EXERCISE id" comments.
+std::map<std::string, std::pair<std::size_t, std::size_t>>
+exercise_regions(const std::vector<std::string>& lines) {
+    const std::string begin = "// EXERCISE ", end = "// END EXERCISE ";
+    std::map<std::string, std::pair<std::size_t, std::size_t>> regions;
+    std::map<std::string, std::size_t> open;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        const auto first = lines[i].find_first_not_of(" \t");
+        const std::string text = first == std::string::npos ? "" : lines[i].substr(first);
+        if (starts_with(text, begin)) {
+            std::string id = text.substr(begin.size());
+            id = id.substr(0, id.find(':'));
+            open[id] = i;
+        } else if (starts_with(text, end)) {
+            std::string id = text.substr(end.size());
+            id = id.substr(0, id.find_first_of(" \t"));
+            const auto opened = open.find(id);
+            if (opened != open.end() && regions.count(id) == 0) {
+                regions[id] = {opened->second, i};
+                open.erase(opened);
+            }
+        }
+    }
+    return regions;
+}
+
+/// Puts the text of each exercise region of `submission` (a folder holding src/) into
+/// the same region of the kit at `kit`, when region_refusal accepts it; every other
+/// line stays the kit's. Returns one line per exercise saying what was taken.
+std::vector<std::string> take_regions(const fs::path& submission, const fs::path& kit) {
+    std::vector<std::string> notes;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(kit / "src")) {
+        if (entry.is_regular_file()) {
+            files.push_back(entry.path());
+        }
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) {
+        auto lines = lines_of(read_text(file));
+        const auto regions = exercise_regions(lines);
+        if (regions.empty()) {
+            continue;
+        }
+        const fs::path rel = fs::relative(file, kit);
+        const fs::path theirs = submission / rel;
+        const auto their_lines = fs::is_regular_file(theirs) ? lines_of(read_text(theirs))
+                                                             : std::vector<std::string>{};
+        const auto their_regions = exercise_regions(their_lines);
+        // From the last region to the first, so the line numbers above stay right.
+        std::vector<std::pair<std::string, std::pair<std::size_t, std::size_t>>> ordered(
+            regions.begin(), regions.end());
+        std::sort(ordered.begin(), ordered.end(), [](const auto& a, const auto& b) {
+            return a.second.first > b.second.first;
+        });
+        for (const auto& [id, at] : ordered) {
+            const auto found = their_regions.find(id);
+            if (found == their_regions.end()) {
+                notes.push_back(id + ": not found in the submission's " +
+                                rel.generic_string() + ", graded with its stub");
+                continue;
+            }
+            const std::vector<std::string> body(
+                their_lines.begin() +
+                    static_cast<std::ptrdiff_t>(found->second.first + 1),
+                their_lines.begin() + static_cast<std::ptrdiff_t>(found->second.second));
+            const std::string refusal = region_refusal(body);
+            if (!refusal.empty()) {
+                notes.push_back(id + ": not taken, " + refusal +
+                                "; graded with its stub");
+                continue;
+            }
+            lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(at.first + 1),
+                        lines.begin() + static_cast<std::ptrdiff_t>(at.second));
+            lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(at.first + 1),
+                         body.begin(), body.end());
+            notes.push_back(id + ": taken from the submission");
+        }
+        std::string text;
+        for (const auto& line : lines) {
+            text += line + "\n";
+        }
+        write_text(file, text);
+    }
+    std::sort(notes.begin(), notes.end());
+    return notes;
 }
 
 std::string json_string(const std::string& text) {
@@ -430,7 +723,7 @@ Report report(const std::vector<Case>& cases, const std::string& summary_note,
 }
 
 struct Options {
-    fs::path tests, grade_file, results_json, build_dir, source_dir;
+    fs::path tests, grade_file, results_json, build_dir, source_dir, submission;
     std::string target;
     int time_limit = test_time_limit_seconds;
     int total_points = 0;
@@ -469,6 +762,8 @@ Options parse(int argc, char** argv) {
             options.build_dir = value;
         } else if (flag == "--source-dir") {
             options.source_dir = value;
+        } else if (flag == "--submission") {
+            options.submission = value;
         } else if (flag == "--target") {
             options.target = value;
         } else if (flag == "--time-limit") {
@@ -489,6 +784,9 @@ Options parse(int argc, char** argv) {
     }
     if (options.time_limit < 1) {
         throw GradeError("--time-limit wants at least 1 second");
+    }
+    if (!options.submission.empty() && options.source_dir.empty()) {
+        throw GradeError("--submission wants --source-dir (the kit) too");
     }
     if (!options.build_dir.empty() && options.target.empty()) {
         throw GradeError("--build-dir wants --target too");
@@ -546,6 +844,20 @@ int grade(const Options& options) {
         }
     } cleanup{scratch};
 
+    // An earlier grade must not stand for this one if this one cannot be written.
+    fs::remove(options.grade_file);
+    if (!options.results_json.empty()) {
+        fs::remove(options.results_json);
+    }
+    // Of a submission, only the text of its exercise regions: the rest is the kit's.
+    std::string taken;
+    if (!options.submission.empty()) {
+        for (const auto& note : take_regions(options.submission, options.source_dir)) {
+            taken += (taken.empty() ? "" : "\n") + note;
+        }
+        std::cout << taken << "\n" << std::flush;
+    }
+
     if (!options.build_dir.empty()) {
         const Ended built = run({EXACTPIXELS_GRADE_CMAKE, "--build",
                                  options.build_dir.string(), "--target", options.target},
@@ -562,8 +874,9 @@ int grade(const Options& options) {
                                    "the compiler's first error:",
                              "| " + first_error(log, options.source_dir)};
             write_report(options,
-                         report({build}, "The submission does not compile: "
-                                         "fix the first error and submit again."));
+                         report({build}, taken + (taken.empty() ? "" : "\n") +
+                                             "The submission does not compile: "
+                                             "fix the first error and submit again."));
             return 0;
         }
     }
@@ -578,7 +891,7 @@ int grade(const Options& options) {
     }
     const auto exercises = options.exercises.empty() ? std::vector<Exercise>{}
                                                      : read_exercises(options.exercises);
-    write_report(options, report(cases, "", exercises));
+    write_report(options, report(cases, taken, exercises));
     return 0;
 }
 
