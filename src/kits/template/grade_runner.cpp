@@ -5,15 +5,28 @@
 //   grade-runner --tests PROGRAM --grade-file FILE [--results-json FILE]
 //                [--time-limit SECONDS] [--build-dir DIR --target NAME]
 //                [--total-points N] [--source-dir DIR] [--exercises FILE]
+//                [--submission DIR]
 //
-// With --build-dir, it first builds NAME there (`cmake --build DIR --target NAME`); if
-// that fails, the grade says so, with the compiler's first error (paths shown relative to
+// With --submission (a student's folder holding src/), it first puts the text of each of
+// the submission's exercise regions into the same region of the kit at --source-dir
+// (take_regions): nothing else of a submission is used, and a region whose text could
+// reach outside it is refused (region_refusal) and graded with its stub.
+//
+// With --build-dir, it then builds NAME there (`cmake --build DIR --target NAME`); when
+// the compiler's errors point into a taken region, that region gets its stub back and
+// the build is tried again, so a region that does not compile costs its own exercise
+// only (errors elsewhere put every taken region back). If the build still fails, the
+// grade says so, with the compiler's first error (paths shown relative to
 // --source-dir), and scores 0 of --total-points. Then it asks PROGRAM (a doctest test
 // program linking tests/support/grade_reporter.cpp) for its test cases and runs each in
 // a process of its own, stopped after the time limit (test_time_limit_seconds below,
 // unless --time-limit says otherwise). A test case that crashes (a signal such as a
 // segmentation fault or an abort), hangs past the limit, exits early or throws scores 0
 // with a line saying what happened, and every other test case still runs and scores.
+//
+// Each test case reports to the runner through pipes (see Channel), never a file, and
+// its line is printed as soon as it ended, "[I/N] STATUS E/D EXERCISE NAME (S s)"; a
+// crash or time-out adds the command that runs that one case again.
 //
 // FILE gets the grade reporter's lines (STATUS EARNED/DECLARED EXERCISE NAME, then the
 // reasons of a failure indented by two spaces, then TOTAL); they are printed as well.
@@ -57,7 +70,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Seconds one test case may run before it is stopped and scores 0.
+/// Seconds one test case may run before it is stopped and scores 0: at least three times
+/// the slowest test case of any chapter's solution, as tests/assignments_kits.cpp checks
+/// on every kit, so that it stops an endless loop but not a slow machine. (Chapter 7's
+/// "the worst inputs under the limits stay under the stated peaks" takes about 9 s; a
+/// limit per test case would let the others stop sooner.)
 constexpr int test_time_limit_seconds = 60;
 /// Seconds the build of a submission may take.
 constexpr int build_time_limit_seconds = 900;
@@ -394,6 +411,10 @@ void run_case(const fs::path& program, std::size_t index, Case& test,
     test.reasons.insert(test.reasons.end(), reported.begin(), reported.end());
     if (!test.passed &&
         (ended.timed_out || ended.signal != 0 || (ended.exit_code != 0 && !found))) {
+        test.reasons.push_back("to run this test case alone: " + program.string() +
+                               " --first=" + n + " --last=" + n +
+                               " (to find a memory error, configure a build with "
+                               "-DCMAKE_CXX_FLAGS=-fsanitize=address and run it there)");
         const auto tail = output_tail(output);
         test.reasons.insert(test.reasons.end(), tail.begin(), tail.end());
     }
@@ -531,11 +552,46 @@ exercise_regions(const std::vector<std::string>& lines) {
     return regions;
 }
 
+/// What take_regions did: a note per exercise, and the regions taken with the kit's
+/// file and stub of each, to put the stub back when the taken text does not compile.
+struct Taken {
+    struct Region {
+        fs::path file;
+        std::vector<std::string> stub;
+    };
+    std::map<std::string, std::string> notes; ///< exercise id -> what happened to it
+    std::map<std::string, Region> regions;    ///< exercise id -> where its text went
+
+    std::string text() const {
+        std::string joined;
+        for (const auto& [id, note] : notes) {
+            joined += (joined.empty() ? "" : "\n") + id + ": " + note;
+        }
+        return joined;
+    }
+};
+
+/// Replaces the lines of region `id` of `file` with `body`.
+void replace_region(const fs::path& file, const std::string& id,
+                    const std::vector<std::string>& body) {
+    auto lines = lines_of(read_text(file));
+    const auto at = exercise_regions(lines).at(id);
+    lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(at.first + 1),
+                lines.begin() + static_cast<std::ptrdiff_t>(at.second));
+    lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(at.first + 1), body.begin(),
+                 body.end());
+    std::string text;
+    for (const auto& line : lines) {
+        text += line + "\n";
+    }
+    write_text(file, text);
+}
+
 /// Puts the text of each exercise region of `submission` (a folder holding src/) into
 /// the same region of the kit at `kit`, when region_refusal accepts it; every other
-/// line stays the kit's. Returns one line per exercise saying what was taken.
-std::vector<std::string> take_regions(const fs::path& submission, const fs::path& kit) {
-    std::vector<std::string> notes;
+/// line stays the kit's.
+Taken take_regions(const fs::path& submission, const fs::path& kit) {
+    Taken taken;
     std::vector<fs::path> files;
     for (const auto& entry : fs::recursive_directory_iterator(kit / "src")) {
         if (entry.is_regular_file()) {
@@ -544,8 +600,8 @@ std::vector<std::string> take_regions(const fs::path& submission, const fs::path
     }
     std::sort(files.begin(), files.end());
     for (const auto& file : files) {
-        auto lines = lines_of(read_text(file));
-        const auto regions = exercise_regions(lines);
+        const auto kit_lines = lines_of(read_text(file));
+        const auto regions = exercise_regions(kit_lines);
         if (regions.empty()) {
             continue;
         }
@@ -554,17 +610,11 @@ std::vector<std::string> take_regions(const fs::path& submission, const fs::path
         const auto their_lines = fs::is_regular_file(theirs) ? lines_of(read_text(theirs))
                                                              : std::vector<std::string>{};
         const auto their_regions = exercise_regions(their_lines);
-        // From the last region to the first, so the line numbers above stay right.
-        std::vector<std::pair<std::string, std::pair<std::size_t, std::size_t>>> ordered(
-            regions.begin(), regions.end());
-        std::sort(ordered.begin(), ordered.end(), [](const auto& a, const auto& b) {
-            return a.second.first > b.second.first;
-        });
-        for (const auto& [id, at] : ordered) {
+        for (const auto& [id, at] : regions) {
             const auto found = their_regions.find(id);
             if (found == their_regions.end()) {
-                notes.push_back(id + ": not found in the submission's " +
-                                rel.generic_string() + ", graded with its stub");
+                taken.notes[id] = "not found in the submission's " +
+                                  rel.generic_string() + ", graded with its stub";
                 continue;
             }
             const std::vector<std::string> body(
@@ -573,24 +623,64 @@ std::vector<std::string> take_regions(const fs::path& submission, const fs::path
                 their_lines.begin() + static_cast<std::ptrdiff_t>(found->second.second));
             const std::string refusal = region_refusal(body);
             if (!refusal.empty()) {
-                notes.push_back(id + ": not taken, " + refusal +
-                                "; graded with its stub");
+                taken.notes[id] = "not taken, " + refusal + "; graded with its stub";
                 continue;
             }
-            lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(at.first + 1),
-                        lines.begin() + static_cast<std::ptrdiff_t>(at.second));
-            lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(at.first + 1),
-                         body.begin(), body.end());
-            notes.push_back(id + ": taken from the submission");
+            replace_region(file, id, body);
+            taken.notes[id] = "taken from the submission";
+            taken.regions[id] = {
+                file, std::vector<std::string>(
+                          kit_lines.begin() + static_cast<std::ptrdiff_t>(at.first + 1),
+                          kit_lines.begin() + static_cast<std::ptrdiff_t>(at.second))};
         }
-        std::string text;
-        for (const auto& line : lines) {
-            text += line + "\n";
-        }
-        write_text(file, text);
     }
-    std::sort(notes.begin(), notes.end());
-    return notes;
+    return taken;
+}
+
+/// The taken regions that a build log's errors point into ("FILE:LINE:COLUMN: error:"
+/// or "FILE:LINE: error:", a relative FILE being relative to `build_dir`), each with the
+/// first of those error lines.
+std::map<std::string, std::string> regions_with_errors(const std::string& log,
+                                                       const Taken& taken,
+                                                       const fs::path& build_dir) {
+    std::map<std::string, std::string> found;
+    for (const auto& line : lines_of(log)) {
+        if (line.find(": error:") == std::string::npos &&
+            line.find(": fatal error:") == std::string::npos) {
+            continue;
+        }
+        const auto colon = line.find(':');
+        const auto second =
+            colon == std::string::npos ? colon : line.find(':', colon + 1);
+        if (second == std::string::npos) {
+            continue;
+        }
+        fs::path file = line.substr(0, colon);
+        const std::string number = line.substr(colon + 1, second - colon - 1);
+        if (number.empty() ||
+            number.find_first_not_of("0123456789") != std::string::npos) {
+            continue;
+        }
+        if (file.is_relative()) {
+            file = build_dir / file;
+        }
+        std::error_code ignored;
+        file = fs::weakly_canonical(file, ignored);
+        const std::size_t at_line = std::stoul(number);
+        for (const auto& [id, region] : taken.regions) {
+            if (found.count(id) != 0 ||
+                fs::weakly_canonical(region.file, ignored) != file) {
+                continue;
+            }
+            // Line numbers are 1-based: the body lies between the two comments.
+            const auto [begin, end] =
+                exercise_regions(lines_of(read_text(region.file))).at(id);
+            if (at_line > begin + 1 && at_line <= end) {
+                found[id] = line;
+            }
+        }
+    }
+    return found;
 }
 
 std::string json_string(const std::string& text) {
@@ -850,19 +940,38 @@ int grade(const Options& options) {
         fs::remove(options.results_json);
     }
     // Of a submission, only the text of its exercise regions: the rest is the kit's.
-    std::string taken;
+    Taken taken;
     if (!options.submission.empty()) {
-        for (const auto& note : take_regions(options.submission, options.source_dir)) {
-            taken += (taken.empty() ? "" : "\n") + note;
-        }
-        std::cout << taken << "\n" << std::flush;
+        taken = take_regions(options.submission, options.source_dir);
+        std::cout << taken.text() << "\n" << std::flush;
     }
 
-    if (!options.build_dir.empty()) {
+    // A region whose text does not compile gets its stub back, so that it costs its own
+    // exercise only; when the errors point into no taken region, every taken region does.
+    while (!options.build_dir.empty()) {
         const Ended built = run({EXACTPIXELS_GRADE_CMAKE, "--build",
                                  options.build_dir.string(), "--target", options.target},
                                 scratch / "build.txt", build_time_limit_seconds);
-        if (built.timed_out || built.signal != 0 || built.exit_code != 0) {
+        const bool failed = built.timed_out || built.signal != 0 || built.exit_code != 0;
+        if (failed && !built.timed_out && built.signal == 0 && !taken.regions.empty()) {
+            const std::string log = read_text(scratch / "build.txt");
+            auto guilty = regions_with_errors(log, taken, options.build_dir);
+            if (guilty.empty()) {
+                for (const auto& [id, region] : taken.regions) {
+                    guilty[id] = first_error(log, options.source_dir);
+                }
+            }
+            for (const auto& [id, error] : guilty) {
+                replace_region(taken.regions.at(id).file, id, taken.regions.at(id).stub);
+                taken.regions.erase(id);
+                taken.notes[id] =
+                    "does not compile, graded with its stub; the compiler's "
+                    "first error: " +
+                    first_error(error, options.source_dir);
+            }
+            continue;
+        }
+        if (failed) {
             const std::string log = read_text(scratch / "build.txt");
             Case build;
             build.name = "the submission compiles";
@@ -874,24 +983,41 @@ int grade(const Options& options) {
                                    "the compiler's first error:",
                              "| " + first_error(log, options.source_dir)};
             write_report(options,
-                         report({build}, taken + (taken.empty() ? "" : "\n") +
+                         report({build}, taken.text() +
+                                             (taken.notes.empty() ? "" : "\n") +
                                              "The submission does not compile: "
                                              "fix the first error and submit again."));
             return 0;
         }
+        break;
     }
     auto cases = list_cases(options.tests, scratch, options.time_limit);
     if (cases.empty()) {
         throw GradeError(options.tests.string() + " lists no test cases");
     }
+    // Each test case's line as soon as it ended, with its time, so that a slow or hung
+    // case shows which; the whole grade follows at the end.
     for (std::size_t i = 0; i < cases.size(); ++i) {
-        if (!cases[i].skip) {
-            run_case(options.tests, i + 1, cases[i], scratch, options.time_limit);
+        auto& test = cases[i];
+        const auto started = std::chrono::steady_clock::now();
+        if (!test.skip) {
+            run_case(options.tests, i + 1, test, scratch, options.time_limit);
         }
+        const std::chrono::duration<double> took =
+            std::chrono::steady_clock::now() - started;
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.2f", took.count());
+        std::cout << "[" << i + 1 << "/" << cases.size() << "] "
+                  << (test.skip     ? "SKIP"
+                      : test.passed ? "PASS"
+                                    : "FAIL")
+                  << ' ' << (test.passed ? test.points : 0) << '/' << test.points << ' '
+                  << test.exercise << ' ' << test.name << " (" << seconds << " s)\n"
+                  << std::flush;
     }
     const auto exercises = options.exercises.empty() ? std::vector<Exercise>{}
                                                      : read_exercises(options.exercises);
-    write_report(options, report(cases, taken, exercises));
+    write_report(options, report(cases, taken.text(), exercises));
     return 0;
 }
 
