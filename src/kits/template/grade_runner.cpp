@@ -181,6 +181,8 @@ Ended run(const std::vector<std::string>& argv, const fs::path& output, int seco
     }
     if (pid == 0) {
         ::setpgid(0, 0);
+        std::signal(SIGPIPE, SIG_DFL); // as any program expects it, not as the grader's
+
         std::FILE* out = std::freopen(output.c_str(), "w", stdout);
         if (out == nullptr || ::dup2(::fileno(stdout), 2) < 0) {
             ::_exit(126);
@@ -1024,6 +1026,9 @@ int grade(const Options& options) {
 } // namespace
 
 int main(int argc, char** argv) {
+    // A test program that ends before it reads its key (it could not start, or crashed
+    // first) must not take the grader with it: the key's write then fails with EPIPE.
+    std::signal(SIGPIPE, SIG_IGN);
     try {
         return grade(parse(argc, argv));
     } catch (const std::exception& error) {
