@@ -219,14 +219,53 @@ Grade parse_grade(const std::string& text) {
 }
 
 /// Runs the kit's `grade` target; returns the grade file (also checked to be printed).
-std::string run_grade(const fs::path& build_dir) {
+std::string run_grade(const fs::path& build_dir, std::string* printed = nullptr) {
     const auto result =
         run_command(cmake() + " --build " + quoted(build_dir) + " --target grade");
     INFO(result.out << result.err);
     CHECK(result.exit_code == 0);
     const std::string text = read_file(build_dir / "grade.txt");
     CHECK(result.out.find(text) != std::string::npos);
+    if (printed != nullptr) {
+        *printed = result.out;
+    }
     return text;
+}
+
+/// The time limit of one test case: the runner's named constant.
+int kit_time_limit(const fs::path& kit) {
+    std::smatch match;
+    const std::string runner = read_file(kit / "grade_runner.cpp");
+    std::regex_search(runner, match,
+                      std::regex("constexpr int test_time_limit_seconds = ([0-9]+);"));
+    REQUIRE(match.size() == 2);
+    return std::stoi(match[1].str());
+}
+
+/// The seconds of the slowest test case in the grade runner's progress lines,
+/// "[I/N] STATUS E/D EXERCISE NAME (S s)", and its line; the count of such lines.
+struct Slowest {
+    double seconds = 0, total = 0; ///< the slowest case's, all cases'
+
+    std::string line;
+    std::size_t lines = 0;
+};
+
+Slowest slowest_case(const std::string& printed) {
+    Slowest slowest;
+    const std::regex progress(R"(^\[[0-9]+/[0-9]+\] .* \(([0-9]+\.[0-9]+) s\)$)");
+    for (const auto& line : lines_of(printed)) {
+        std::smatch match;
+        if (std::regex_match(line, match, progress)) {
+            ++slowest.lines;
+            const double seconds = std::stod(match[1].str());
+            slowest.total += seconds;
+            if (seconds >= slowest.seconds) {
+                slowest = {seconds, slowest.total, line, slowest.lines};
+            }
+        }
+    }
+    return slowest;
 }
 
 /// The lines of a source file as the book's readers see the code: every marker line,
@@ -683,9 +722,18 @@ TEST_CASE("every chapter's kit builds on its own; fresh it fails exactly its exe
         const auto rebuilt = build(build_dir);
         INFO(rebuilt.out << rebuilt.err);
         REQUIRE(rebuilt.exit_code == 0);
-        const Grade full = parse_grade(run_grade(build_dir));
+        std::string printed;
+        const Grade full = parse_grade(run_grade(build_dir, &printed));
         CHECK(full.well_formed);
         CHECK(full.earned == full.declared);
+        // Each test case's line was printed as it ended; the solution's slowest case
+        // takes at most a third of the time limit, so the limit stops only code that is
+        // far slower than the solution (an endless loop) and not a slow machine.
+        const Slowest slowest = slowest_case(printed);
+        CHECK(slowest.lines == full.cases.size());
+        MESSAGE("ch" << number << " solved: the test cases took " << slowest.total
+                     << " s in all, the slowest " << slowest.line);
+        CHECK(slowest.seconds * 3 <= kit_time_limit(kit));
         CHECK(full.passed == full.counted);
         // Stable: the same test cases, in the same order, declaring the same points.
         REQUIRE(full.cases.size() == fresh.cases.size());
@@ -731,7 +779,10 @@ Grade grade_broken(const std::string& header, const std::string& source, int sec
     INFO(ran.out << ran.err);
     CHECK(ran.exit_code == 0);
     const std::string text = read_file(grade_file);
-    CHECK(ran.out == text);
+    // A line per test case as it ended, then the grade.
+    CHECK(slowest_case(ran.out).lines == 5);
+    REQUIRE(ran.out.size() >= text.size());
+    CHECK(ran.out.substr(ran.out.size() - text.size()) == text);
     return parse_grade(text);
 }
 
@@ -775,6 +826,13 @@ TEST_CASE(
         CHECK(grade.cases[0].status == "FAIL");
         CHECK(reason_with(grade.cases[0], "crashed: the test program died of SIGSEGV") !=
               "");
+        // The command that reruns that one case (the first listed) and how to look
+        // for the memory error.
+        const std::string rerun =
+            reason_with(grade.cases[0], "to run this test case alone: ");
+        CHECK(rerun.find("bin/test_ch07 --first=1 --last=1") != std::string::npos);
+        CHECK(rerun.find("-fsanitize=address") != std::string::npos);
+        CHECK(reason_with(grade.cases[1], "--first=2 --last=2") != "");
         CHECK(grade.cases[1].status == "FAIL");
         CHECK(reason_with(grade.cases[1], "timed out: still running after 2 s") != "");
         CHECK(grade.cases[2].status == "PASS"); // twice: still runs, still scores
@@ -894,7 +952,8 @@ std::pair<std::string, std::string> autograde(const fs::path& root) {
 } // namespace
 
 TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, solved "
-          "full marks, not compiling 0 with the first error; results.json as specified") {
+          "full marks, a region that does not compile its stub's with the first error; "
+          "results.json as specified") {
     const fs::path out = scratch("gradescope-assignments");
     const auto made = run_command(cmake() + " -DMAKE_KIT='" + EXACTPIXELS_MAKE_KIT +
                                   "' -DSOURCE=" + quoted(fixture_tree()) +
@@ -938,15 +997,135 @@ TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, 
     const auto [solved, solved_json] = autograde(root);
     CHECK(solved == "score 6 of 6, 4 tests");
 
-    // Not compiling: one failed entry worth every point, with the compiler's first error.
+    // A region that does not compile costs its own exercise only: it is graded with its
+    // stub, with the compiler's first error on the kit's line of the region's text (the
+    // rest of the file is the kit's); the other exercise still scores.
     write_file(root / "submission/ch07/src/exactpixels/answer.cpp",
-               "#include \"exactpixels/answer.hpp\"\nnamespace fake {\n"
-               "int triangle_number(int n) { return n +; }\n} // namespace fake\n");
+               "int triangle_number(int n) {\n"
+               "    // EXERCISE ch07-triangle: add 1, 2, ..., n.\n"
+               "    return n +;\n"
+               "    // END EXERCISE ch07-triangle\n");
     const auto [broken, broken_json] = autograde(root);
-    CHECK(broken == "score 0 of 6, 1 tests");
-    CHECK(broken_json.find("does not compile") != std::string::npos);
-    CHECK(broken_json.find("| src/exactpixels/answer.cpp:3:") != std::string::npos);
-    CHECK(broken_json.find("error:") != std::string::npos);
-    CHECK(read_file(root / "results/grade.txt")
-              .find("FAIL 0/6 - the submission compiles") == 0);
+    CHECK(broken == "score 4 of 6, 4 tests");
+    CHECK(broken_json.find("ch07-triangle: does not compile, graded with its stub; the "
+                           "compiler's first error: src/exactpixels/answer.cpp:8:") !=
+          std::string::npos);
+    CHECK(broken_json.find("ch07-answer: taken from the submission") !=
+          std::string::npos);
+    const std::string grade = read_file(root / "results/grade.txt");
+    CHECK(grade.find("PASS 3/3 ch07-answer the answer is 42\n") != std::string::npos);
+    CHECK(grade.find("FAIL 0/2 ch07-triangle triangle numbers\n") != std::string::npos);
+}
+
+TEST_CASE("a submission cannot give itself marks: only its exercise regions are taken, "
+          "and the grader alone decides each test case") {
+    const fs::path out = scratch("forging-assignments");
+    const auto made = run_command(cmake() + " -DMAKE_KIT='" + EXACTPIXELS_MAKE_KIT +
+                                  "' -DSOURCE=" + quoted(fixture_tree()) +
+                                  " -DCHAPTER=07 -DOUTPUT=" + quoted(out) + " -P '" +
+                                  EXACTPIXELS_KIT_SCRIPT + "'");
+    INFO(made.out << made.err);
+    REQUIRE(made.exit_code == 0);
+    const fs::path root = scratch("forging-root");
+    REQUIRE(run_command("mkdir -p " + quoted(root / "source") + " && cd " +
+                        quoted(root / "source") + " && " + cmake() + " -E tar xf " +
+                        quoted(out / "ch07-gradescope.zip"))
+                .exit_code == 0);
+
+    // The forgery of issue 31 (tests/fixtures/kits/forging): an unsolved kit whose
+    // answer.hpp includes a header that rewrites the test program's report as it exits,
+    // and whose ch07-triangle region tries to include it as well.
+    fs::copy(source_root / "tests/fixtures/kits/forging", root / "submission",
+             fs::copy_options::recursive);
+    const auto [forged, forged_json] = autograde(root);
+    // Only the point of the test that checks no exercise: 0 for both exercises.
+    CHECK(forged == "score 1 of 6, 4 tests");
+    CHECK(forged_json.find("ch07-answer: taken from the submission") !=
+          std::string::npos);
+    CHECK(forged_json.find("ch07-triangle: not taken, it holds a preprocessor line; "
+                           "graded with its stub") != std::string::npos);
+    const std::string grade = read_file(root / "results/grade.txt");
+    CHECK(grade.find("FAIL 0/3 ch07-answer the answer is 42\n") != std::string::npos);
+    CHECK(grade.find("FAIL 0/2 ch07-triangle triangle numbers\n") != std::string::npos);
+    CHECK(grade.find("TOTAL 1/6 points") != std::string::npos);
+}
+
+TEST_CASE("a submitted region is refused when it could reach outside its region") {
+    // Each region below is written into the fixture kit's ch07-answer region; the
+    // grader takes the good ones and keeps the stub for the others.
+    const auto& fixture = built_fixture_kit();
+    const auto runner_built = run_command(cmake() + " --build " + quoted(fixture.build) +
+                                          " --target grade-runner");
+    INFO(runner_built.out << runner_built.err);
+    REQUIRE(runner_built.exit_code == 0);
+    const fs::path fresh_kit = scratch("region-fresh") / "ch07";
+    REQUIRE(make_kit(fixture_tree(), "07", fresh_kit).exit_code == 0);
+    const fs::path submission = scratch("region-submission");
+    const std::string kit_header = read_file(fresh_kit / "src/exactpixels/answer.hpp");
+    const std::string stub = "    return 0; // stub: a neutral value\n";
+    REQUIRE(kit_header.find(stub) != std::string::npos);
+    struct Example {
+        std::string region, note;
+    };
+    const Example examples[] = {
+        {"    const int six = 6'0 / 1'0; // {\n    return six * 7; /* } */\n", "taken"},
+        {"    return std::string(\"}\").size() == 1 ? R\"x(})x\"[0] : '}';\n", "taken"},
+        {"#define CHECK(x) (void)0\n    return 42;\n", "it holds a preprocessor line"},
+        {"    %:include <cstdio>\n    return 42;\n", "it holds a preprocessor line"},
+        {"    return 42;\n}\nint cheat = 0;\ninline int more() {\n    return 1;\n",
+         "it closes a brace that it did not open"},
+        {"    return 42; /*\n", "it leaves a comment or a literal open"},
+        {"    asm(\"nop\");\n    return 42;\n", "it uses asm"},
+        {"    return 42; \\\n", "it holds a line continuation"},
+        {"    if (true) {\n        return 42;\n", "it leaves a brace open"},
+    };
+    for (const auto& example : examples) {
+        CAPTURE(example.region);
+        std::string header = kit_header;
+        header.replace(header.find(stub), stub.size(), example.region);
+        write_file(submission / "src/exactpixels/answer.hpp", header);
+        const fs::path kit = scratch("region-kit");
+        fs::copy(fresh_kit, kit, fs::copy_options::recursive);
+        // A grade from an earlier run: gone even though this run cannot grade.
+        write_file(kit / "grade.txt", "TOTAL 6/6 points; 4/4 test cases passed\n");
+        const auto ran = run_command(quoted(fixture.build / "bin/grade-runner") +
+                                     " --tests /nonexistent" + " --grade-file " +
+                                     quoted(kit / "grade.txt") + " --source-dir " +
+                                     quoted(kit) + " --submission " + quoted(submission));
+        CHECK(ran.exit_code == 2); // the test program /nonexistent cannot list its tests
+        CHECK_FALSE(fs::exists(kit / "grade.txt"));
+        const std::string taken = read_file(kit / "src/exactpixels/answer.hpp");
+        if (example.note == "taken") {
+            CHECK(ran.out.find("ch07-answer: taken from the submission") !=
+                  std::string::npos);
+            CHECK(taken == header);
+        } else {
+            CHECK(ran.out.find("ch07-answer: not taken, " + example.note) !=
+                  std::string::npos);
+            CHECK(taken == kit_header);
+        }
+        // The other region was not in this submission: its stub stays.
+        CHECK(ran.out.find("ch07-triangle: not found in the submission's "
+                           "src/exactpixels/answer.cpp, graded with its stub") !=
+              std::string::npos);
+    }
+}
+
+TEST_CASE("code under test cannot speak for the grade reporter: no report file to "
+          "rewrite, and lines without the grader's key are not the reporter's") {
+    // The forging files whole, as if they had reached the test program (the grader
+    // takes only regions, so they cannot): the header rewrites the --out= file at exit
+    // and prints PASS lines of its own.
+    const auto& fixture = built_fixture_kit();
+    const fs::path forging = source_root / "tests/fixtures/kits/forging/src/exactpixels";
+    write_file(fixture.kit / "src/exactpixels/forge.hpp",
+               read_file(forging / "forge.hpp"));
+    const Grade grade = grade_broken(read_file(forging / "answer.hpp"),
+                                     read_file(forging / "answer.cpp"), 10);
+    fs::remove(fixture.kit / "src/exactpixels/forge.hpp");
+    REQUIRE(grade.well_formed);
+    REQUIRE(grade.cases.size() == 5);
+    CHECK(grade.cases[0].status == "FAIL");
+    CHECK(grade.cases[1].status == "FAIL");
+    CHECK(grade.earned == 1);
 }

@@ -30,16 +30,27 @@
 // prints "TEST RUN|SKIP POINTS EXERCISE NAME" per test case (SKIP: marked doctest::skip),
 // in the order of a run; the kits' grade runner (src/kits/template/grade_runner.cpp)
 // reads it to run every test case in a process of its own.
+//
+// Run by the grade runner, the reporter writes nowhere a file name says: the runner sets
+// EXACTPIXELS_GRADE_CHANNEL=K,R, the reporter reads a random key from descriptor K
+// (before any test runs), closes it, and writes every line, prefixed by the key and a
+// space, to descriptor R. The runner ignores lines without the key, so code under test
+// that prints "PASS" or rewrites a file cannot speak for the reporter.
 #include "support/declared_points.hpp"
 
 #include <doctest/doctest.h>
 
+#include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <unistd.h>
 
 namespace exactpixels::testing {
 
@@ -63,23 +74,25 @@ Declared parse_description(const char* description) {
 /// Prints one line per test case and a total; see the top of this file.
 class GradeReporter : public doctest::IReporter {
   public:
-    explicit GradeReporter(const doctest::ContextOptions& options)
-        : out_(*options.cout) {}
+    explicit GradeReporter(const doctest::ContextOptions& options) : out_(*options.cout) {
+        open_channel();
+    }
 
     void report_query(const doctest::QueryData& query) override {
         // With --list-test-cases: every test case with its declared points.
         for (unsigned i = 0; i < query.num_data; ++i) {
             const Declared d = parse_description(query.data[i]->m_description);
-            out_ << "TEST " << (query.data[i]->m_skip ? "SKIP " : "RUN ") << d.points
-                 << ' ' << d.exercise << ' ' << query.data[i]->m_name << '\n';
+            out() << prefix_ << "TEST " << (query.data[i]->m_skip ? "SKIP " : "RUN ")
+                  << d.points << ' ' << d.exercise << ' ' << query.data[i]->m_name
+                  << '\n';
         }
     }
 
     void test_run_start() override {}
 
     void test_run_end(const doctest::TestRunStats&) override {
-        out_ << "TOTAL " << earned_ << '/' << declared_ << " points; " << passed_ << '/'
-             << cases_ << " test cases passed" << std::endl;
+        out() << prefix_ << "TOTAL " << earned_ << '/' << declared_ << " points; "
+              << passed_ << '/' << cases_ << " test cases passed" << std::endl;
     }
 
     void test_case_start(const doctest::TestCaseData& test) override {
@@ -136,19 +149,46 @@ class GradeReporter : public doctest::IReporter {
             ++cases_;
         }
         // Flushed per line, so that a crash later in the run keeps the lines before it.
-        out_ << status << ' ' << earned << '/' << d.points << ' ' << d.exercise << ' '
-             << test.m_name << '\n';
+        out() << prefix_ << status << ' ' << earned << '/' << d.points << ' '
+              << d.exercise << ' ' << test.m_name << '\n';
         if (!passed && status[0] != 'S') {
             for (const auto& reason : reasons_) {
-                out_ << "  " << reason << '\n';
+                out() << prefix_ << "  " << reason << '\n';
             }
             if (failed_checks_ > max_reasons) {
-                out_ << "  ... and " << failed_checks_ - max_reasons
-                     << " more failed checks\n";
+                out() << prefix_ << "  ... and " << failed_checks_ - max_reasons
+                      << " more failed checks\n";
             }
         }
-        out_.flush();
+        out().flush();
     }
+
+    /// The grade runner's channel (see the top of the file), when it set one.
+    void open_channel() {
+        const char* fds = std::getenv("EXACTPIXELS_GRADE_CHANNEL");
+        int key_fd = -1, report_fd = -1;
+        if (fds == nullptr || std::sscanf(fds, "%d,%d", &key_fd, &report_fd) != 2) {
+            return;
+        }
+        ::unsetenv("EXACTPIXELS_GRADE_CHANNEL");
+        // The runner writes the key and closes its end: read to the end of the pipe.
+        std::string text;
+        char buffer[64];
+        for (ssize_t n = 0; text.size() < sizeof buffer &&
+                            (n = ::read(key_fd, buffer, sizeof buffer)) > 0;) {
+            text.append(buffer, static_cast<std::size_t>(n));
+        }
+        ::close(key_fd);
+        while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) {
+            text.pop_back();
+        }
+        prefix_ = text + ' ';
+        channel_ =
+            std::make_unique<std::ofstream>("/dev/fd/" + std::to_string(report_fd));
+        ::close(report_fd);
+    }
+
+    std::ostream& out() { return channel_ ? *channel_ : out_; }
 
     /// "/any/where/tests/ch02_x.cpp" -> "ch02_x.cpp": no machine's paths in a grade.
     static std::string base_name(const char* file) {
@@ -177,6 +217,8 @@ class GradeReporter : public doctest::IReporter {
     static constexpr std::size_t max_reason_chars = 300;
 
     std::ostream& out_;
+    std::unique_ptr<std::ofstream> channel_; // the grade runner's pipe, if any
+    std::string prefix_;                     // its key and a space, or nothing
     const doctest::TestCaseData* current_ = nullptr;
     std::vector<std::string> reasons_; // why the current test case fails
     int failed_checks_ = 0;

@@ -5,15 +5,28 @@
 //   grade-runner --tests PROGRAM --grade-file FILE [--results-json FILE]
 //                [--time-limit SECONDS] [--build-dir DIR --target NAME]
 //                [--total-points N] [--source-dir DIR] [--exercises FILE]
+//                [--submission DIR]
 //
-// With --build-dir, it first builds NAME there (`cmake --build DIR --target NAME`); if
-// that fails, the grade says so, with the compiler's first error (paths shown relative to
+// With --submission (a student's folder holding src/), it first puts the text of each of
+// the submission's exercise regions into the same region of the kit at --source-dir
+// (take_regions): nothing else of a submission is used, and a region whose text could
+// reach outside it is refused (region_refusal) and graded with its stub.
+//
+// With --build-dir, it then builds NAME there (`cmake --build DIR --target NAME`); when
+// the compiler's errors point into a taken region, that region gets its stub back and
+// the build is tried again, so a region that does not compile costs its own exercise
+// only (errors elsewhere put every taken region back). If the build still fails, the
+// grade says so, with the compiler's first error (paths shown relative to
 // --source-dir), and scores 0 of --total-points. Then it asks PROGRAM (a doctest test
 // program linking tests/support/grade_reporter.cpp) for its test cases and runs each in
 // a process of its own, stopped after the time limit (test_time_limit_seconds below,
 // unless --time-limit says otherwise). A test case that crashes (a signal such as a
 // segmentation fault or an abort), hangs past the limit, exits early or throws scores 0
 // with a line saying what happened, and every other test case still runs and scores.
+//
+// Each test case reports to the runner through pipes (see Channel), never a file, and
+// its line is printed as soon as it ended, "[I/N] STATUS E/D EXERCISE NAME (S s)"; a
+// crash or time-out adds the command that runs that one case again.
 //
 // FILE gets the grade reporter's lines (STATUS EARNED/DECLARED EXERCISE NAME, then the
 // reasons of a failure indented by two spaces, then TOTAL); they are printed as well.
@@ -32,14 +45,18 @@
 // (bad options, a file that cannot be written, a test program that cannot list its
 // tests), with a message naming what failed.
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstring>
+#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string.h>
@@ -53,7 +70,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Seconds one test case may run before it is stopped and scores 0.
+/// Seconds one test case may run before it is stopped and scores 0: at least three times
+/// the slowest test case of any chapter's solution, as tests/assignments_kits.cpp checks
+/// on every kit, so that it stops an endless loop but not a slow machine. (Chapter 7's
+/// "the worst inputs under the limits stay under the stated peaks" takes about 9 s; a
+/// limit per test case would let the others stop sooner.)
 constexpr int test_time_limit_seconds = 60;
 /// Seconds the build of a submission may take.
 constexpr int build_time_limit_seconds = 900;
@@ -108,18 +129,70 @@ struct Ended {
     int exit_code = 0; ///< when it exited by itself
 };
 
+/// The private line from the grader to one test process: the grade reporter
+/// (tests/support/grade_reporter.cpp) reads a fresh random key from one pipe and writes
+/// its lines, each starting with that key, into another; it finds the two descriptors in
+/// EXACTPIXELS_GRADE_CHANNEL. No file name is passed, so there is no report file for the
+/// code under test to rewrite, and a line without the key is not the reporter's: only
+/// the grader writes the grade, after the test process ended.
+struct Channel {
+    std::string key;  ///< 32 hex digits from /dev/urandom
+    std::string text; ///< what came back, every line, keyed or not
+};
+
+std::string fresh_key() {
+    std::ifstream random("/dev/urandom", std::ios::binary);
+    unsigned char bytes[16] = {};
+    if (!random.read(reinterpret_cast<char*>(bytes), sizeof bytes)) {
+        throw GradeError("cannot read /dev/urandom");
+    }
+    std::string key;
+    for (const unsigned char byte : bytes) {
+        key += "0123456789abcdef"[byte >> 4];
+        key += "0123456789abcdef"[byte & 15];
+    }
+    return key;
+}
+
+/// The lines of `channel` that carry its key, without it.
+std::vector<std::string> keyed_lines(const Channel& channel) {
+    std::vector<std::string> lines;
+    const std::string prefix = channel.key + " ";
+    for (const auto& line : lines_of(channel.text)) {
+        if (starts_with(line, prefix)) {
+            lines.push_back(line.substr(prefix.size()));
+        }
+    }
+    return lines;
+}
+
 /// Runs `argv` with standard output and error going to `output`, in a process group of
-/// its own that is killed whole after `seconds`.
-Ended run(const std::vector<std::string>& argv, const fs::path& output, int seconds) {
+/// its own that is killed whole after `seconds`; with `channel`, the process gets its
+/// key and gives back its lines through two pipes (see Channel).
+Ended run(const std::vector<std::string>& argv, const fs::path& output, int seconds,
+          Channel* channel = nullptr) {
+    int key_pipe[2] = {-1, -1}, report_pipe[2] = {-1, -1};
+    if (channel != nullptr && (::pipe(key_pipe) != 0 || ::pipe(report_pipe) != 0)) {
+        throw GradeError(std::string("cannot make a pipe: ") + std::strerror(errno));
+    }
     const pid_t pid = ::fork();
     if (pid < 0) {
         throw GradeError(std::string("cannot start a process: ") + std::strerror(errno));
     }
     if (pid == 0) {
         ::setpgid(0, 0);
+        std::signal(SIGPIPE, SIG_DFL); // as any program expects it, not as the grader's
+
         std::FILE* out = std::freopen(output.c_str(), "w", stdout);
         if (out == nullptr || ::dup2(::fileno(stdout), 2) < 0) {
             ::_exit(126);
+        }
+        if (channel != nullptr) {
+            ::close(key_pipe[1]);
+            ::close(report_pipe[0]);
+            const std::string fds =
+                std::to_string(key_pipe[0]) + "," + std::to_string(report_pipe[1]);
+            ::setenv("EXACTPIXELS_GRADE_CHANNEL", fds.c_str(), 1);
         }
         std::vector<char*> args;
         for (const auto& arg : argv) {
@@ -131,11 +204,32 @@ Ended run(const std::vector<std::string>& argv, const fs::path& output, int seco
         ::_exit(127);
     }
     ::setpgid(pid, pid);
+    if (channel != nullptr) {
+        ::close(key_pipe[0]);
+        ::close(report_pipe[1]);
+        // 32 bytes fit in any pipe's buffer: this write does not wait for the reader.
+        const std::string key = channel->key + "\n";
+        [[maybe_unused]] const auto written =
+            ::write(key_pipe[1], key.data(), key.size());
+        ::close(key_pipe[1]);
+        ::fcntl(report_pipe[0], F_SETFL, O_NONBLOCK);
+    }
+    // Read while the process runs, so that a full pipe never stops it.
+    const auto drain = [&] {
+        if (channel == nullptr) {
+            return;
+        }
+        char buffer[4096];
+        for (ssize_t got; (got = ::read(report_pipe[0], buffer, sizeof buffer)) > 0;) {
+            channel->text.append(buffer, static_cast<std::size_t>(got));
+        }
+    };
     const auto deadline =
         std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
     Ended ended;
     int status = 0;
     for (;;) {
+        drain();
         const pid_t done = ::waitpid(pid, &status, WNOHANG);
         if (done == pid) {
             break;
@@ -148,16 +242,23 @@ Ended run(const std::vector<std::string>& argv, const fs::path& output, int seco
             ::kill(pid, SIGKILL);
             ::waitpid(pid, &status, 0);
             ended.timed_out = true;
-            return ended;
+            break;
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    ::kill(-pid, SIGKILL); // anything the test left running in its group
+    drain();
+    if (channel != nullptr) {
+        ::close(report_pipe[0]);
+    }
+    if (ended.timed_out) {
+        return ended;
     }
     if (WIFSIGNALED(status)) {
         ended.signal = WTERMSIG(status);
     } else if (WIFEXITED(status)) {
         ended.exit_code = WEXITSTATUS(status);
     }
-    ::kill(-pid, SIGKILL); // anything the test left running in its group
     return ended;
 }
 
@@ -219,17 +320,17 @@ struct Case {
 /// --reporters=grade`.
 std::vector<Case> list_cases(const fs::path& program, const fs::path& scratch,
                              int seconds) {
-    const fs::path listing = scratch / "list.txt";
-    const Ended ended = run({program.string(), "--list-test-cases", "--no-skip",
-                             "--reporters=grade", "--out=" + listing.string()},
-                            scratch / "list-output.txt", seconds);
+    Channel channel{fresh_key(), {}};
+    const Ended ended =
+        run({program.string(), "--list-test-cases", "--no-skip", "--reporters=grade"},
+            scratch / "list-output.txt", seconds, &channel);
     if (ended.timed_out || ended.signal != 0 || ended.exit_code != 0) {
         throw GradeError(program.string() + " could not list its test cases" +
                          (ended.timed_out ? " (it timed out)" : "") + "; its output:\n" +
                          read_text(scratch / "list-output.txt"));
     }
     std::vector<Case> cases;
-    for (const auto& line : lines_of(read_text(listing))) {
+    for (const auto& line : keyed_lines(channel)) {
         std::istringstream in(line);
         std::string word, mode;
         Case test;
@@ -248,18 +349,28 @@ std::vector<Case> list_cases(const fs::path& program, const fs::path& scratch,
 /// Runs test case number `index` (1-based, in listing order) in a process of its own.
 void run_case(const fs::path& program, std::size_t index, Case& test,
               const fs::path& scratch, int seconds) {
-    const fs::path report = scratch / "case.txt";
     const fs::path output = scratch / "case-output.txt";
-    fs::remove(report);
     const std::string n = std::to_string(index);
-    const Ended ended =
-        run({program.string(), "--reporters=grade", "--no-skip", "--no-exitcode",
-             "--first=" + n, "--last=" + n, "--out=" + report.string()},
-            output, seconds);
+    // Without --no-exitcode: a test case that fails makes the program exit non-zero, so
+    // a PASS line needs the exit status to agree with it.
+    Channel channel{fresh_key(), {}};
+    const Ended ended = run({program.string(), "--reporters=grade", "--no-skip",
+                             "--first=" + n, "--last=" + n},
+                            output, seconds, &channel);
     // The reporter's line for this test case and the reasons below it.
     bool found = false, reported_pass = false;
+    int results = 0;
     std::vector<std::string> reported;
-    for (const auto& line : lines_of(read_text(report))) {
+    const auto lines = keyed_lines(channel);
+    for (const auto& line : lines) {
+        if ((starts_with(line, "PASS ") || starts_with(line, "FAIL ")) &&
+            line.size() >= test.name.size() &&
+            line.compare(line.size() - test.name.size(), test.name.size(), test.name) ==
+                0) {
+            ++results;
+        }
+    }
+    for (const auto& line : lines) {
         if (found && starts_with(line, "  ")) {
             reported.push_back(line.substr(2));
             continue;
@@ -284,20 +395,294 @@ void run_case(const fs::path& program, std::size_t index, Case& test,
     } else if (ended.signal != 0) {
         test.reasons.push_back("crashed: the test program died of " +
                                signal_name(ended.signal));
-    } else if (ended.exit_code != 0) {
+    } else if (ended.exit_code != 0 && !found) {
         test.reasons.push_back("the test program stopped early with exit status " +
                                std::to_string(ended.exit_code) +
                                " (exit() or std::terminate in the code under test?)");
     } else if (!found) {
         test.reasons.push_back("the test program reported no result for this test case");
+    } else if (results != 1) {
+        test.reasons.push_back("the test program reported " + std::to_string(results) +
+                               " results for this one test case");
+    } else if (reported_pass != (ended.exit_code == 0)) {
+        test.reasons.push_back(
+            "the test program's exit status disagrees with its report");
     } else {
         test.passed = reported_pass;
     }
     test.reasons.insert(test.reasons.end(), reported.begin(), reported.end());
-    if (!test.passed && (ended.timed_out || ended.signal != 0 || ended.exit_code != 0)) {
+    if (!test.passed &&
+        (ended.timed_out || ended.signal != 0 || (ended.exit_code != 0 && !found))) {
+        test.reasons.push_back("to run this test case alone: " + program.string() +
+                               " --first=" + n + " --last=" + n +
+                               " (to find a memory error, configure a build with "
+                               "-DCMAKE_CXX_FLAGS=-fsanitize=address and run it there)");
         const auto tail = output_tail(output);
         test.reasons.insert(test.reasons.end(), tail.begin(), tail.end());
     }
+}
+
+/// Why the text of a submitted exercise region cannot be taken, or "" when it can. A
+/// region's text goes into the kit's file in place of the stub, so it must stay inside
+/// its region: no preprocessor line (an #include of the grader's files, a #define of
+/// CHECK), no line continuation that could make one, no brace closed that it did not
+/// open (to leave the function and add code that runs before main), no comment or
+/// literal left open past the end marker, no inline assembly or _Pragma.
+std::string region_refusal(const std::vector<std::string>& lines) {
+    enum class In { code, block_comment, string, character, raw_string };
+    In in = In::code;
+    std::string raw_end; // )delimiter" of the raw string literal being read
+    int depth = 0;
+    for (const auto& line : lines) {
+        const auto first = line.find_first_not_of(" \t");
+        if (in == In::code && first != std::string::npos &&
+            (line[first] == '#' || line.compare(first, 2, "%:") == 0)) {
+            return "it holds a preprocessor line";
+        }
+        if (!line.empty() && line.back() == '\\') {
+            return "it holds a line continuation (a backslash at the end of a line)";
+        }
+        std::string word;
+        for (std::size_t i = 0; i <= line.size(); ++i) {
+            const char c = i < line.size() ? line[i] : '\n';
+            const char next = i + 1 < line.size() ? line[i + 1] : '\n';
+            if (in == In::code &&
+                (std::isalnum(static_cast<unsigned char>(c)) || c == '_')) {
+                word += c;
+                continue;
+            }
+            // In 1'000 the quote separates digits; it opens no character literal.
+            const bool digit_separator =
+                in == In::code && c == '\'' && !word.empty() &&
+                std::isdigit(static_cast<unsigned char>(word[0]));
+            if (in == In::code && !word.empty()) {
+                static const std::set<std::string> refused = {"asm", "__asm", "__asm__",
+                                                              "_Pragma", "__attribute__"};
+                if (refused.count(word) != 0) {
+                    return "it uses " + word;
+                }
+                const bool raw = word.back() == 'R' && c == '"';
+                word.clear();
+                if (raw) {
+                    const auto open = line.find('(', i);
+                    if (open == std::string::npos) {
+                        return "it holds a raw string literal cut by a line end";
+                    }
+                    raw_end = ")" + line.substr(i + 1, open - i - 1) + "\"";
+                    in = In::raw_string;
+                    i = open;
+                    continue;
+                }
+            }
+            switch (in) {
+            case In::code:
+                if (c == '/' && next == '/') {
+                    i = line.size(); // a line comment: the rest of the line
+                } else if (c == '/' && next == '*') {
+                    in = In::block_comment;
+                    ++i;
+                } else if (c == '"') {
+                    in = In::string;
+                } else if (c == '\'' && !digit_separator) {
+                    in = In::character;
+                } else if (c == '{' || (c == '<' && next == '%')) {
+                    ++depth;
+                } else if (c == '}' || (c == '%' && next == '>')) {
+                    if (--depth < 0) {
+                        return "it closes a brace that it did not open";
+                    }
+                }
+                break;
+            case In::block_comment:
+                if (c == '*' && next == '/') {
+                    in = In::code;
+                    ++i;
+                }
+                break;
+            case In::string:
+            case In::character:
+                if (c == '\\') {
+                    ++i;
+                } else if (c == (in == In::string ? '"' : '\'')) {
+                    in = In::code;
+                } else if (c == '\n') {
+                    return "it holds a literal cut by a line end";
+                }
+                break;
+            case In::raw_string:
+                if (line.compare(i, raw_end.size(), raw_end) == 0) {
+                    i += raw_end.size() - 1;
+                    in = In::code;
+                }
+                break;
+            }
+        }
+    }
+    if (in != In::code) {
+        return "it leaves a comment or a literal open";
+    }
+    if (depth != 0) {
+        return "it leaves a brace open";
+    }
+    return "";
+}
+
+/// The exercise regions of a file's lines: id -> the line numbers (0-based) of its
+/// "// EXERCISE id: hint" and "// END EXERCISE id" comments.
+std::map<std::string, std::pair<std::size_t, std::size_t>>
+exercise_regions(const std::vector<std::string>& lines) {
+    const std::string begin = "// EXERCISE ", end = "// END EXERCISE ";
+    std::map<std::string, std::pair<std::size_t, std::size_t>> regions;
+    std::map<std::string, std::size_t> open;
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        const auto first = lines[i].find_first_not_of(" \t");
+        const std::string text = first == std::string::npos ? "" : lines[i].substr(first);
+        if (starts_with(text, begin)) {
+            std::string id = text.substr(begin.size());
+            id = id.substr(0, id.find(':'));
+            open[id] = i;
+        } else if (starts_with(text, end)) {
+            std::string id = text.substr(end.size());
+            id = id.substr(0, id.find_first_of(" \t"));
+            const auto opened = open.find(id);
+            if (opened != open.end() && regions.count(id) == 0) {
+                regions[id] = {opened->second, i};
+                open.erase(opened);
+            }
+        }
+    }
+    return regions;
+}
+
+/// What take_regions did: a note per exercise, and the regions taken with the kit's
+/// file and stub of each, to put the stub back when the taken text does not compile.
+struct Taken {
+    struct Region {
+        fs::path file;
+        std::vector<std::string> stub;
+    };
+    std::map<std::string, std::string> notes; ///< exercise id -> what happened to it
+    std::map<std::string, Region> regions;    ///< exercise id -> where its text went
+
+    std::string text() const {
+        std::string joined;
+        for (const auto& [id, note] : notes) {
+            joined += (joined.empty() ? "" : "\n") + id + ": " + note;
+        }
+        return joined;
+    }
+};
+
+/// Replaces the lines of region `id` of `file` with `body`.
+void replace_region(const fs::path& file, const std::string& id,
+                    const std::vector<std::string>& body) {
+    auto lines = lines_of(read_text(file));
+    const auto at = exercise_regions(lines).at(id);
+    lines.erase(lines.begin() + static_cast<std::ptrdiff_t>(at.first + 1),
+                lines.begin() + static_cast<std::ptrdiff_t>(at.second));
+    lines.insert(lines.begin() + static_cast<std::ptrdiff_t>(at.first + 1), body.begin(),
+                 body.end());
+    std::string text;
+    for (const auto& line : lines) {
+        text += line + "\n";
+    }
+    write_text(file, text);
+}
+
+/// Puts the text of each exercise region of `submission` (a folder holding src/) into
+/// the same region of the kit at `kit`, when region_refusal accepts it; every other
+/// line stays the kit's.
+Taken take_regions(const fs::path& submission, const fs::path& kit) {
+    Taken taken;
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(kit / "src")) {
+        if (entry.is_regular_file()) {
+            files.push_back(entry.path());
+        }
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& file : files) {
+        const auto kit_lines = lines_of(read_text(file));
+        const auto regions = exercise_regions(kit_lines);
+        if (regions.empty()) {
+            continue;
+        }
+        const fs::path rel = fs::relative(file, kit);
+        const fs::path theirs = submission / rel;
+        const auto their_lines = fs::is_regular_file(theirs) ? lines_of(read_text(theirs))
+                                                             : std::vector<std::string>{};
+        const auto their_regions = exercise_regions(their_lines);
+        for (const auto& [id, at] : regions) {
+            const auto found = their_regions.find(id);
+            if (found == their_regions.end()) {
+                taken.notes[id] = "not found in the submission's " +
+                                  rel.generic_string() + ", graded with its stub";
+                continue;
+            }
+            const std::vector<std::string> body(
+                their_lines.begin() +
+                    static_cast<std::ptrdiff_t>(found->second.first + 1),
+                their_lines.begin() + static_cast<std::ptrdiff_t>(found->second.second));
+            const std::string refusal = region_refusal(body);
+            if (!refusal.empty()) {
+                taken.notes[id] = "not taken, " + refusal + "; graded with its stub";
+                continue;
+            }
+            replace_region(file, id, body);
+            taken.notes[id] = "taken from the submission";
+            taken.regions[id] = {
+                file, std::vector<std::string>(
+                          kit_lines.begin() + static_cast<std::ptrdiff_t>(at.first + 1),
+                          kit_lines.begin() + static_cast<std::ptrdiff_t>(at.second))};
+        }
+    }
+    return taken;
+}
+
+/// The taken regions that a build log's errors point into ("FILE:LINE:COLUMN: error:"
+/// or "FILE:LINE: error:", a relative FILE being relative to `build_dir`), each with the
+/// first of those error lines.
+std::map<std::string, std::string> regions_with_errors(const std::string& log,
+                                                       const Taken& taken,
+                                                       const fs::path& build_dir) {
+    std::map<std::string, std::string> found;
+    for (const auto& line : lines_of(log)) {
+        if (line.find(": error:") == std::string::npos &&
+            line.find(": fatal error:") == std::string::npos) {
+            continue;
+        }
+        const auto colon = line.find(':');
+        const auto second =
+            colon == std::string::npos ? colon : line.find(':', colon + 1);
+        if (second == std::string::npos) {
+            continue;
+        }
+        fs::path file = line.substr(0, colon);
+        const std::string number = line.substr(colon + 1, second - colon - 1);
+        if (number.empty() ||
+            number.find_first_not_of("0123456789") != std::string::npos) {
+            continue;
+        }
+        if (file.is_relative()) {
+            file = build_dir / file;
+        }
+        std::error_code ignored;
+        file = fs::weakly_canonical(file, ignored);
+        const std::size_t at_line = std::stoul(number);
+        for (const auto& [id, region] : taken.regions) {
+            if (found.count(id) != 0 ||
+                fs::weakly_canonical(region.file, ignored) != file) {
+                continue;
+            }
+            // Line numbers are 1-based: the body lies between the two comments.
+            const auto [begin, end] =
+                exercise_regions(lines_of(read_text(region.file))).at(id);
+            if (at_line > begin + 1 && at_line <= end) {
+                found[id] = line;
+            }
+        }
+    }
+    return found;
 }
 
 std::string json_string(const std::string& text) {
@@ -430,7 +815,7 @@ Report report(const std::vector<Case>& cases, const std::string& summary_note,
 }
 
 struct Options {
-    fs::path tests, grade_file, results_json, build_dir, source_dir;
+    fs::path tests, grade_file, results_json, build_dir, source_dir, submission;
     std::string target;
     int time_limit = test_time_limit_seconds;
     int total_points = 0;
@@ -469,6 +854,8 @@ Options parse(int argc, char** argv) {
             options.build_dir = value;
         } else if (flag == "--source-dir") {
             options.source_dir = value;
+        } else if (flag == "--submission") {
+            options.submission = value;
         } else if (flag == "--target") {
             options.target = value;
         } else if (flag == "--time-limit") {
@@ -489,6 +876,9 @@ Options parse(int argc, char** argv) {
     }
     if (options.time_limit < 1) {
         throw GradeError("--time-limit wants at least 1 second");
+    }
+    if (!options.submission.empty() && options.source_dir.empty()) {
+        throw GradeError("--submission wants --source-dir (the kit) too");
     }
     if (!options.build_dir.empty() && options.target.empty()) {
         throw GradeError("--build-dir wants --target too");
@@ -546,11 +936,44 @@ int grade(const Options& options) {
         }
     } cleanup{scratch};
 
-    if (!options.build_dir.empty()) {
+    // An earlier grade must not stand for this one if this one cannot be written.
+    fs::remove(options.grade_file);
+    if (!options.results_json.empty()) {
+        fs::remove(options.results_json);
+    }
+    // Of a submission, only the text of its exercise regions: the rest is the kit's.
+    Taken taken;
+    if (!options.submission.empty()) {
+        taken = take_regions(options.submission, options.source_dir);
+        std::cout << taken.text() << "\n" << std::flush;
+    }
+
+    // A region whose text does not compile gets its stub back, so that it costs its own
+    // exercise only; when the errors point into no taken region, every taken region does.
+    while (!options.build_dir.empty()) {
         const Ended built = run({EXACTPIXELS_GRADE_CMAKE, "--build",
                                  options.build_dir.string(), "--target", options.target},
                                 scratch / "build.txt", build_time_limit_seconds);
-        if (built.timed_out || built.signal != 0 || built.exit_code != 0) {
+        const bool failed = built.timed_out || built.signal != 0 || built.exit_code != 0;
+        if (failed && !built.timed_out && built.signal == 0 && !taken.regions.empty()) {
+            const std::string log = read_text(scratch / "build.txt");
+            auto guilty = regions_with_errors(log, taken, options.build_dir);
+            if (guilty.empty()) {
+                for (const auto& [id, region] : taken.regions) {
+                    guilty[id] = first_error(log, options.source_dir);
+                }
+            }
+            for (const auto& [id, error] : guilty) {
+                replace_region(taken.regions.at(id).file, id, taken.regions.at(id).stub);
+                taken.regions.erase(id);
+                taken.notes[id] =
+                    "does not compile, graded with its stub; the compiler's "
+                    "first error: " +
+                    first_error(error, options.source_dir);
+            }
+            continue;
+        }
+        if (failed) {
             const std::string log = read_text(scratch / "build.txt");
             Case build;
             build.name = "the submission compiles";
@@ -562,29 +985,50 @@ int grade(const Options& options) {
                                    "the compiler's first error:",
                              "| " + first_error(log, options.source_dir)};
             write_report(options,
-                         report({build}, "The submission does not compile: "
-                                         "fix the first error and submit again."));
+                         report({build}, taken.text() +
+                                             (taken.notes.empty() ? "" : "\n") +
+                                             "The submission does not compile: "
+                                             "fix the first error and submit again."));
             return 0;
         }
+        break;
     }
     auto cases = list_cases(options.tests, scratch, options.time_limit);
     if (cases.empty()) {
         throw GradeError(options.tests.string() + " lists no test cases");
     }
+    // Each test case's line as soon as it ended, with its time, so that a slow or hung
+    // case shows which; the whole grade follows at the end.
     for (std::size_t i = 0; i < cases.size(); ++i) {
-        if (!cases[i].skip) {
-            run_case(options.tests, i + 1, cases[i], scratch, options.time_limit);
+        auto& test = cases[i];
+        const auto started = std::chrono::steady_clock::now();
+        if (!test.skip) {
+            run_case(options.tests, i + 1, test, scratch, options.time_limit);
         }
+        const std::chrono::duration<double> took =
+            std::chrono::steady_clock::now() - started;
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.2f", took.count());
+        std::cout << "[" << i + 1 << "/" << cases.size() << "] "
+                  << (test.skip     ? "SKIP"
+                      : test.passed ? "PASS"
+                                    : "FAIL")
+                  << ' ' << (test.passed ? test.points : 0) << '/' << test.points << ' '
+                  << test.exercise << ' ' << test.name << " (" << seconds << " s)\n"
+                  << std::flush;
     }
     const auto exercises = options.exercises.empty() ? std::vector<Exercise>{}
                                                      : read_exercises(options.exercises);
-    write_report(options, report(cases, "", exercises));
+    write_report(options, report(cases, taken.text(), exercises));
     return 0;
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
+    // A test program that ends before it reads its key (it could not start, or crashed
+    // first) must not take the grader with it: the key's write then fails with EPIPE.
+    std::signal(SIGPIPE, SIG_IGN);
     try {
         return grade(parse(argc, argv));
     } catch (const std::exception& error) {
