@@ -56,7 +56,7 @@ Scene with_shading(Scene scene, Shading shading) {
 
 // A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
 TEST_CASE("without a light no lighting stage runs and the shipped scenes are unchanged" *
-          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
     // The references were rendered by the renderer before it had a lighting stage.
     std::vector<std::filesystem::path> scenes = shipped_scenes();
     scenes.push_back(shipped_scene_folder() / "horizon_filtered.toml");

@@ -572,7 +572,7 @@ TEST_CASE("more positions than allowed are refused before they are stored") {
 }
 
 TEST_CASE("a model named by several meshes is read once and its texture held once" *
-          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
     // tests/fixtures/models/three_cubes.toml names cube.obj three times, spelled three
     // ways, moved apart by its translate: three cubes of two materials each.
     const Scene scene = load_scene(models / "three_cubes.toml");

@@ -103,8 +103,7 @@ std::vector<FlatTriangle> flat(const std::vector<std::array<FixedPoint2, 3>>& se
 
 } // namespace
 
-TEST_CASE("a kept tiled renderer draws the teaching path's picture with 1 to 7 threads" *
-          doctest::description("points: 2")) {
+TEST_CASE("a kept tiled renderer draws the teaching path's picture with 1 to 7 threads") {
     // The random set (overlapping triangles of every size, many crossing tiles), chapter
     // 2's jittered mesh and its fan of slivers, each drawn flat and depth-tested by one
     // renderer per thread count, reused for every set, both target sizes (so its bins
