@@ -303,7 +303,9 @@ TEST_CASE("a model triangle the scale takes beyond doubles names its face's line
         {"scale = [1, 1e-320, 1]",
          "takes the normal of triangle 0 (the face at " + face + " beyond the doubles"},
     };
-    for (const auto& [scale, reason] : cases) {
+    for (const auto& one : cases) {
+        const std::string& scale = one.first;
+        const std::string& reason = one.second;
         INFO(scale);
         try {
             (void)parse_scene("[[mesh]]\nfile = \"scaled-face.obj\"\n" + scale + "\n",
@@ -365,7 +367,9 @@ TEST_CASE("the committed models are what the generator makes, byte for byte") {
         };
         CHECK(read(model.name + ".obj") == model.obj);
         CHECK(read(model.name + ".mtl") == model.mtl);
-        for (const auto& [file, image] : model.textures) {
+        for (const auto& texture : model.textures) {
+            const auto& file = texture.first;
+            const auto& image = texture.second;
             INFO(file);
             CHECK(read_png(folder / file) == image); // the pixels (the encoder may vary)
         }

@@ -199,9 +199,13 @@ TEST_CASE("jittered sampling converges on the exact reference within the filters
                 distance[n] = std::max(distance[n], std::abs(sampled[n][name] - error));
             }
         }
-        for (const auto& [name, error] : exact) {
+        for (const auto& one : exact) {
+            const std::string& name = one.first;
+            const double error = one.second;
             moved = std::max(moved, std::abs(sampled[32][name] - sampled[16][name]));
-            for (const auto& [other, other_error] : exact) {
+            for (const auto& another : exact) {
+                const std::string& other = another.first;
+                const double other_error = another.second;
                 if (error < other_error) { // the same order against the estimate
                     CHECK_MESSAGE(sampled[32][name] < sampled[32][other],
                                   scene.name << ": " << name << " and " << other);
@@ -336,7 +340,9 @@ TEST_CASE("the elliptical weighted average is the closest filter to the referenc
     // it is closer to the reference than every other filter, anisotropic-16 included.
     for (const AccuracyScene& scene : {horizon_floor_scene(), random_field_scene()}) {
         const std::map<std::string, double> e = errors_on(scene);
-        for (const auto& [name, error] : e) {
+        for (const auto& one : e) {
+            const std::string& name = one.first;
+            const double error = one.second;
             if (name != "ewa") {
                 CHECK_MESSAGE(e.at("ewa") < error,
                               scene.name << ": ewa against " << name);

@@ -824,9 +824,11 @@ TEST_CASE("textured runs draw the exact mapper's texels under perspective on eve
     for (const Set& set : sets) {
         INFO(std::string(set.name));
         const auto tris = textured(set.triangles, seed++);
-        for (const auto& [texture, wrap] :
+        for (const auto& sampled :
              {std::pair{&square, Wrap::repeat}, std::pair{&odd, Wrap::repeat},
               std::pair{&odd, Wrap::clamp}}) {
+            const Texture* texture = sampled.first;
+            const Wrap wrap = sampled.second;
             INFO(texture->width() << " x " << texture->height() << " texels, "
                                   << (wrap == Wrap::repeat ? "repeat" : "clamp"));
             const auto reference =

@@ -2,6 +2,7 @@
 //
 // Usage:
 //   make-kit kit --source ROOT --template DIR --chapter NN --out DIR [--version V]
+//                [--commit C]
 //   make-kit restore --source ROOT --kit DIR
 //   make-kit list --source ROOT
 //   make-kit check --source ROOT [--chapter NN]
@@ -852,6 +853,7 @@ struct Options {
     std::string command;
     fs::path source, template_dir, out, kit;
     std::string chapter, version = "0.0.0";
+    std::string commit = "unknown"; ///< of the source tree, stamped on the kit
 };
 
 /// The kit's manifest: the files make-kit wrote, one per line after a comment line.
@@ -1022,21 +1024,41 @@ void make_kit(const Options& options) {
         book = "(The chapter text has no exercise section yet.)\n";
     }
     const bool has_example = folder && fs::exists(root / *folder / "example.cpp");
-    // The Debian packages: the book's base list, plus toml++ if the kit has the scene
-    // layer (the only one that reads TOML).
+    // The packages: the book's base list, plus toml++ and tinyobjloader if the kit has
+    // the scene layer (the only one that reads TOML scenes and OBJ models). Debian's
+    // names (Ubuntu's and WSL's too), and Homebrew's formulae for macOS (checked against
+    // homebrew-core: it has no formula for stb or tinyobjloader).
     std::string packages = "cmake g++ make pkg-config doctest-dev libglm-dev libstb-dev "
                            "libpng-dev libfmt-dev libcli11-dev";
-    if (std::any_of(kit.begin(), kit.end(), [](const auto& file) {
-            return starts_with(file.first.generic_string(), "src/exactpixels/scene/");
-        })) {
-        packages += " libtomlplusplus-dev";
+    std::string brew_packages = "cmake pkgconf doctest glm libpng fmt cli11";
+    const bool scene = std::any_of(kit.begin(), kit.end(), [](const auto& file) {
+        return starts_with(file.first.generic_string(), "src/exactpixels/scene/");
+    });
+    if (scene) {
+        packages += " libtomlplusplus-dev libtinyobjloader-dev";
+        brew_packages += " tomlplusplus";
     }
+    const std::string brew_missing =
+        scene ? "Homebrew has no formula for two of them. For stb, put the single header "
+                "`stb_image_write.h` (from the stb project) into a folder and configure "
+                "with "
+                "`-DSTB_INCLUDE_DIR=that/folder`. For tinyobjloader, build and install "
+                "release 2.0 from its source with CMake and "
+                "`-DTINYOBJLOADER_USE_DOUBLE=ON` "
+                "(the kit links `tinyobjloader::tinyobjloader_double`)."
+              : "Homebrew has no formula for stb: put the single header "
+                "`stb_image_write.h` (from the stb project) into a folder and configure "
+                "with "
+                "`-DSTB_INCLUDE_DIR=that/folder`.";
     const std::map<std::string, std::string> values = {
         {"@TIME_LIMIT@", time_limit(options.template_dir)},
         {"@PACKAGES@", packages},
+        {"@BREW_PACKAGES@", brew_packages},
+        {"@BREW_MISSING@", brew_missing},
         {"@CHAPTER@", number},
         {"@TITLE@", chapter_title(chapter_md)},
         {"@VERSION@", options.version},
+        {"@COMMIT@", options.commit},
         {"@EXERCISE_TABLE@", table},
         {"@BOOK_EXERCISES@", book},
         {"@TOTAL_POINTS@", std::to_string(total)},
@@ -1226,6 +1248,8 @@ Options parse(int argc, char** argv) {
             options.kit = value;
         } else if (flag == "--version") {
             options.version = value;
+        } else if (flag == "--commit") {
+            options.commit = value;
         } else {
             throw KitError("unknown option " + flag);
         }
@@ -1236,6 +1260,17 @@ Options parse(int argc, char** argv) {
     if (options.command == "kit" && (options.template_dir.empty() ||
                                      options.chapter.empty() || options.out.empty())) {
         throw KitError("make-kit kit wants --template, --chapter and --out");
+    }
+    // Both go into the kit's CMakeLists.txt and a C++ string: plain words only.
+    for (const std::string* stamp : {&options.version, &options.commit}) {
+        if (stamp->empty() || !std::all_of(stamp->begin(), stamp->end(), [](char c) {
+                return std::isalnum(static_cast<unsigned char>(c)) || c == '.' ||
+                       c == '+' || c == '-';
+            })) {
+            throw KitError("--version and --commit want letters, digits, '.', '+' and "
+                           "'-' only, not '" +
+                           *stamp + "'");
+        }
     }
     if (options.command == "restore" && options.kit.empty()) {
         throw KitError("make-kit restore wants --kit");
