@@ -988,6 +988,9 @@ TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, 
         fresh_json.find("\"tags\": [\"ch07-answer\", \"implement\", \"difficulty 2\"]") !=
         std::string::npos);
     CHECK(fresh_json.find("CHECK( fake::answer() == 42 ) is false") != std::string::npos);
+    // The grade names the kit that gave it (make-kit's --version and --commit).
+    CHECK(fresh_json.find("\"output\": \"Graded by the chapter 07 kit, version 0.0.0, "
+                          "commit ") != std::string::npos);
 
     // Solved, submitted as the kit's folder (the solution restored by make-kit).
     REQUIRE(restore_kit(fixture_tree(), out / "ch07").exit_code == 0);

@@ -97,7 +97,7 @@ template <class T> double norm(Gradient<T> g) {
 } // namespace
 
 TEST_CASE("split edge and closed form are the same number in exact arithmetic" *
-          doctest::description("points: 2; exercise: ch01-closed-form")) {
+          doctest::description("points: 4; exercise: ch01-closed-form")) {
     std::mt19937_64 random(11);
     int checked = 0;
     for (int trial = 0; trial < trials / 10; ++trial) {
@@ -121,7 +121,7 @@ TEST_CASE("split edge and closed form are the same number in exact arithmetic" *
 }
 
 TEST_CASE("closed form is unchanged by every vertex order" *
-          doctest::description("points: 1; exercise: ch01-closed-form")) {
+          doctest::description("points: 2; exercise: ch01-closed-form")) {
     const std::array<std::array<int, 3>, 6> orders{
         {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
     std::mt19937_64 random(12);
@@ -162,7 +162,7 @@ TEST_CASE("closed form is unchanged by every vertex order" *
 }
 
 TEST_CASE("split edge and closed form agree on random triangles" *
-          doctest::description("points: 2; exercise: ch01-closed-form")) {
+          doctest::description("points: 4; exercise: ch01-closed-form")) {
     // Both formulas divide a difference of products by a difference of products. The
     // products round by eps relative, so the error is about eps kappa times the size
     // of the terms (@eq:error-estimate): the test allows 32 eps kappa (|delta c| / L +
@@ -215,7 +215,7 @@ TEST_CASE("split edge and closed form agree on random triangles" *
 }
 
 TEST_CASE("both edge slopes are the same number in exact arithmetic" *
-          doctest::description("points: 1; exercise: ch01-closed-form")) {
+          doctest::description("points: 2; exercise: ch01-closed-form")) {
     std::mt19937_64 random(14);
     for (int trial = 0; trial < trials / 10; ++trial) {
         const PlaneSamples<Rational> s = random_integer_triangle(random, 50);
@@ -238,7 +238,7 @@ TEST_CASE("both edge slopes are the same number in exact arithmetic" *
 }
 
 TEST_CASE("both edge slopes agree in floating point" *
-          doctest::description("points: 1; exercise: ch01-closed-form")) {
+          doctest::description("points: 2; exercise: ch01-closed-form")) {
     // The form from the gradient inherits the gradient's error (32 eps kappa times the
     // term size, see above) times (1 + |dx/dy|); the direct form rounds twice. The
     // tolerance is the sum.
@@ -266,7 +266,7 @@ TEST_CASE("both edge slopes agree in floating point" *
 }
 
 TEST_CASE("flat-top and flat-bottom triangles need no special case" *
-          doctest::description("points: 1; exercise: ch01-closed-form")) {
+          doctest::description("points: 2; exercise: ch01-closed-form")) {
     // c = 1 + 2x + 3y sampled at integer vertices: every formula is exact in double.
     const auto plane = [](double x, double y) { return 1 + 2 * x + 3 * y; };
     const std::array<std::array<glm::dvec2, 3>, 4> triangles{{
@@ -330,7 +330,7 @@ TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
 }
 
 TEST_CASE("the stability study's reference is the exact gradient to three roundings" *
-          doctest::description("points: 1; exercise: ch01-closed-form")) {
+          doctest::description("points: 2; exercise: ch01-closed-form")) {
     // exact_gradient computes @eq:closed-form in 128-bit integers and rounds three times:
     // numerator and denominator to long double, then their quotient; each rounding is at
     // most u = 2^-digits relative, so it lies within about 3u of the exact gradient.
@@ -377,7 +377,7 @@ TEST_CASE("the stability study's reference is the exact gradient to three roundi
 }
 
 TEST_CASE("neither gradient loses accuracy as the y-delta shrinks" *
-          doctest::description("points: 1; exercise: ch01-closed-form")) {
+          doctest::description("points: 2; exercise: ch01-closed-form")) {
     // The chapter's stability table, re-measured on fewer triangles. What it claims:
     // on typical triangles (the median) both methods are accurate to within one
     // machine epsilon at every y-delta down to 1e-12 px and at exactly 0; 99% of

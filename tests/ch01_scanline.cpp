@@ -528,7 +528,7 @@ TEST_CASE("a fan of 720 slivers around a pixel centre covers each pixel once") {
 }
 
 TEST_CASE("stepped attributes lie on the plane at every pixel centre" *
-          doctest::description("points: 2; exercise: ch01-prestep")) {
+          doctest::description("points: 7; exercise: ch01-prestep")) {
     // Each drawn value is reached by one prestep down an edge, up to (rows) additions
     // of the edge slope, one prestep along the row and up to (columns) additions of
     // dc/dx. Every addition rounds by at most eps/2 of the running sum, and the edge's
@@ -586,7 +586,7 @@ TEST_CASE("stepped attributes lie on the plane at every pixel centre" *
 }
 
 TEST_CASE("the first pixel's value is the plane at its centre, not at the vertex" *
-          doctest::description("points: 1; exercise: ch01-prestep")) {
+          doctest::description("points: 3; exercise: ch01-prestep")) {
     // c = x + 10 y over a triangle whose vertices sit between pixel centres: every
     // drawn pixel must carry c at its own centre, exactly (the edges' dy are powers of
     // two, so every slope and step is a short binary fraction and nothing rounds).

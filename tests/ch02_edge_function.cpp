@@ -80,7 +80,7 @@ TEST_CASE("incremental edge values equal direct evaluation bit for bit") {
 }
 
 TEST_CASE("barycentric weights sum to one and reproduce the vertex values" *
-          doctest::description("points: 2; exercise: ch02-barycentric")) {
+          doctest::description("points: 10; exercise: ch02-barycentric")) {
     std::mt19937_64 rng(4);
     std::uniform_real_distribution<double> value(-10.0, 10.0);
     constexpr double u = std::numeric_limits<double>::epsilon() / 2; // unit roundoff
@@ -136,7 +136,7 @@ TEST_CASE("the edge-function gradient is chapter 1's closed form, exactly") {
 }
 
 TEST_CASE("top and left edges are told apart by the signs of dx and dy" *
-          doctest::description("points: 2; exercise: ch02-edge-bias")) {
+          doctest::description("points: 1; exercise: ch02-edge-bias")) {
     // Triangles oriented with the inside on the right of every edge (y down).
     CHECK(is_top_left(1, 0));        // horizontal, going right: a top edge
     CHECK_FALSE(is_top_left(-1, 0)); // horizontal, going left: a bottom edge

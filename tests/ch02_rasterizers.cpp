@@ -54,7 +54,7 @@ MeshFaults faults(const Grid& g, int x0, int y0, int x1, int y1) {
 } // namespace
 
 TEST_CASE("the absolute convention: 15 and 10 pixels for every rasterizer" *
-          doctest::description("points: 2; exercise: ch02-edge-bias")) {
+          doctest::description("points: 1; exercise: ch02-edge-bias")) {
     // Vertices on pixel centres: the diagonal passes through centres, the top edge runs
     // along a row of centres, the right edge along a column.
     const auto upper = ch02::snap3({0.5, 0.5}, {5.5, 0.5}, {5.5, 5.5});
@@ -79,7 +79,7 @@ TEST_CASE("the absolute convention: 15 and 10 pixels for every rasterizer" *
 }
 
 TEST_CASE("a centre on a shared edge goes to exactly one triangle" *
-          doctest::description("points: 2; exercise: ch02-edge-bias")) {
+          doctest::description("points: 1; exercise: ch02-edge-bias")) {
     // A 4 x 4 px square with corners on pixel centres, split along each diagonal in
     // turn: every tie case (top, left, bottom, right, the diagonal both ways) occurs.
     const Point2 a{1.5, 1.5}, b{5.5, 1.5}, c{5.5, 5.5}, d{1.5, 5.5};
@@ -105,7 +105,7 @@ TEST_CASE("a centre on a shared edge goes to exactly one triangle" *
 }
 
 TEST_CASE("meshes are watertight: every pixel exactly once" *
-          doctest::description("points: 3; exercise: ch02-edge-bias")) {
+          doctest::description("points: 1; exercise: ch02-edge-bias")) {
     constexpr int size = 72;
     std::mt19937_64 rng(6);
     std::uniform_real_distribution<double> wobble(-3.0, 3.0);
@@ -249,7 +249,7 @@ TEST_CASE("float traversals differ only within rounding distance of an edge") {
 }
 
 TEST_CASE("edge functions agree with chapter 1's scanline on random triangles" *
-          doctest::description("points: 2; exercise: ch02-edge-bias")) {
+          doctest::description("points: 1; exercise: ch02-edge-bias")) {
     std::mt19937_64 rng(8);
     int drawn = 0;
     for (int trial = 0; trial < ch02::trials; ++trial) {
@@ -351,7 +351,7 @@ TEST_CASE(
 }
 
 TEST_CASE("blocks are classified by their corners" *
-          doctest::description("points: 2; exercise: ch02-block-classify")) {
+          doctest::description("points: 20; exercise: ch02-block-classify")) {
     // The triangle (0, 0), (64, 0), (0, 64) px: the block of pixels [0, 8) x [0, 8) is
     // deep inside, [56, 64) x [56, 64) entirely below the hypotenuse, and
     // [24, 32) x [32, 40) crosses it.

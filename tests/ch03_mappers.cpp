@@ -47,7 +47,7 @@ double affine_curvature(double r, double lo, double hi) {
 } // namespace
 
 TEST_CASE("the exact mapper reproduces the perspective projection of a textured line" *
-          doctest::description("points: 2; exercise: ch03-perspective-divide")) {
+          doctest::description("points: 3; exercise: ch03-perspective-divide")) {
     // A line in view space from A (u = 0) to B (u = 100 texels), seen by a pinhole with
     // focal length f. For each pixel centre X on its image, intersect the eye ray with
     // the line (independently of eq:linear-in-screen) and compare u.
@@ -93,7 +93,7 @@ TEST_CASE("the exact mapper reproduces the perspective projection of a textured 
 }
 
 TEST_CASE("affine error between exact ends matches the formula and peaks at the bound" *
-          doctest::description("points: 1; exercise: ch03-perspective-divide")) {
+          doctest::description("points: 2; exercise: ch03-perspective-divide")) {
     // An affine piece exact at both ends: the subdivided mapper with one piece of 256
     // steps, from the exact u at pixel 0 to the exact u at pixel 256 (the scenes' affine
     // mapper takes its ends from the triangle's plane instead; ch03_triangles.cpp).
@@ -132,7 +132,7 @@ TEST_CASE("affine error between exact ends matches the formula and peaks at the 
 }
 
 TEST_CASE("quadratic error on a span matches the formula and its tabulated peak" *
-          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
+          doctest::description("points: 3; exercise: ch03-quadratic-coefficients")) {
     for (const double r : {1.25, 2.0, 4.0, 10.0, 100.0, 0.25}) {
         for (const double extent : {16.0, 64.0, 256.0}) {
             const int count = 257;
@@ -190,7 +190,7 @@ TEST_CASE("subdivided mappers are exact at every span point, bit for bit") {
 }
 
 TEST_CASE("subdivided affine error falls as N shrinks, as the bound predicts" *
-          doctest::description("points: 1; exercise: ch03-perspective-divide")) {
+          doctest::description("points: 2; exercise: ch03-perspective-divide")) {
     // One long span, depth ratio 8, 256 texels. Each piece from pixel k0 to its target
     // has its own ratio and extent; the bound of eq:affine-bound applies piece by piece.
     const int count = 512;

@@ -30,7 +30,7 @@ Rational exact_u(Rational u0, Rational w0, Rational u2, Rational w2, Rational t)
 } // namespace
 
 TEST_CASE("Thellier's coefficients equal Pursey's in exact arithmetic" *
-          doctest::description("points: 2; exercise: ch03-quadratic-coefficients")) {
+          doctest::description("points: 5; exercise: ch03-quadratic-coefficients")) {
     std::mt19937 random(3);
     std::uniform_int_distribution<int> texel(-2000, 2000), depth(1, 1000), steps(1, 512);
     for (int trial = 0; trial < 2000; ++trial) {
@@ -48,7 +48,7 @@ TEST_CASE("Thellier's coefficients equal Pursey's in exact arithmetic" *
 }
 
 TEST_CASE("Thellier's and Pursey's coefficients agree in float within the stated bound" *
-          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
+          doctest::description("points: 3; exercise: ch03-quadratic-coefficients")) {
     // Both forms, run in float, are compared with the exact coefficients of the same
     // float inputs. Pursey's 2 u0 - 4 u1 + 2 u2 cancels: its rounding error is a few ulps
     // of the largest |u| involved, so a and b are allowed 32 float epsilons of
@@ -80,7 +80,7 @@ TEST_CASE("Thellier's and Pursey's coefficients agree in float within the stated
 }
 
 TEST_CASE("the parabola passes through the exact values at both ends and the middle" *
-          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
+          doctest::description("points: 3; exercise: ch03-quadratic-coefficients")) {
     std::mt19937 random(11);
     std::uniform_int_distribution<int> texel(-500, 500), depth(1, 200), steps(1, 300);
     for (int trial = 0; trial < 1000; ++trial) {
@@ -258,7 +258,7 @@ TEST_CASE("u is linear along lines of constant 1/w and bends along every other l
 }
 
 TEST_CASE("Pursey's parabola is monotonic exactly when the depth ratio is in [1/3, 3]" *
-          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
+          doctest::description("points: 3; exercise: ch03-quadratic-coefficients")) {
     // Slopes at both ends (@eq:pursey-slopes), exact, for every r = i / j with i, j in
     // 1..24, on spans of 64 texels and 37 pixel steps.
     const Rational du(64), n(37);
@@ -282,7 +282,7 @@ TEST_CASE("Pursey's parabola is monotonic exactly when the depth ratio is in [1/
 }
 
 TEST_CASE("beyond r = 3 the parabola overshoots its ends; by 8/15 texel at r = 4" *
-          doctest::description("points: 1; exercise: ch03-quadratic-coefficients")) {
+          doctest::description("points: 3; exercise: ch03-quadratic-coefficients")) {
     // The extreme of a t^2 + b t + u0 is at t = -b / 2a with value u0 - b^2 / 4a: compare
     // it, exactly, with pursey_overshoot for r = i / j, on spans seen from either end.
     for (int i = 1; i <= 30; ++i) {

@@ -221,9 +221,10 @@ TEST_CASE("with constant w every mapper picks the exact texels, pixel for pixel"
 TEST_CASE("exact float picks exact double's texel everywhere but at counted near-ties") {
     // Where float and double pick different texels, the double u (or v) must lie within
     // the largest measured float error of a texel boundary: a near-tie, not a mistake.
-    for (const auto& [name, scene] :
-         {std::pair{std::string("floor"), floor_scene(320, 240)},
-          std::pair{std::string("wall"), wall_scene(320, 240)}}) {
+    for (const auto& named : {std::pair{std::string("floor"), floor_scene(320, 240)},
+                              std::pair{std::string("wall"), wall_scene(320, 240)}}) {
+        const std::string& name = named.first;
+        const auto& scene = named.second;
         TexelMap d(320, 240), f(320, 240);
         map_scene(d, scene, {.precision = Precision::float64});
         map_scene(f, scene, {.precision = Precision::float32});
@@ -279,9 +280,10 @@ TEST_CASE("the scenes' affine mapper errs by its end errors plus the exact-ends 
     // mapper's own stepping. Spans whose error exceeds the exact-ends bound alone are
     // counted: they are why the end terms are there.
     constexpr double tolerance = 1e-9;
-    for (const auto& [name, scene] :
-         {std::pair{std::string("floor"), floor_scene(320, 240)},
-          std::pair{std::string("wall"), wall_scene(320, 240)}}) {
+    for (const auto& named : {std::pair{std::string("floor"), floor_scene(320, 240)},
+                              std::pair{std::string("wall"), wall_scene(320, 240)}}) {
+        const std::string& name = named.first;
+        const auto& scene = named.second;
         int spans = 0, beyond_exact_ends = 0;
         double worst_excess = 0; // the largest error beyond the exact-ends bound
         double closest = 0;      // the largest share of its bound a span reaches

@@ -208,7 +208,7 @@ TEST_CASE("the float numerator is within the stated rounding bound of the exact 
 }
 
 TEST_CASE("the chosen rule can differ between rows of one perspective triangle" *
-          doctest::description("points: 1; exercise: ch04-choose-rule")) {
+          doctest::description("points: 2; exercise: ch04-choose-rule")) {
     // A wall seen at an angle: its near edge at x = 10 (w = 1, v from 0 to 64) and its
     // far corner at x = 74 (w = 4, v = 0). Lines of constant v meet at one point on the
     // horizon row y = 42.5 (the eye's height, where v = 32): above that row v falls to

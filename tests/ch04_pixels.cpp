@@ -226,7 +226,7 @@ TEST_CASE("a half-pixel-offset quad samples only ties and shows every texel once
 }
 
 TEST_CASE("mirrored mappings give exactly the mirrored images with the chosen rule" *
-          doctest::description("points: 2; exercise: ch04-choose-rule")) {
+          doctest::description("points: 4; exercise: ch04-choose-rule")) {
     for (const double offset : {0.0, 0.5}) {
         for (const bool mu : {false, true}) {
             for (const bool mv : {false, true}) {
@@ -246,7 +246,7 @@ TEST_CASE("mirrored mappings give exactly the mirrored images with the chosen ru
 }
 
 TEST_CASE("rule 1 alone skips and doubles texels on mirrored tie quads" *
-          doctest::description("points: 1; exercise: ch04-choose-rule")) {
+          doctest::description("points: 2; exercise: ch04-choose-rule")) {
     // Offset quad, u running backwards: the centre of column a maps to u = W - a, a tie.
     // Rule 1 takes floor(u) = W - a: column 0 asks for texel W, beyond the texture
     // (clamped to W - 1, which so shows twice), and texel 0 never shows. The same in v.
@@ -300,7 +300,7 @@ TEST_CASE("without ties the rule makes no difference, mirrored or not") {
 }
 
 TEST_CASE("the F mirrored with the rule is the mirrored F; with rule 1 it is not" *
-          doctest::description("points: 1; exercise: ch04-choose-rule")) {
+          doctest::description("points: 2; exercise: ch04-choose-rule")) {
     // The images themselves, drawn with the book's F, as a reader would see them. With
     // Wrap::repeat rule 1 shows every texel once but puts the wrapped one on the wrong
     // side: one whole column (or row) of the image is wrong.
@@ -336,7 +336,7 @@ TEST_CASE("the F mirrored with the rule is the mirrored F; with rule 1 it is not
 }
 
 TEST_CASE("integer magnification k = 2, 3, 4: every texel covers exactly k x k pixels" *
-          doctest::description("points: 1; exercise: ch04-choose-rule")) {
+          doctest::description("points: 2; exercise: ch04-choose-rule")) {
     // Pixel-aligned: the centre of pixel a maps to u = (a + 1/2) / k, never an integer,
     // so texel floor(u) = a / k (integer division) with either rule. Offset by half a
     // pixel, u = a / k: a tie at every k-th column. Those ties are exact only when 1/k

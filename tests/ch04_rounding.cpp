@@ -58,7 +58,7 @@ TEST_CASE("the two rules agree except on ties, where rule 2 is one less") {
 }
 
 TEST_CASE("ceil(N/D - 1/2) = floor((N + D/2 - 1)/D) for every N in +-2^20, k = 1..16" *
-          doctest::description("points: 2; exercise: ch04-modifier")) {
+          doctest::description("points: 5; exercise: ch04-modifier")) {
     // Plain loops and one CHECK per k: 34 million comparisons must stay fast.
     for (int k = 1; k <= 16; ++k) {
         const std::int64_t up = rounding_modifier(RoundingRule::ties_up, k);
@@ -107,7 +107,7 @@ TEST_CASE("for odd D both rules are floor((N + (D-1)/2)/D) for every N in +-2^16
 }
 
 TEST_CASE("the single floor holds at the ends of the documented range" *
-          doctest::description("points: 1; exercise: ch04-modifier")) {
+          doctest::description("points: 3; exercise: ch04-modifier")) {
     // |C| <= 2^61 and k <= 30: 2C + D and C + m must not overflow.
     std::mt19937_64 random(4);
     const std::int64_t limit = std::int64_t{1} << 61;
@@ -136,7 +136,7 @@ TEST_CASE("a modifier for an unusable fraction width is an Error naming k") {
 }
 
 TEST_CASE("the modifiers are chapter 3's 16.16 biases" *
-          doctest::description("points: 1; exercise: ch04-modifier")) {
+          doctest::description("points: 2; exercise: ch04-modifier")) {
     // Chapter 3 indexes with floor((U + bias - D/2) / D), U = u * D = C + D/2: the bias
     // is the modifier, so rule 1 gives floor(u) and rule 2 gives ceil(u) - 1.
     CHECK(texel_bias(RoundingRule::ties_up) == texel_scale / 2);
@@ -152,7 +152,7 @@ TEST_CASE("the modifiers are chapter 3's 16.16 biases" *
 }
 
 TEST_CASE("the rule follows the sign of dc/dx, and of dc/dy when dc/dx is zero" *
-          doctest::description("points: 2; exercise: ch04-choose-rule")) {
+          doctest::description("points: 3; exercise: ch04-choose-rule")) {
     using enum RoundingRule;
     CHECK(choose_rule(1.0, -5.0) == ties_up);
     CHECK(choose_rule(0.25, 0.0) == ties_up);
@@ -166,7 +166,7 @@ TEST_CASE("the rule follows the sign of dc/dx, and of dc/dy when dc/dx is zero" 
 }
 
 TEST_CASE("a sample on a texel edge goes to the texel on its right, or below it" *
-          doctest::description("points: 1; exercise: ch04-choose-rule")) {
+          doctest::description("points: 2; exercise: ch04-choose-rule")) {
     // The fill-rule reading of the choice, checked independently of the code's sign
     // test: u(x, y) = u0 + a x + b y with a tie at (0, 0) (u0 an integer: c = u - 1/2 is
     // half way between two texel centres; a and b are the gradient of c as of u). The
@@ -192,7 +192,7 @@ TEST_CASE("a sample on a texel edge goes to the texel on its right, or below it"
 }
 
 TEST_CASE("with the chosen rule a span samples only the texels between its ends" *
-          doctest::description("points: 2; exercise: ch04-choose-rule")) {
+          doctest::description("points: 3; exercise: ch04-choose-rule")) {
     // One row: the span covers pixel centres in [x0, x1) (the left end is in, the right
     // end out, as the top-left rule has it), and u runs linearly from the integer a at
     // x0 to the integer b at x1. Texels a .. b-1 (or b .. a-1) are the ones the span

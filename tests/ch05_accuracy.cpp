@@ -32,7 +32,7 @@ MapperConfig find(const std::string& name) {
 } // namespace
 
 TEST_CASE("the texel error is the larger of the two coordinate errors" *
-          doctest::description("points: 2; exercise: ch05-texel-error")) {
+          doctest::description("points: 7; exercise: ch05-texel-error")) {
     CHECK(texel_error(3.25, 7.0, 3.0, 7.5) == 0.5);
     CHECK(texel_error(-1.0, 2.0, 1.0, 2.25) == 2.0);
     CHECK(texel_error(4.0, 4.0, 4.0, 4.0) == 0.0);
@@ -237,7 +237,7 @@ TEST_CASE("the floor's picks follow how far a span reaches, not its depth ratio"
 }
 
 TEST_CASE("the measured affine error meets chapter 3's bound on a single receding quad" *
-          doctest::description("points: 1; exercise: ch05-texel-error")) {
+          doctest::description("points: 3; exercise: ch05-texel-error")) {
     // A quad whose depth grows from 1 to r along x only: every row is one span with
     // depth ratio close to r and u running over 100 texels, so the worst affine error
     // is affine_error_bound(r) * 100 texels (eq. affine-bound), up to the sampling of

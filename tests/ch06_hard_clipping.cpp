@@ -46,7 +46,7 @@ Hit trace(const Pinhole& camera, const std::array<ViewVertex, 3>& t, Point2 s) {
 } // namespace
 
 TEST_CASE("clipping keeps, drops or cuts a triangle into one or two, all at z >= near" *
-          doctest::description("points: 3; exercise: ch06-clip-near")) {
+          doctest::description("points: 10; exercise: ch06-clip-near")) {
     // Every combination of depths behind the eye, at it, on the plane and in front.
     const double near = 0.5;
     const double depths[] = {-1.0, 0.0, 0.25, near, 2.0};
@@ -90,7 +90,7 @@ TEST_CASE("clipping keeps, drops or cuts a triangle into one or two, all at z >=
 }
 
 TEST_CASE("drawn through the clip, every pixel gets the texel a traced ray finds" *
-          doctest::description("points: 1; exercise: ch06-clip-near")) {
+          doctest::description("points: 4; exercise: ch06-clip-near")) {
     // Random triangles with one or two corners behind the eye (some exactly at z = 0).
     const Pinhole camera{200.0, {160.0, 120.0}};
     const double near = 0.25;
@@ -161,7 +161,7 @@ TEST_CASE("drawn through the clip, every pixel gets the texel a traced ray finds
 }
 
 TEST_CASE("two triangles sharing a cut edge get the same crossing, bit for bit" *
-          doctest::description("points: 1; exercise: ch06-clip-near")) {
+          doctest::description("points: 3; exercise: ch06-clip-near")) {
     // The quad a b c d straddles the near plane; its two triangles share the edge a-c,
     // given in opposite directions. Both crossings go from the inside corner outwards.
     const double near = 0.5;
@@ -183,7 +183,7 @@ TEST_CASE("two triangles sharing a cut edge get the same crossing, bit for bit" 
 }
 
 TEST_CASE("a vertex at or behind the eye never reaches a divide; bad input is an Error" *
-          doctest::description("points: 1; exercise: ch06-clip-near")) {
+          doctest::description("points: 3; exercise: ch06-clip-near")) {
     const Pinhole camera{};
     const std::array<ViewVertex, 3> at_eye{{{{0.0, 0.5, 0.0}, {0.0, 0.0}}, // w = 0
                                             {{1.0, -1.0, 2.0}, {8.0, 0.0}},

@@ -246,8 +246,7 @@ fs::path scratch_folder(const std::string& name) {
 
 } // namespace
 
-TEST_CASE("every bad scene names the file, line, column and key path" *
-          doctest::description("points: 2")) {
+TEST_CASE("every bad scene names the file, line, column and key path") {
     const fs::path folder = scratch_folder("loader");
     for (const BadScene& bad : bad_scenes()) {
         INFO(bad.what);

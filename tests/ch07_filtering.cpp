@@ -40,7 +40,7 @@ TEST_CASE(
 
 // A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
 TEST_CASE("auto builds no mip chain where no triangle is minified" *
-          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
     // A 16 x 16 texture over an orthographic 240 x 240 square: 15 pixels per texel.
     const std::string text = R"(
 [image]
@@ -77,7 +77,7 @@ uv = [[0.0, 16.0], [16.0, 16.0], [16.0, 0.0], [0.0, 16.0], [16.0, 0.0], [0.0, 0.
 
 // A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
 TEST_CASE("on the horizon auto is closer than nearest to the supersampled reference" *
-          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
     const Scene scene = shipped("horizon_filtered");
     const std::vector<LinearTexel> reference = supersampled_reference(scene, 8);
     Scene nearest = scene;
@@ -105,7 +105,7 @@ TEST_CASE("the supersampled reference at one sample per pixel is the nearest ren
 
 // A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
 TEST_CASE("the renderer filters 8-bit texels as sRGB codes, in linear light" *
-          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
     // Chapter 8's rule, in the renderer: an 8-bit texel is an sRGB code, and filtering
     // averages light. A 64 x 64 checkerboard of 1-texel squares (codes 235 and 40) on a
     // 16 x 16 orthographic square is minified 4 : 1, level 2 exactly, where every texel

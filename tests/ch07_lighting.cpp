@@ -56,7 +56,7 @@ Scene with_shading(Scene scene, Shading shading) {
 
 // A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
 TEST_CASE("without a light no lighting stage runs and the shipped scenes are unchanged" *
-          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
     // The references were rendered by the renderer before it had a lighting stage.
     std::vector<std::filesystem::path> scenes = shipped_scenes();
     scenes.push_back(shipped_scene_folder() / "horizon_filtered.toml");
@@ -195,8 +195,10 @@ TEST_CASE("a point light falls off as its closed form at chosen pixels") {
         "[[light]]\ntype = \"point\"\nposition = [0.25, -0.1, -0.5]\nintensity = 0.1",
         "");
     const RenderResult r = render_scene(scene);
-    for (const auto& [i, j] : {std::pair{40, 35}, std::pair{32, 32}, std::pair{10, 20},
-                               std::pair{5, 60}, std::pair{63, 0}}) {
+    for (const auto& pixel : {std::pair{40, 35}, std::pair{32, 32}, std::pair{10, 20},
+                              std::pair{5, 60}, std::pair{63, 0}}) {
+        const int i = pixel.first;
+        const int j = pixel.second;
         const glm::dvec3 p{(i + 0.5 - 32) / 32, (32 - j - 0.5) / 32, 0.0};
         const double d = glm::length(light - p);
         const double e = intensity * (-light.z) / (d * d * d); // I cos(theta) / d^2

@@ -303,7 +303,9 @@ TEST_CASE("a model triangle the scale takes beyond doubles names its face's line
         {"scale = [1, 1e-320, 1]",
          "takes the normal of triangle 0 (the face at " + face + " beyond the doubles"},
     };
-    for (const auto& [scale, reason] : cases) {
+    for (const auto& one : cases) {
+        const std::string& scale = one.first;
+        const std::string& reason = one.second;
         INFO(scale);
         try {
             (void)parse_scene("[[mesh]]\nfile = \"scaled-face.obj\"\n" + scale + "\n",
@@ -365,7 +367,9 @@ TEST_CASE("the committed models are what the generator makes, byte for byte") {
         };
         CHECK(read(model.name + ".obj") == model.obj);
         CHECK(read(model.name + ".mtl") == model.mtl);
-        for (const auto& [file, image] : model.textures) {
+        for (const auto& texture : model.textures) {
+            const auto& file = texture.first;
+            const auto& image = texture.second;
             INFO(file);
             CHECK(read_png(folder / file) == image); // the pixels (the encoder may vary)
         }
@@ -572,7 +576,7 @@ TEST_CASE("more positions than allowed are refused before they are stored") {
 }
 
 TEST_CASE("a model named by several meshes is read once and its texture held once" *
-          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
     // tests/fixtures/models/three_cubes.toml names cube.obj three times, spelled three
     // ways, moved apart by its translate: three cubes of two materials each.
     const Scene scene = load_scene(models / "three_cubes.toml");

@@ -174,8 +174,7 @@ TEST_CASE("the sprite sheet shows each texel as a block of 8 pixels, exactly" *
     }
 }
 
-TEST_CASE("without perspective, auto renders as exact and divides nothing" *
-          doctest::description("points: 2")) {
+TEST_CASE("without perspective, auto renders as exact and divides nothing") {
     const Scene scene = shipped("sprites");
     const RenderResult automatic = render_scene(scene);
     for (const Precision precision :
@@ -240,7 +239,7 @@ TEST_CASE("geometry in front of the near plane does no clipping work") {
 }
 
 TEST_CASE("auto scenes stay within their error budget against the exact reference" *
-          doctest::description("points: 3; exercise: ch07-choose-mapper")) {
+          doctest::description("points: 10; exercise: ch07-choose-mapper")) {
     for (const char* name : {"corridor", "horizon", "near_plane"}) {
         INFO(name);
         const Scene scene = shipped(name);
@@ -330,7 +329,7 @@ TEST_CASE("chord and parabola bounds hold on random spans") {
 }
 
 TEST_CASE("auto picks the cheapest mapper whose bound is within the budget" *
-          doctest::description("points: 2; exercise: ch07-choose-mapper")) {
+          doctest::description("points: 7; exercise: ch07-choose-mapper")) {
     // Constant depth along the span: the chord is exact, one piece, four divides.
     const PerspectiveSpan<double> flat{10.0, 5.0, 0.5, 0.25, 0.0, 0.0, 100};
     const AutoChoice c = choose_span_mapper(flat, 0.5);
@@ -372,7 +371,7 @@ TEST_CASE("auto picks the cheapest mapper whose bound is within the budget" *
 }
 
 TEST_CASE("auto never picks a parabola that turns back inside its span" *
-          doctest::description("points: 1; exercise: ch07-choose-mapper")) {
+          doctest::description("points: 3; exercise: ch07-choose-mapper")) {
     // Chapter 3's figure 3.3 span: depth ratio 4, 64 texels over 64 pixels. Its parabola
     // is within a generous budget, but dips to -8/15 texel, outside the texels between
     // its ends (@eq:pursey-overshoot); auto takes the next mapper instead.

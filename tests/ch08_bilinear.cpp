@@ -121,7 +121,7 @@ TEST_CASE("the fast encode gives the same code as the plain one, everywhere") {
 }
 
 TEST_CASE("bilinear weights sum to one and a texel centre gives that texel" *
-          doctest::description("points: 2; exercise: ch08-bilinear")) {
+          doctest::description("points: 6; exercise: ch08-bilinear")) {
     // Every fraction in u against a spread of fractions in v: the weights are whole
     // numbers in [0, D^2] that add up to D^2 exactly.
     for (std::int64_t fu = 0; fu < D; ++fu) {
@@ -162,7 +162,7 @@ TEST_CASE("bilinear weights sum to one and a texel centre gives that texel" *
 }
 
 TEST_CASE("between centres the sample is the exact weighted average in linear light" *
-          doctest::description("points: 2; exercise: ch08-bilinear")) {
+          doctest::description("points: 6; exercise: ch08-bilinear")) {
     // A 2 x 2 texture; at (u, v) = (1/2 + a, 1/2 + b) the sample is
     // (1-a)(1-b) t00 + a(1-b) t10 + (1-a)b t01 + ab t11, with a, b multiples of 1/D.
     const Texture t(
@@ -189,7 +189,7 @@ TEST_CASE("between centres the sample is the exact weighted average in linear li
 }
 
 TEST_CASE("at the border repeat blends the far edge and clamp repeats the edge texel" *
-          doctest::description("points: 1; exercise: ch08-bilinear")) {
+          doctest::description("points: 3; exercise: ch08-bilinear")) {
     const Texture t(
         4, 1, {rgba(255, 0, 0), rgba(0, 255, 0), rgba(0, 0, 255), rgba(255, 255, 255)});
     const LinearImage img = decode_texture(t);
@@ -226,7 +226,7 @@ TEST_CASE("bilinear at 1:1 reproduces the texture exactly") {
 }
 
 TEST_CASE("a mirrored mapping draws exactly the mirrored texture, with no rounding rule" *
-          doctest::description("points: 2; exercise: ch08-bilinear")) {
+          doctest::description("points: 5; exercise: ch08-bilinear")) {
     // Aligned quads sample texel centres; quads offset by half a pixel sample the ties of
     // chapter 4, where bilinear weighs both texels 1/2 and needs no rule. Either way the
     // texture drawn backwards is, pixel for pixel, the mirrored texture drawn forwards.

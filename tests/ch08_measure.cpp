@@ -148,7 +148,7 @@ TEST_CASE("the exact reference weights each texel by the area of the pixel it co
 
 // The stub of ch08-error (every error 0) breaks it: no gap is left.
 TEST_CASE("jittered sampling converges on the exact reference within the filters' gaps" *
-          doctest::description("points: 1; exercise: ch08-error")) {
+          doctest::description("points: 4; exercise: ch08-error")) {
     // The reference has no samples to add: it is exact up to rounding, and what could be
     // wrong is its bookkeeping of the pieces. So it is checked against an independent
     // estimate of the same mean, n x n jittered samples per pixel (seeded: the same in
@@ -199,9 +199,13 @@ TEST_CASE("jittered sampling converges on the exact reference within the filters
                 distance[n] = std::max(distance[n], std::abs(sampled[n][name] - error));
             }
         }
-        for (const auto& [name, error] : exact) {
+        for (const auto& one : exact) {
+            const std::string& name = one.first;
+            const double error = one.second;
             moved = std::max(moved, std::abs(sampled[32][name] - sampled[16][name]));
-            for (const auto& [other, other_error] : exact) {
+            for (const auto& another : exact) {
+                const std::string& other = another.first;
+                const double other_error = another.second;
                 if (error < other_error) { // the same order against the estimate
                     CHECK_MESSAGE(sampled[32][name] < sampled[32][other],
                                   scene.name << ": " << name << " and " << other);
@@ -241,7 +245,7 @@ TEST_CASE("jittered sampling converges on the exact reference within the filters
 
 TEST_CASE(
     "on the facing wall bilinear matches the reference exactly and nearest does not" *
-    doctest::description("points: 1; exercise: ch08-error")) {
+    doctest::description("points: 3; exercise: ch08-error")) {
     // Two pixels per texel, every other pixel centre on a texel edge: the pixel straddles
     // the edge half and half, which is exactly bilinear's 1/2, 1/2 at the tie.
     const std::map<std::string, double> e = errors_on(wall_facing_scene(), true);
@@ -251,7 +255,7 @@ TEST_CASE(
 }
 
 TEST_CASE("on the horizon the error falls filter by filter, nearest to anisotropic" *
-          doctest::description("points: 2; exercise: ch08-error")) {
+          doctest::description("points: 7; exercise: ch08-error")) {
     const std::map<std::string, double> e = errors_on(horizon_floor_scene());
     CHECK(e.at("bilinear") < e.at("nearest"));
     CHECK(e.at("mip-nearest") < e.at("bilinear"));
@@ -267,7 +271,7 @@ TEST_CASE("on the horizon the error falls filter by filter, nearest to anisotrop
 
 TEST_CASE(
     "on the random field anisotropic beats trilinear, which beats bilinear and nearest" *
-    doctest::description("points: 1; exercise: ch08-error")) {
+    doctest::description("points: 3; exercise: ch08-error")) {
     const std::map<std::string, double> e = errors_on(random_field_scene());
     CHECK(e.at("bilinear") < e.at("nearest"));
     CHECK(e.at("mip-nearest") < e.at("nearest"));
@@ -330,13 +334,15 @@ TEST_CASE("per-span derivatives stay within the derived bound on every scene") {
 
 // The stub of ch08-error (every error 0) breaks it.
 TEST_CASE("the elliptical weighted average is the closest filter to the reference" *
-          doctest::description("points: 1; exercise: ch08-error")) {
+          doctest::description("points: 3; exercise: ch08-error")) {
     // Heckbert's EWA weights the texels of the whole footprint by a Gaussian of the
     // pixel's second moments: on the minified pixels of the horizon and the random field
     // it is closer to the reference than every other filter, anisotropic-16 included.
     for (const AccuracyScene& scene : {horizon_floor_scene(), random_field_scene()}) {
         const std::map<std::string, double> e = errors_on(scene);
-        for (const auto& [name, error] : e) {
+        for (const auto& one : e) {
+            const std::string& name = one.first;
+            const double error = one.second;
             if (name != "ewa") {
                 CHECK_MESSAGE(e.at("ewa") < error,
                               scene.name << ": ewa against " << name);
@@ -363,7 +369,7 @@ TEST_CASE("the elliptical weighted average of a constant texture is that constan
 
 // The stub of ch08-derivatives (no footprint) minifies nothing, so this grades it too.
 TEST_CASE("the oblique wall of the exercise: every pixel minified, at most 4 probes" *
-          doctest::description("points: 1; exercise: ch08-derivatives")) {
+          doctest::description("points: 3; exercise: ch08-derivatives")) {
     // What the exercise's solution relies on: the wall at 60 degrees minifies every
     // pixel it covers, and its footprint is never more than 4 times longer than wide,
     // so 4 probes are all the anisotropic filter uses (16 add nothing).

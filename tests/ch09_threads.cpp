@@ -103,8 +103,7 @@ std::vector<FlatTriangle> flat(const std::vector<std::array<FixedPoint2, 3>>& se
 
 } // namespace
 
-TEST_CASE("a kept tiled renderer draws the teaching path's picture with 1 to 7 threads" *
-          doctest::description("points: 2")) {
+TEST_CASE("a kept tiled renderer draws the teaching path's picture with 1 to 7 threads") {
     // The random set (overlapping triangles of every size, many crossing tiles), chapter
     // 2's jittered mesh and its fan of slivers, each drawn flat and depth-tested by one
     // renderer per thread count, reused for every set, both target sizes (so its bins
@@ -129,8 +128,12 @@ TEST_CASE("a kept tiled renderer draws the teaching path's picture with 1 to 7 t
     for (const int threads : {1, 2, 3, 7}) {
         TiledRenderer renderer(threads);
         CHECK(renderer.threads() == threads);
-        for (const auto& [width, height] : {std::pair{320, 240}, std::pair{130, 70}}) {
-            for (const auto& [name, tris] : sets) {
+        for (const auto& size : {std::pair{320, 240}, std::pair{130, 70}}) {
+            const int width = size.first;
+            const int height = size.second;
+            for (const auto& set : sets) {
+                const char* name = set.first;
+                const std::vector<FlatTriangle>& tris = set.second;
                 for (const bool with_depth : {false, true}) {
                     INFO(threads << " threads, " << std::string(name) << ", " << width
                                  << " x " << height << ", depth test: " << with_depth);

@@ -1019,6 +1019,20 @@ local function render_page(doc)
 end
 
 local teacher = os.getenv("EP_TEACHER") == "1"
+
+-- `kit-points-per-mark: N` of book/metadata.yaml: what a mark is worth in a kit.
+local points_per_mark
+local function kit_points_per_mark()
+  if not points_per_mark then
+    local text = read_file(root .. "/book/metadata.yaml") or ""
+    points_per_mark = tonumber(text:match("\nkit%-points%-per%-mark:%s*(%d+)") or "")
+    if not points_per_mark then
+      io.stderr:write("book/metadata.yaml: error: no line 'kit-points-per-mark: N'\n")
+      os.exit(1)
+    end
+  end
+  return points_per_mark
+end
 local exercise_kinds = { derive = true, implement = true, measure = true }
 
 -- []{.exercise kind=K marks=N} -> "[K, N marks]", after checking both.
@@ -1032,8 +1046,13 @@ local function exercise_tag(span, dir, number)
     fail(dir, "{.exercise", string.format("exercise %d: marks (its difficulty) must be 1, 2 "
       .. "or 3, not '%s'", number, tostring(span.attributes.marks)))
   end
-  local text = string.format("[%s, %d mark%s]", kind, marks, marks == 1 and "" or "s")
-  return pandoc.Span({ pandoc.Strong({ pandoc.Str(text) }) }, { class = "exercise-tag" })
+  local text = string.format("[%s, %d mark%s", kind, marks, marks == 1 and "" or "s")
+  if span.attributes.region then
+    -- What the chapter's kit gives for it: `make-kit check` (test kits_points) proves
+    -- that the tests naming the region declare exactly this many points.
+    text = text .. string.format("; %d points in the kit", marks * kit_points_per_mark())
+  end
+  return pandoc.Span({ pandoc.Strong({ pandoc.Str(text .. "]") }) }, { class = "exercise-tag" })
 end
 
 -- A solution: dropped (student book) or headed "Solution." (teacher's edition).

@@ -4,7 +4,8 @@
 #         [-DVERSION=...] -P assignment.cmake
 # writes OUTPUT/chNN/ (the kit, made by make-kit), OUTPUT/chNN.zip (the kit in a folder
 # chNN, for students) and OUTPUT/chNN-gradescope.zip (the kit's files at the root of the
-# zip, where Gradescope wants setup.sh and run_autograder).
+# zip, where Gradescope wants setup.sh and run_autograder). The kit is stamped with
+# VERSION and the commit SOURCE is at (source_commit.cmake; "unknown" outside git).
 foreach(required MAKE_KIT SOURCE CHAPTER OUTPUT)
   if(NOT DEFINED ${required})
     message(FATAL_ERROR "assignment.cmake: -D${required}=... is required")
@@ -15,9 +16,13 @@ if(NOT DEFINED VERSION)
 endif()
 set(kit ch${CHAPTER})
 file(MAKE_DIRECTORY ${OUTPUT})
+# The commit the kit is made from, read now (when the kit is made), not at configure time.
+include(${CMAKE_CURRENT_LIST_DIR}/source_commit.cmake)
+source_commit(${SOURCE} commit)
 execute_process(
   COMMAND ${MAKE_KIT} kit --source ${SOURCE} --template ${CMAKE_CURRENT_LIST_DIR}/template
           --chapter ${CHAPTER} --out ${OUTPUT}/${kit} --version ${VERSION}
+          --commit ${commit}
   RESULT_VARIABLE status)
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "assignment-${kit}: make-kit failed (see above)")

@@ -2,8 +2,10 @@
 //
 // Usage:
 //   make-kit kit --source ROOT --template DIR --chapter NN --out DIR [--version V]
+//                [--commit C]
 //   make-kit restore --source ROOT --kit DIR
 //   make-kit list --source ROOT
+//   make-kit check --source ROOT [--chapter NN]
 //
 // `kit` writes DIR as a self-contained CMake project: of src/, the library layers that
 // chapter NN's code includes and those beneath them (src/exactpixels/layers.txt), the
@@ -24,6 +26,12 @@
 // `restore` puts the solution of every exercise back between those comments in a kit
 // (the teacher's copy; the kit tests use it to prove the stubs are the only difference).
 // `list` prints every exercise region and the tests that declare points for it.
+// `check` proves that the book's marks and the kits' points agree, for every chapter (or
+// chapter NN): an exercise with a region is worth `kit-points-per-mark`
+// (book/metadata.yaml) points per mark of its tag in the chapter, summed over the tests
+// that name it; every region has a tag and every tag's region exists; a test that names
+// no exercise declares no points (it would give points for nothing). It prints every
+// disagreement, with file and line, and exits 1 if there is one.
 //
 // The kit is checked while it is made: every exercise region of chapter NN must be named
 // by a test of chapter NN with points > 0, and every exercise a test names must exist.
@@ -727,10 +735,125 @@ std::string time_limit(const fs::path& template_dir) {
     return text.substr(at + name.size(), end - at - name.size());
 }
 
+/// The marks of each exercise region the chapter's exercise tags name, with the line of
+/// the tag (for messages).
+struct TagMarks {
+    int marks = 0;
+    std::size_t line = 0;
+};
+std::map<std::string, TagMarks> region_marks(const fs::path& chapter_md) {
+    std::map<std::string, TagMarks> marks;
+    if (!fs::exists(chapter_md)) {
+        return marks;
+    }
+    const std::string text = read_text(chapter_md);
+    for (auto at = text.find(exercise_tag); at != std::string::npos;
+         at = text.find(exercise_tag, at + 1)) {
+        std::size_t end = 0;
+        const auto attributes = tag_attributes(text, at + exercise_tag.size(), &end);
+        const auto region = attributes.find("region");
+        const auto value = attributes.find("marks");
+        if (region != attributes.end()) {
+            const std::string m = value == attributes.end() ? "" : value->second;
+            const bool whole = !m.empty() && m.size() <= 2 &&
+                               std::all_of(m.begin(), m.end(), [](char c) {
+                                   return std::isdigit(static_cast<unsigned char>(c));
+                               });
+            marks[region->second] = {whole ? std::stoi(m) : 0, line_of(text, at)};
+        }
+    }
+    return marks;
+}
+
+/// `kit-points-per-mark: N` from book/metadata.yaml: what one mark of the book is worth
+/// in a kit.
+int points_per_mark(const fs::path& root) {
+    const fs::path file = root / "book/metadata.yaml";
+    const std::string key = "kit-points-per-mark:";
+    for (const auto& line : split_lines(read_text(file))) {
+        if (starts_with(line, key)) {
+            const std::string value(trim(std::string_view(line).substr(key.size())));
+            if (!value.empty() && value.size() <= 3 &&
+                std::all_of(
+                    value.begin(), value.end(),
+                    [](char c) { return std::isdigit(static_cast<unsigned char>(c)); }) &&
+                std::stoi(value) > 0) {
+                return std::stoi(value);
+            }
+            throw KitError(file.string() + ": " + key + " '" + value +
+                           "' is not a whole number above 0");
+        }
+    }
+    throw KitError(file.string() + ": no line '" + key + " N'");
+}
+
+/// Every disagreement between chapter NN's exercise tags and its tests' points (see
+/// `check` at the top of the file), one message each.
+std::vector<std::string>
+points_disagreements(const fs::path& root, const std::string& number,
+                     const std::map<std::string, Region>& regions, int per_mark) {
+    std::vector<std::string> problems;
+    const std::string chapter = "ch" + number;
+    const auto folder = chapter_folder(root, number);
+    const fs::path chapter_md = folder ? *folder / "chapter.md" : fs::path{};
+    const auto tags =
+        folder ? region_marks(root / chapter_md) : std::map<std::string, TagMarks>{};
+    std::map<std::string, int> points;
+    for (const auto& entry : fs::directory_iterator(root / "tests")) {
+        const std::string name = entry.path().filename().string();
+        if (!starts_with(name, chapter + "_") || !is_code_file(entry.path())) {
+            continue;
+        }
+        for (const auto& test :
+             test_declarations(root, fs::relative(entry.path(), root))) {
+            if (test.exercise.empty() && test.points > 0 && !test.skipped) {
+                problems.push_back(where(test.file, test.line) + ": test \"" + test.name +
+                                   "\" declares " + std::to_string(test.points) +
+                                   " points but names no exercise: points belong to an "
+                                   "exercise of the book");
+            } else if (!test.skipped && !test.exercise.empty()) {
+                points[test.exercise] += test.points;
+            }
+        }
+    }
+    for (const auto& [id, region] : regions) {
+        if (region.chapter() != chapter) {
+            continue;
+        }
+        const auto tag = tags.find(id);
+        if (tag == tags.end()) {
+            problems.push_back(where(region.file, region.line) + ": exercise " + id +
+                               " has no tag []{.exercise ... region=" + id + "} in " +
+                               (folder ? chapter_md.generic_string()
+                                       : "a chapter folder of chapter " + number));
+            continue;
+        }
+        const int want = per_mark * tag->second.marks;
+        if (points[id] != want) {
+            problems.push_back(
+                where(chapter_md, tag->second.line) + ": exercise " + id + " is " +
+                std::to_string(tag->second.marks) + " mark" +
+                (tag->second.marks == 1 ? "" : "s") + " in the book, so " +
+                std::to_string(want) + " points in the kit (" + std::to_string(per_mark) +
+                " a mark, book/metadata.yaml), but the tests of " + chapter +
+                " that name it declare " + std::to_string(points[id]));
+        }
+    }
+    for (const auto& [id, tag] : tags) {
+        const auto region = regions.find(id);
+        if (region == regions.end() || region->second.chapter() != chapter) {
+            problems.push_back(where(chapter_md, tag.line) + ": the tag names region " +
+                               id + ", which is no exercise region of chapter " + number);
+        }
+    }
+    return problems;
+}
+
 struct Options {
     std::string command;
     fs::path source, template_dir, out, kit;
     std::string chapter, version = "0.0.0";
+    std::string commit = "unknown"; ///< of the source tree, stamped on the kit
 };
 
 /// The kit's manifest: the files make-kit wrote, one per line after a comment line.
@@ -901,21 +1024,41 @@ void make_kit(const Options& options) {
         book = "(The chapter text has no exercise section yet.)\n";
     }
     const bool has_example = folder && fs::exists(root / *folder / "example.cpp");
-    // The Debian packages: the book's base list, plus toml++ if the kit has the scene
-    // layer (the only one that reads TOML).
+    // The packages: the book's base list, plus toml++ and tinyobjloader if the kit has
+    // the scene layer (the only one that reads TOML scenes and OBJ models). Debian's
+    // names (Ubuntu's and WSL's too), and Homebrew's formulae for macOS (checked against
+    // homebrew-core: it has no formula for stb or tinyobjloader).
     std::string packages = "cmake g++ make pkg-config doctest-dev libglm-dev libstb-dev "
                            "libpng-dev libfmt-dev libcli11-dev";
-    if (std::any_of(kit.begin(), kit.end(), [](const auto& file) {
-            return starts_with(file.first.generic_string(), "src/exactpixels/scene/");
-        })) {
-        packages += " libtomlplusplus-dev";
+    std::string brew_packages = "cmake pkgconf doctest glm libpng fmt cli11";
+    const bool scene = std::any_of(kit.begin(), kit.end(), [](const auto& file) {
+        return starts_with(file.first.generic_string(), "src/exactpixels/scene/");
+    });
+    if (scene) {
+        packages += " libtomlplusplus-dev libtinyobjloader-dev";
+        brew_packages += " tomlplusplus";
     }
+    const std::string brew_missing =
+        scene ? "Homebrew has no formula for two of them. For stb, put the single header "
+                "`stb_image_write.h` (from the stb project) into a folder and configure "
+                "with "
+                "`-DSTB_INCLUDE_DIR=that/folder`. For tinyobjloader, build and install "
+                "release 2.0 from its source with CMake and "
+                "`-DTINYOBJLOADER_USE_DOUBLE=ON` "
+                "(the kit links `tinyobjloader::tinyobjloader_double`)."
+              : "Homebrew has no formula for stb: put the single header "
+                "`stb_image_write.h` (from the stb project) into a folder and configure "
+                "with "
+                "`-DSTB_INCLUDE_DIR=that/folder`.";
     const std::map<std::string, std::string> values = {
         {"@TIME_LIMIT@", time_limit(options.template_dir)},
         {"@PACKAGES@", packages},
+        {"@BREW_PACKAGES@", brew_packages},
+        {"@BREW_MISSING@", brew_missing},
         {"@CHAPTER@", number},
         {"@TITLE@", chapter_title(chapter_md)},
         {"@VERSION@", options.version},
+        {"@COMMIT@", options.commit},
         {"@EXERCISE_TABLE@", table},
         {"@BOOK_EXERCISES@", book},
         {"@TOTAL_POINTS@", std::to_string(total)},
@@ -1039,10 +1182,50 @@ void list_regions(const Options& options) {
     }
 }
 
+/// `check`: every chapter's marks and points agree (or chapter --chapter's).
+int check_points(const Options& options) {
+    const fs::path root = fs::canonical(options.source);
+    const auto regions = all_regions(root);
+    const int per_mark = points_per_mark(root);
+    std::set<std::string> numbers;
+    if (!options.chapter.empty()) {
+        numbers.insert(chapter_number(options.chapter));
+    } else {
+        for (const auto& entry : fs::directory_iterator(root / "chapters")) {
+            const std::string name = entry.path().filename().string();
+            if (entry.is_directory() && name.size() > 3 && name[2] == '-' &&
+                std::isdigit(static_cast<unsigned char>(name[0])) &&
+                std::isdigit(static_cast<unsigned char>(name[1]))) {
+                numbers.insert(name.substr(0, 2));
+            }
+        }
+        for (const auto& [id, region] : regions) {
+            numbers.insert(id.substr(2, 2));
+        }
+    }
+    std::size_t count = 0;
+    for (const auto& number : numbers) {
+        for (const auto& problem :
+             points_disagreements(root, number, regions, per_mark)) {
+            std::cerr << problem << "\n";
+            ++count;
+        }
+    }
+    if (count > 0) {
+        std::cerr << "make-kit: the book's marks and the kits' points disagree in "
+                  << count << " place" << (count == 1 ? "" : "s") << "\n";
+        return 1;
+    }
+    std::cout << "make-kit: marks and points agree in " << numbers.size() << " chapter"
+              << (numbers.size() == 1 ? "" : "s") << " (" << per_mark
+              << " points a mark)\n";
+    return 0;
+}
+
 Options parse(int argc, char** argv) {
     if (argc < 2) {
         throw KitError(
-            "usage: make-kit kit|restore|list --source ROOT [options]; see the "
+            "usage: make-kit kit|restore|list|check --source ROOT [options]; see the "
             "top of src/kits/make_kit.cpp");
     }
     Options options;
@@ -1065,6 +1248,8 @@ Options parse(int argc, char** argv) {
             options.kit = value;
         } else if (flag == "--version") {
             options.version = value;
+        } else if (flag == "--commit") {
+            options.commit = value;
         } else {
             throw KitError("unknown option " + flag);
         }
@@ -1075,6 +1260,17 @@ Options parse(int argc, char** argv) {
     if (options.command == "kit" && (options.template_dir.empty() ||
                                      options.chapter.empty() || options.out.empty())) {
         throw KitError("make-kit kit wants --template, --chapter and --out");
+    }
+    // Both go into the kit's CMakeLists.txt and a C++ string: plain words only.
+    for (const std::string* stamp : {&options.version, &options.commit}) {
+        if (stamp->empty() || !std::all_of(stamp->begin(), stamp->end(), [](char c) {
+                return std::isalnum(static_cast<unsigned char>(c)) || c == '.' ||
+                       c == '+' || c == '-';
+            })) {
+            throw KitError("--version and --commit want letters, digits, '.', '+' and "
+                           "'-' only, not '" +
+                           *stamp + "'");
+        }
     }
     if (options.command == "restore" && options.kit.empty()) {
         throw KitError("make-kit restore wants --kit");
@@ -1093,9 +1289,11 @@ int main(int argc, char** argv) {
             restore_kit(options);
         } else if (options.command == "list") {
             list_regions(options);
+        } else if (options.command == "check") {
+            return check_points(options);
         } else {
             throw KitError("unknown command '" + options.command +
-                           "' (kit, restore, list)");
+                           "' (kit, restore, list, check)");
         }
     } catch (const std::exception& error) {
         std::cerr << "make-kit: " << error.what() << "\n";

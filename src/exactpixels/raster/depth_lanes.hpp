@@ -131,7 +131,7 @@ void depth_run(DepthPlane plane, Rgba8 colour, int y, int x_begin, int x_end,
             all, depth_row + x_begin, colour_row + x_begin, colour);
         return;
     }
-    Lanes four(row, plane.dzdx, x_begin);
+    Lanes four{row, plane.dzdx, x_begin};
     int x = x_begin;
     for (; x + 4 <= x_end; x += 4, four.next()) {
         four.test(0xfu, depth_row + x, colour_row + x, colour);
@@ -139,7 +139,7 @@ void depth_run(DepthPlane plane, Rgba8 colour, int y, int x_begin, int x_end,
     if (x < x_end) {
         const int last = x_end - 4;                        // overlaps pixels done,
         const unsigned rest = (0xfu << (x - last)) & 0xfu; // which it keeps out
-        Lanes(row, plane.dzdx, last)
+        Lanes{row, plane.dzdx, last}
             .test(rest, depth_row + last, colour_row + last, colour);
     }
 }
@@ -153,7 +153,7 @@ template <class Lanes = DepthLanes4>
 void depth_mask_row(DepthPlane plane, Rgba8 colour, int y, int x, std::uint8_t bits,
                     int width, float* depth_row, Rgba8* colour_row) {
     const float row = plane.z0 + static_cast<float>(y) * plane.dzdy; // as at(x, y)
-    Lanes four(row, plane.dzdx, x);
+    Lanes four{row, plane.dzdx, x};
     for (int half = 0; half < 8; half += 4, four.next()) {
         const unsigned keep = (static_cast<unsigned>(bits) >> half) & 0xfu;
         const int left = x + half;

@@ -725,6 +725,14 @@ std::string join(const std::vector<std::string>& lines) {
     return text;
 }
 
+#ifndef EXACTPIXELS_KIT_STAMP
+#define EXACTPIXELS_KIT_STAMP "no kit (the book's own build)"
+#endif
+/// The kit this grader came with, "chapter NN kit, version V, commit C" (make-kit stamps
+/// it into the kit's CMakeLists.txt): printed first, and the first line of results.json's
+/// "output", so that a grade always says which kit gave it.
+const std::string kit_stamp = "Graded by the " EXACTPIXELS_KIT_STAMP;
+
 /// The grade: the grade reporter's lines and Gradescope's results.json.
 struct Report {
     std::string lines, json;
@@ -805,7 +813,8 @@ Report report(const std::vector<Case>& cases, const std::string& summary_note,
         "TOTAL " + std::to_string(earned) + "/" + std::to_string(declared) + " points; " +
         std::to_string(passed) + "/" + std::to_string(counted) + " test cases passed";
     lines += total + "\n";
-    const std::string output = summary_note.empty() ? total : summary_note + "\n" + total;
+    const std::string output =
+        kit_stamp + "\n" + (summary_note.empty() ? total : summary_note + "\n" + total);
     Report result;
     result.lines = lines;
     result.json = "{\n  \"score\": " + std::to_string(earned) +
@@ -936,6 +945,7 @@ int grade(const Options& options) {
         }
     } cleanup{scratch};
 
+    std::cout << kit_stamp << "\n" << std::flush;
     // An earlier grade must not stand for this one if this one cannot be written.
     fs::remove(options.grade_file);
     if (!options.results_json.empty()) {
