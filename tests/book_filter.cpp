@@ -30,6 +30,8 @@ struct FixtureBook {
         fs::create_directories(root / "tests");
         fs::create_directories(root / "figures");
         fs::create_directories(root / "out" / "source");
+        fs::create_directories(root / "book");
+        write("book/metadata.yaml", "title: Demo\nkit-points-per-mark: 10\n");
         write("src/demo.hpp", "int before;\n"
                               "//> answer\n"
                               "    int answer() {\n"
