@@ -7,7 +7,10 @@
 #   teacher  the teacher's edition (`book-teacher`): the public book plus the worked
 #            solutions.
 # The course and teacher's editions say which they are on every HTML page (a banner) and
-# at the foot of every PDF page, so that neither is mistaken for the other.
+# at the foot of every PDF page, so that neither is mistaken for the other. Every edition's
+# title (the contents page, the PDF's title page) names the book's edition
+# (`book-edition` in book/metadata.yaml, whose changes book/CHANGELOG.md lists), VERSION
+# (the project's) and the commit of ROOT (src/kits/source_commit.cmake), as the kits do.
 cmake_minimum_required(VERSION 3.25)
 
 function(run_or_fail what)
@@ -34,6 +37,24 @@ foreach(file IN LISTS chapter_files)
   set(number_${dir} "${number}")
 endforeach()
 string(REPLACE ";" " " all_dirs "${dirs}")
+
+# "Edition 1, version 0.1.0, commit 0123456789ab": which book this is, for the title.
+# The changelog's newest entry ("## Edition N, version V ...") must be this edition and
+# version: a new edition or version without its entry fails the build.
+file(STRINGS ${ROOT}/book/metadata.yaml edition_entry REGEX "^book-edition:")
+string(REGEX REPLACE "^book-edition: *\"?([^\"]*)\"? *$" "\\1" book_edition "${edition_entry}")
+if(NOT book_edition MATCHES "^[0-9]+$")
+  message(FATAL_ERROR "book/metadata.yaml: no line 'book-edition: N' (found '${edition_entry}')")
+endif()
+file(STRINGS ${ROOT}/book/CHANGELOG.md newest REGEX "^## " LIMIT_COUNT 1)
+if(NOT newest MATCHES "^## Edition ${book_edition}, version ${VERSION}[ ,(]")
+  message(FATAL_ERROR "book/CHANGELOG.md: the newest entry is '${newest}', not "
+                      "'## Edition ${book_edition}, version ${VERSION} ...' (book-edition in "
+                      "book/metadata.yaml, the version in CMakeLists.txt)")
+endif()
+include(${ROOT}/src/kits/source_commit.cmake)
+source_commit(${ROOT} book_commit)
+set(edition_line "Edition ${book_edition}, version ${VERSION}, commit ${book_commit}")
 
 file(MAKE_DIRECTORY ${BOOK_DIR} ${BOOK_DIR}/source ${BOOK_DIR}/latex/figures)
 file(COPY_FILE ${ROOT}/book/style.css ${BOOK_DIR}/style.css)
@@ -97,12 +118,13 @@ endforeach()
 
 # Pages that are not chapters (book/NAME.md): HTML pages of their own, and appendices of
 # the PDF in this order.
-set(pages build-and-run teaching glossary)
+set(pages build-and-run teaching assessment glossary CHANGELOG)
 
 # The contents page: every chapter with its numbered sections (the filter reads them from
 # the chapters), then the appendix pages.
 set(index "---\npagetitle: Contents\n---\n\n# Exact Pixels\n\n")
 string(APPEND index "*Triangle rasterization and texture mapping, every pixel accounted for.*\n\n")
+string(APPEND index "[${edition_line}]{.edition-line} ([changes](CHANGELOG.html))\n\n")
 string(APPEND index "::: contents\n:::\n\n")
 string(APPEND index "::: appendices\n")
 foreach(page IN LISTS pages)
@@ -163,7 +185,7 @@ run_or_fail("LaTeX of the book"
   ${PANDOC} --from=markdown --to=latex --standalone --top-level-division=chapter
   --number-sections --toc --toc-depth=2 --highlight-style=pygments
   --lua-filter=${ROOT}/book/filters/exactpixels.lua ${citation_options}
-  --metadata-file=${ROOT}/book/metadata.yaml
+  --metadata-file=${ROOT}/book/metadata.yaml "--metadata=date:${edition_line}"
   --include-in-header=${ROOT}/book/latex/header.tex
   --include-in-header=${BOOK_DIR}/latex/edition.tex
   --include-after-body=${BOOK_DIR}/latex/back-matter.tex

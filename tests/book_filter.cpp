@@ -120,11 +120,12 @@ TEST_CASE(
     "the course edition shows an exercise region as its stub, named by its number") {
     FixtureBook book;
     book.write("chapters/07-demo/chapter.md",
-               title +
-                   "```{.snippet file=\"src/demo.hpp\" name=\"answer\"}\n```\n\n"
-                   "## Notes\n\n::: summary\n- the answer\n:::\n\n## Exercises\n\n"
-                   "1. []{.exercise kind=derive marks=1} Think.\n"
-                   "2. []{.exercise kind=implement marks=2 region=ch07-demo} Write.\n");
+               title + "```{.snippet file=\"src/demo.hpp\" name=\"answer\"}\n```\n\n"
+                       "## Notes\n\n::: summary\n- the answer\n:::\n\n## Exercises\n\n"
+                       "1. []{.exercise kind=derive marks=1 difficulty=easy "
+                       "objectives=\"1\"} Think.\n"
+                       "2. []{.exercise kind=implement marks=2 region=ch07-demo "
+                       "difficulty=medium objectives=\"1\"} Write.\n");
     const auto course = book.run_filter("chapters/07-demo/chapter.md", "html",
                                         "EP_CHAPTERS=07-demo EP_COURSE=1");
     REQUIRE(course.exit_code == 0);
@@ -387,7 +388,8 @@ TEST_CASE(
         has(stray.err, "chapter.md:9: error: fence text reaches the page: '```{.text}"));
     const auto in_solution =
         book.render(title + "## Exercises\n\n"
-                            "1. []{.exercise kind=derive marks=1} Do.\n\n"
+                            "1. []{.exercise kind=derive marks=1 difficulty=easy "
+                            "objectives=\"1\"} Do.\n\n"
                             "   ::: solution\n"
                             "   Done.\n"
                             "   ::: Then more.\n");
@@ -561,4 +563,51 @@ TEST_CASE(
     CHECK(bad.exit_code != 0);
     CHECK(bad.err.find("claim contradicted by chapters/07-demo/run.md") !=
           std::string::npos);
+}
+
+TEST_CASE("an exercise's tag names its difficulty, the objectives it checks and, for a "
+          "kit's exercise, its points there; a tag without them fails") {
+    FixtureBook book;
+    const std::string two_objectives =
+        "# Demo\n\n::: objectives\n- read the demo\n- write the demo\n:::\n\nText.\n\n"
+        "::: summary\n- the demo\n:::\n\n## Exercises\n\n";
+    const auto good = book.render(
+        two_objectives + "1. []{.exercise kind=derive marks=1 difficulty=easy "
+                         "objectives=\"2\"} Think.\n"
+                         "2. []{.exercise kind=implement marks=2 region=ch07-demo "
+                         "difficulty=hard objectives=\"1,2\"} Write.\n");
+    INFO(good.err);
+    REQUIRE(good.exit_code == 0);
+    // Pandoc wraps its output lines: one space for every run of white space.
+    std::string text;
+    for (const char c : without_tags(good.out)) {
+        const bool space = c == ' ' || c == '\n';
+        if (!space || text.empty() || text.back() != ' ') {
+            text += space ? ' ' : c;
+        }
+    }
+    CHECK(text.find("[derive, 1 mark, easy; objective 2]") != std::string::npos);
+    // Ten points a mark, from book/metadata.yaml: make-kit check holds the kit to it.
+    CHECK(
+        text.find("[implement, 2 marks, hard; 20 points in the kit; objectives 1, 2]") !=
+        std::string::npos);
+    // The objectives are numbered, as the tags name them.
+    CHECK(good.out.find("<ol") != std::string::npos);
+
+    const auto no_difficulty =
+        book.render(two_objectives +
+                    "1. []{.exercise kind=derive marks=1 objectives=\"1\"} Think.\n");
+    CHECK(no_difficulty.exit_code != 0);
+    CHECK(no_difficulty.err.find("exercise 1: difficulty must be easy, medium or hard, "
+                                 "not 'nil'") != std::string::npos);
+    const auto no_objectives = book.render(
+        two_objectives + "1. []{.exercise kind=derive marks=1 difficulty=easy} Think.\n");
+    CHECK(no_objectives.exit_code != 0);
+    CHECK(no_objectives.err.find("exercise 1: objectives=\"\" must list") !=
+          std::string::npos);
+    const auto unknown = book.render(
+        two_objectives + "1. []{.exercise kind=derive marks=1 difficulty=easy "
+                         "objectives=\"1,3\"} Think.\n");
+    CHECK(unknown.exit_code != 0);
+    CHECK(unknown.err.find("(1 to 2) of the chapter's objectives") != std::string::npos);
 }

@@ -1,8 +1,10 @@
-// The teacher's edition and the student book: every exercise's worked solution (a
-// `::: solution` block in a chapter's source, see book/AUTHORING.md) appears in the
-// teacher's edition (build/book-teacher/) and nowhere in the student book (build/book/:
-// its HTML pages and the LaTeX source of its PDF). The kits are checked by the kit tests
-// (tests/assignments_kits.cpp), which prove no solution text reaches a kit.
+// The teacher's edition and the students' books: every exercise's worked solution and
+// every exam answer and rubric (a `::: solution` block in a chapter's source or in a page
+// of book/, see book/AUTHORING.md) appears in the teacher's edition (build/book-teacher/)
+// and nowhere in the public book (build/book/) or the course edition
+// (build/book-course/): their HTML pages and the LaTeX source of their PDFs. The kits are
+// checked by the kit tests (tests/assignments_kits.cpp), which prove no solution text
+// reaches a kit.
 //
 // A solution is recognised by phrases of its plain text: runs of at least six words with
 // no mathematics, code or markup, compared with the outputs' text after tags and extra
@@ -76,15 +78,21 @@ struct Solution {
     std::vector<std::string> phrases;
 };
 
-/// Every `::: solution` block of every chapter, with its phrases of six or more plain
-/// words (letters, digits, commas, apostrophes between words).
+/// Every `::: solution` block of every chapter and of every page of book/ (the exam
+/// answers and rubrics), with its phrases of six or more plain words (letters, digits,
+/// commas, apostrophes between words).
 std::vector<Solution> solutions() {
     std::vector<Solution> found;
-    const fs::path chapters = fs::path(EXACTPIXELS_SOURCE_DIR) / "chapters";
+    const fs::path source = EXACTPIXELS_SOURCE_DIR;
     std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(chapters)) {
+    for (const auto& entry : fs::directory_iterator(source / "chapters")) {
         if (fs::exists(entry.path() / "chapter.md")) {
             files.push_back(entry.path() / "chapter.md");
+        }
+    }
+    for (const auto& entry : fs::directory_iterator(source / "book")) {
+        if (entry.path().extension() == ".md") {
+            files.push_back(entry.path());
         }
     }
     std::sort(files.begin(), files.end());
@@ -92,23 +100,37 @@ std::vector<Solution> solutions() {
     for (const auto& file : files) {
         std::istringstream in(read_text(file));
         std::string line, body;
-        int line_number = 0, start = 0;
+        int line_number = 0, start = 0, depth = 0;
+        bool in_code = false;
         bool inside = false;
         while (std::getline(in, line)) {
             ++line_number;
             const auto first = line.find_first_not_of(' ');
             const std::string t = first == std::string::npos ? "" : line.substr(first);
+            if (!inside && t.rfind("```", 0) == 0) {
+                in_code = !in_code; // an example of the markup (book/AUTHORING.md)
+                continue;
+            }
+            if (in_code) {
+                continue;
+            }
             if (!inside && (t == "::: solution" || t == "::: {.solution}")) {
                 inside = true;
+                depth = 0;
                 start = line_number;
                 body.clear();
+            } else if (inside && t.rfind(":::", 0) == 0 && t != ":::") {
+                ++depth; // a div inside the solution (a rubric)
+            } else if (inside && t == ":::" && depth > 0) {
+                --depth;
             } else if (inside && t == ":::") {
                 inside = false;
                 // Mathematics and code are not compared: the outputs render them.
                 body = std::regex_replace(
                     body, std::regex("\\$[^$]*\\$|`[^`]*`|@[a-z:-]+"), " | ");
-                Solution solution{file.parent_path().filename().string() +
-                                      "/chapter.md:" + std::to_string(start),
+                Solution solution{file.parent_path().filename().string() + "/" +
+                                      file.filename().string() + ":" +
+                                      std::to_string(start),
                                   {}};
                 for (std::sregex_iterator it(body.begin(), body.end(), phrase), end;
                      it != end; ++it) {
@@ -137,27 +159,38 @@ std::string book_text(const fs::path& book) {
 
 } // namespace
 
-TEST_CASE("the teacher's edition holds every worked solution, the student book none") {
-    const fs::path student = fs::path(EXACTPIXELS_BINARY_DIR) / "book";
-    const fs::path teacher = fs::path(EXACTPIXELS_BINARY_DIR) / "book-teacher";
-    REQUIRE(fs::exists(student / "latex/exact-pixels.tex"));
+TEST_CASE("the teacher's edition holds every worked solution, exam answer and rubric; "
+          "the public book and the course edition none") {
+    const fs::path binary = EXACTPIXELS_BINARY_DIR;
+    const fs::path teacher = binary / "book-teacher";
     REQUIRE(fs::exists(teacher / "latex/exact-pixels.tex"));
     const auto all = solutions();
     REQUIRE(!all.empty());
-    const std::string student_text = book_text(student);
+    // Exam answers and rubrics too, not only the chapters' solutions.
+    CHECK(std::count_if(all.begin(), all.end(), [](const Solution& s) {
+              return s.where.rfind("book/", 0) == 0;
+          }) >= 20);
     const std::string teacher_text = book_text(teacher);
-    int phrases = 0;
-    for (const auto& solution : all) {
-        CAPTURE(solution.where);
-        CHECK(!solution.phrases.empty()); // every solution can be recognised
-        for (const auto& phrase : solution.phrases) {
-            CAPTURE(phrase);
-            CHECK(teacher_text.find(phrase) != std::string::npos);
-            CHECK(student_text.find(phrase) == std::string::npos);
-            ++phrases;
+    for (const char* edition : {"book", "book-course"}) {
+        CAPTURE(edition);
+        REQUIRE(fs::exists(binary / edition / "latex/exact-pixels.tex"));
+        const std::string student_text = book_text(binary / edition);
+        int phrases = 0;
+        for (const auto& solution : all) {
+            CAPTURE(solution.where);
+            CHECK(!solution.phrases.empty()); // every solution can be recognised
+            for (const auto& phrase : solution.phrases) {
+                CAPTURE(phrase);
+                CHECK(teacher_text.find(phrase) != std::string::npos);
+                CHECK(student_text.find(phrase) == std::string::npos);
+                ++phrases;
+            }
         }
+        MESSAGE(edition << ": " << all.size() << " solutions, " << phrases
+                        << " phrases checked");
+        // The markers themselves: no solution, answer or rubric block at all.
+        CHECK(student_text.find("Solution.") == std::string::npos);
+        CHECK(student_text.find("Answer.") == std::string::npos);
+        CHECK(student_text.find("(derive, 2 marks):") == std::string::npos);
     }
-    MESSAGE(all.size() << " solutions, " << phrases << " phrases checked");
-    // The markers themselves: the student book has no solution block at all.
-    CHECK(student_text.find("Solution.") == std::string::npos);
 }

@@ -30,7 +30,9 @@
 -- Teaching structure (book/AUTHORING.md, "Objectives, exercises and solutions"): every
 -- chapter has one `::: objectives` block (a list of what the reader will be able to do)
 -- before its first section; every item of the list under "## Exercises" begins with
--- []{.exercise kind=derive|implement|measure marks=1|2|3}, rendered "[kind, N marks]";
+-- []{.exercise kind=derive|implement|measure marks=1|2|3 difficulty=easy|medium|hard
+-- objectives="1,3"} (the numbers of the chapter's objectives it checks; region=ID for an
+-- exercise of the kits), rendered "[kind, N marks, difficulty; objectives 1, 3]";
 -- a `::: solution` block inside an exercise is its worked solution, dropped from the
 -- student book and kept, headed "Solution.", in the teacher's edition.
 --
@@ -997,14 +999,186 @@ end
 
 -- A page that is not a chapter: references and named tests resolve, headings are not
 -- numbered, and `::: contents` is filled with the table of contents.
+-- `kit-points-per-mark: N` of book/metadata.yaml: what a mark is worth in a kit.
+local points_per_mark
+local function kit_points_per_mark()
+  if not points_per_mark then
+    local text = read_file(root .. "/book/metadata.yaml") or ""
+    points_per_mark = tonumber(text:match("\nkit%-points%-per%-mark:%s*(%d+)") or "")
+    if not points_per_mark then
+      io.stderr:write("book/metadata.yaml: error: no line 'kit-points-per-mark: N'\n")
+      os.exit(1)
+    end
+  end
+  return points_per_mark
+end
+-- The exercise map (`::: exercise-map` on a page): every exercise of the book with its
+-- kind, marks, difficulty, kit points (an exercise with a region) and the numbers of the
+-- objectives it checks, read
+-- from the tags (the one place that metadata lives), then the objectives that no
+-- exercise checks, for the exam to cover.
+local book_exercises = {} -- every exercise of the book, filled by exercise_map()
+local function exercise_map()
+  local rows, unchecked = {}, {}
+  book_exercises = {}
+  local per_mark = nil
+  for _, dir in ipairs(all_chapters) do
+    local text = read_file(root .. "/" .. chapter_file(dir))
+    if text then
+      local doc = pandoc.read(text, "markdown")
+      local objectives, in_exercises, checked = {}, false, {}
+      for _, block in ipairs(doc.blocks) do
+        if block.t == "Div" and block.classes:includes("objectives") then
+          for _, b in ipairs(block.content) do
+            if b.t == "BulletList" then
+              for _, item in ipairs(b.content) do
+                objectives[#objectives + 1] = pandoc.utils.stringify(item)
+              end
+            end
+          end
+        elseif block.t == "Header" and block.level <= 2 then
+          in_exercises = block.level == 2
+            and pandoc.utils.stringify(block.content) == "Exercises"
+        elseif in_exercises and block.t == "OrderedList" then
+          for index, item in ipairs(block.content) do
+            local first = item[1]
+            local span = first and (first.t == "Para" or first.t == "Plain") and first.content[1]
+            if span and span.t == "Span" and span.classes:includes("exercise") then
+              local a = span.attributes
+              local points = "–"
+              if a.region then
+                per_mark = per_mark or kit_points_per_mark()
+                points = tostring((tonumber(a.marks or "") or 0) * per_mark)
+              end
+              for n in (a.objectives or ""):gmatch("%d+") do checked[tonumber(n)] = true end
+              rows[#rows + 1] = { string.format("%d.%d", chapter_number(dir), index),
+                a.kind or "?", a.marks or "?", a.difficulty or "?", points,
+                ((a.objectives or ""):gsub(",", ", ")) }
+              book_exercises[#book_exercises + 1] = { number = rows[#rows][1],
+                kind = a.kind or "?", marks = tonumber(a.marks or "") or 0,
+                region = a.region }
+            end
+          end
+        end
+      end
+      for n, objective in ipairs(objectives) do
+        if not checked[n] then
+          unchecked[#unchecked + 1] = { string.format("%d, objective %d", chapter_number(dir), n),
+                                        objective }
+        end
+      end
+    end
+  end
+  local function cell(text) return { pandoc.Plain({ pandoc.Str(text) }) } end
+  local body = {}
+  for _, row in ipairs(rows) do
+    local cells = {}
+    for k, text in ipairs(row) do
+      cells[k] = cell(text)
+    end
+    body[#body + 1] = cells
+  end
+  local headers = {}
+  for k, text in ipairs({ "exercise", "kind", "marks", "difficulty", "kit points",
+                          "objectives" }) do
+    headers[k] = cell(text)
+  end
+  local aligns = { "AlignLeft", "AlignLeft", "AlignRight", "AlignLeft", "AlignRight",
+                   "AlignLeft" }
+  local out = { pandoc.utils.from_simple_table(pandoc.SimpleTable({}, aligns,
+    { 0, 0, 0, 0, 0, 0 }, headers, body)) }
+  if #unchecked > 0 then
+    out[#out + 1] = pandoc.Para({ pandoc.Str("Objectives that no exercise checks (the exam "
+      .. "questions cover them):") })
+    local items = {}
+    for _, u in ipairs(unchecked) do
+      items[#items + 1] = { pandoc.Plain({ pandoc.Strong({ pandoc.Str("Chapter " .. u[1] .. ":") }),
+                                          pandoc.Space(), pandoc.Str(u[2]) }) }
+    end
+    out[#out + 1] = pandoc.BulletList(items)
+  end
+  return out
+end
+
+-- A page's `::: solution` block (an exam question's worked answer, a rubric): kept,
+-- headed "Answer.", in the teacher's edition only, as a chapter's solutions are.
+local function page_solution(div)
+  if os.getenv("EP_TEACHER") ~= "1" then return {} end
+  local content = pandoc.List({ pandoc.Para({ pandoc.Strong({ pandoc.Str("Answer.") }) }) })
+  content:extend(div.content)
+  return { pandoc.Div(content, { class = "solution" }) }
+end
+
+-- A rubric, `::: {.rubric exercise="N.M"}` holding a list with one item per mark (what
+-- earns it), for a written (derive or measure) exercise without a region. A page with
+-- rubrics must have one for every such exercise of the book, each with as many items as
+-- the exercise has marks; each is headed with the exercise's number, kind and marks.
+local function check_rubrics(rubrics)
+  exercise_map() -- fills book_exercises
+  local wanted = {}
+  for _, e in ipairs(book_exercises) do
+    if e.kind ~= "implement" and not e.region then wanted[e.number] = e end
+  end
+  for number, rubric in pairs(rubrics) do
+    local e = wanted[number]
+    if not e then
+      fail(nil, 'exercise="' .. number .. '"', "a rubric for exercise " .. number
+        .. ", which is no derive or measure exercise without a region")
+    end
+    if rubric.items ~= e.marks then
+      fail(nil, 'exercise="' .. number .. '"', string.format("the rubric of exercise %s has "
+        .. "%d items, but the exercise has %d marks: one item per mark", number,
+        rubric.items, e.marks))
+    end
+  end
+  for _, e in ipairs(book_exercises) do
+    if wanted[e.number] and not rubrics[e.number] then
+      fail(nil, "{.rubric", "exercise " .. e.number .. " (" .. e.kind .. ", " .. e.marks
+        .. " marks) has no rubric: add ::: {.rubric exercise=\"" .. e.number
+        .. "\"} with one item per mark")
+    end
+  end
+  return wanted
+end
+
 local function render_page(doc)
   local page_text = read_file(page_file) or ""
   refuse_fence_text(doc.blocks, function() return page_file, page_text end)
   doc = render_inlines(doc, function() return nil end)
+  local rubrics = {}
+  doc:walk({
+    Div = function(div)
+      if div.classes:includes("rubric") then
+        local number = div.attributes.exercise or "?"
+        if rubrics[number] then
+          fail(nil, 'exercise="' .. number .. '"', "two rubrics for exercise " .. number)
+        end
+        local items = 0
+        for _, b in ipairs(div.content) do
+          if b.t == "BulletList" or b.t == "OrderedList" then items = items + #b.content end
+        end
+        rubrics[number] = { items = items }
+      end
+    end,
+  })
+  local rubric_exercises = next(rubrics) and check_rubrics(rubrics) or {}
   doc = doc:walk({
     Div = function(div)
       if div.classes:includes("contents") then
         div.content = { contents_list() }
+        return div
+      elseif div.classes:includes("exercise-map") then
+        div.content = exercise_map()
+        return div
+      elseif div.classes:includes("solution") then
+        return page_solution(div)
+      elseif div.classes:includes("rubric") then
+        local e = rubric_exercises[div.attributes.exercise or ""]
+        local head = pandoc.Para({ pandoc.Strong({ pandoc.Str(string.format(
+          "Exercise %s (%s, %d mark%s):", e.number, e.kind, e.marks, e.marks == 1 and "" or "s")) }) })
+        local content = pandoc.List({ head })
+        content:extend(div.content)
+        div.content = content
         return div
       end
     end,
@@ -1020,23 +1194,29 @@ end
 
 local teacher = os.getenv("EP_TEACHER") == "1"
 
--- `kit-points-per-mark: N` of book/metadata.yaml: what a mark is worth in a kit.
-local points_per_mark
-local function kit_points_per_mark()
-  if not points_per_mark then
-    local text = read_file(root .. "/book/metadata.yaml") or ""
-    points_per_mark = tonumber(text:match("\nkit%-points%-per%-mark:%s*(%d+)") or "")
-    if not points_per_mark then
-      io.stderr:write("book/metadata.yaml: error: no line 'kit-points-per-mark: N'\n")
-      os.exit(1)
-    end
-  end
-  return points_per_mark
-end
 local exercise_kinds = { derive = true, implement = true, measure = true }
+local difficulties = { easy = true, medium = true, hard = true }
 
--- []{.exercise kind=K marks=N} -> "[K, N marks]", after checking both.
-local function exercise_tag(span, dir, number)
+-- The objective numbers of an exercise tag's objectives="1,3", each checked to name one
+-- of the chapter's `objective_count` objectives.
+local function exercise_objectives(span, dir, number, objective_count)
+  local text = span.attributes.objectives or ""
+  local numbers = {}
+  for item in (text .. ","):gmatch("([^,]*),") do
+    local n = tonumber(item:match("^%s*(%d+)%s*$") or "")
+    if not n or n < 1 or n > objective_count then
+      fail(dir, "{.exercise", string.format("exercise %d: objectives=\"%s\" must list the "
+        .. "numbers (1 to %d) of the chapter's objectives it checks, e.g. objectives=\"1,3\"",
+        number, text, objective_count))
+    end
+    numbers[#numbers + 1] = tostring(n)
+  end
+  return numbers
+end
+
+-- []{.exercise kind=K marks=N difficulty=D objectives="1,3" region=R} ->
+-- "[K, N marks, D; M points in the kit; objectives 1, 3]", after checking each.
+local function exercise_tag(span, dir, number, objective_count)
   local kind, marks = span.attributes.kind, tonumber(span.attributes.marks or "")
   if not exercise_kinds[kind or ""] then
     fail(dir, "{.exercise", string.format("exercise %d: kind must be derive, implement or "
@@ -1046,12 +1226,21 @@ local function exercise_tag(span, dir, number)
     fail(dir, "{.exercise", string.format("exercise %d: marks (its difficulty) must be 1, 2 "
       .. "or 3, not '%s'", number, tostring(span.attributes.marks)))
   end
-  local text = string.format("[%s, %d mark%s", kind, marks, marks == 1 and "" or "s")
+  local difficulty = span.attributes.difficulty
+  if not difficulties[difficulty or ""] then
+    fail(dir, "{.exercise", string.format("exercise %d: difficulty must be easy, medium or "
+      .. "hard, not '%s'", number, tostring(difficulty)))
+  end
+  local objectives = exercise_objectives(span, dir, number, objective_count)
+  local text = string.format("[%s, %d mark%s, %s", kind, marks, marks == 1 and "" or "s",
+                             difficulty)
   if span.attributes.region then
     -- What the chapter's kit gives for it: `make-kit check` (test kits_points) proves
     -- that the tests naming the region declare exactly this many points.
     text = text .. string.format("; %d points in the kit", marks * kit_points_per_mark())
   end
+  text = text .. string.format("; objective%s %s", #objectives == 1 and "" or "s",
+                               table.concat(objectives, ", "))
   return pandoc.Span({ pandoc.Strong({ pandoc.Str(text .. "]") }) }, { class = "exercise-tag" })
 end
 
@@ -1070,6 +1259,7 @@ end
 local function teaching(blocks, dirs)
   local out, h1, dir = pandoc.List(), 0, nil
   local objectives, in_sections, in_exercises = 0, false, false
+  local objective_count = 0 -- items of the chapter's objectives list
   local summary_waiting = false -- the block before this one was the summary
   local function finish()
     if dir and objectives ~= 1 then
@@ -1100,6 +1290,7 @@ local function teaching(blocks, dirs)
       finish()
       h1 = h1 + 1
       dir, objectives, in_sections, in_exercises = dirs[h1], 0, false, false
+      objective_count = 0
     elseif block.t == "Header" and block.level == 2 then
       in_sections = true
       in_exercises = is_exercises
@@ -1116,7 +1307,15 @@ local function teaching(blocks, dirs)
       objectives = objectives + 1
       local content = pandoc.List({ pandoc.Para({ pandoc.Strong({
         pandoc.Str("After this chapter you will be able to:") }) }) })
-      content:extend(block.content)
+      -- Numbered, as the exercises' tags name them ("objectives 1, 3").
+      for _, b in ipairs(block.content) do
+        if b.t == "BulletList" then
+          objective_count = objective_count + #b.content
+          content:insert(pandoc.OrderedList(b.content))
+        else
+          content:insert(b)
+        end
+      end
       keep = { pandoc.Div(content, { class = "objectives" }) }
     elseif block.t == "Div" and block.classes:includes("solution") then
       if not in_exercises then
@@ -1129,9 +1328,10 @@ local function teaching(blocks, dirs)
         local span = first and (first.t == "Para" or first.t == "Plain") and first.content[1]
         if not (span and span.t == "Span" and span.classes:includes("exercise")) then
           fail(dir, "## Exercises", string.format("exercise %d does not begin with "
-            .. "[]{.exercise kind=derive|implement|measure marks=1|2|3}", number))
+            .. "[]{.exercise kind=derive|implement|measure marks=1|2|3 "
+            .. "difficulty=easy|medium|hard objectives=\"N,...\"}", number))
         end
-        first.content[1] = exercise_tag(span, dir, number)
+        first.content[1] = exercise_tag(span, dir, number, objective_count)
         local kept = pandoc.List()
         for _, b in ipairs(item) do
           if b.t == "Div" and b.classes:includes("solution") then

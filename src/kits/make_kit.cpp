@@ -637,9 +637,14 @@ std::string tag_text(const std::map<std::string, std::string>& attributes) {
 
 const std::string exercise_tag = "[]{.exercise";
 
-/// The kind and difficulty of each exercise region the chapter's exercise tags name.
-std::map<std::string, std::string> region_tags(const fs::path& chapter_md) {
-    std::map<std::string, std::string> tags;
+/// The attributes of every exercise tag of a chapter that names a region, by region,
+/// with the line of the tag (for messages).
+struct RegionTag {
+    std::map<std::string, std::string> attributes;
+    std::size_t line = 0;
+};
+std::map<std::string, RegionTag> region_tag_attributes(const fs::path& chapter_md) {
+    std::map<std::string, RegionTag> tags;
     if (!fs::exists(chapter_md)) {
         return tags;
     }
@@ -650,8 +655,17 @@ std::map<std::string, std::string> region_tags(const fs::path& chapter_md) {
         const auto attributes = tag_attributes(text, at + exercise_tag.size(), &end);
         const auto region = attributes.find("region");
         if (region != attributes.end()) {
-            tags[region->second] = tag_text(attributes);
+            tags[region->second] = {attributes, line_of(text, at)};
         }
+    }
+    return tags;
+}
+
+/// The kind and difficulty of each exercise region the chapter's exercise tags name.
+std::map<std::string, std::string> region_tags(const fs::path& chapter_md) {
+    std::map<std::string, std::string> tags;
+    for (const auto& [region, tag] : region_tag_attributes(chapter_md)) {
+        tags[region] = tag_text(tag.attributes);
     }
     return tags;
 }
@@ -743,24 +757,14 @@ struct TagMarks {
 };
 std::map<std::string, TagMarks> region_marks(const fs::path& chapter_md) {
     std::map<std::string, TagMarks> marks;
-    if (!fs::exists(chapter_md)) {
-        return marks;
-    }
-    const std::string text = read_text(chapter_md);
-    for (auto at = text.find(exercise_tag); at != std::string::npos;
-         at = text.find(exercise_tag, at + 1)) {
-        std::size_t end = 0;
-        const auto attributes = tag_attributes(text, at + exercise_tag.size(), &end);
-        const auto region = attributes.find("region");
-        const auto value = attributes.find("marks");
-        if (region != attributes.end()) {
-            const std::string m = value == attributes.end() ? "" : value->second;
-            const bool whole = !m.empty() && m.size() <= 2 &&
-                               std::all_of(m.begin(), m.end(), [](char c) {
-                                   return std::isdigit(static_cast<unsigned char>(c));
-                               });
-            marks[region->second] = {whole ? std::stoi(m) : 0, line_of(text, at)};
-        }
+    for (const auto& [region, tag] : region_tag_attributes(chapter_md)) {
+        const auto value = tag.attributes.find("marks");
+        const std::string m = value == tag.attributes.end() ? "" : value->second;
+        const bool whole =
+            !m.empty() && m.size() <= 2 && std::all_of(m.begin(), m.end(), [](char c) {
+                return std::isdigit(static_cast<unsigned char>(c));
+            });
+        marks[region] = {whole ? std::stoi(m) : 0, tag.line};
     }
     return marks;
 }
