@@ -904,7 +904,7 @@ void make_kit(const Options& options) {
     // The Debian packages: the book's base list, plus toml++ if the kit has the scene
     // layer (the only one that reads TOML).
     std::string packages = "cmake g++ make pkg-config doctest-dev libglm-dev libstb-dev "
-                           "libpng-dev libfmt-dev libcli11-dev";
+                           "libpng-dev libfmt-dev libcli11-dev libboost-dev";
     if (std::any_of(kit.begin(), kit.end(), [](const auto& file) {
             return starts_with(file.first.generic_string(), "src/exactpixels/scene/");
         })) {
