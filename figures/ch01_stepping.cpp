@@ -2,14 +2,16 @@
 // triangle's size, for Exercise 6's solution. Right triangles with legs of 8, 16, ...,
 // 1024 px (at a random sub-pixel position, 16 per size, one random value per vertex in
 // [-1, 1]) are drawn by scanline_interpolate; every pixel's value is compared with the
-// plane of the same computed gradient evaluated in long double at the pixel's centre,
-// so only the stepping is measured, as in the chapter's test. Writes
+// plane of the same computed gradient evaluated exactly at the pixel's centre (the
+// difference rounded once to double), so only the stepping is measured, as in the
+// chapter's test. Writes
 // ch01_stepping.txt into the folder argv[1], one fact per line:
 //   worst_L   the worst |stepped - plane| / (eps S) over the triangles of leg L
 //   mean_L    the mean of the same over every pixel of those triangles
 //   bound_L   the bound of @sec:stepping, rows + columns + 4 = 2L + 4
 //   slope_worst, slope_mean  least-squares slopes of log(error) against log(2L)
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/base/split_mix.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "support/figure_file.hpp"
@@ -17,6 +19,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -25,6 +28,49 @@
 namespace {
 
 using namespace exactpixels;
+
+/// The plane c0 + gx (x + 1/2 - x0) + gy (y + 1/2 - y0) at pixel centres, exactly: every
+/// term is a dyadic fraction, so the plane is an integer in units of 2^-shift, and each
+/// pixel costs integer products and sums, no fraction reduced.
+class ExactPlane {
+  public:
+    /// The plane of gradient g through value c0 at (x0, y0).
+    ExactPlane(double c0, Gradient<double> g, double x0, double y0) {
+        const Rational half(1, 2);
+        const Rational at_origin = exact(c0) + exact(g.dx) * (half - exact(x0)) +
+                                   exact(g.dy) * (half - exact(y0)); // pixel (0, 0)
+        shift_ = std::max({bits_below_one(at_origin), bits_below_one(exact(g.dx)),
+                           bits_below_one(exact(g.dy))});
+        origin_ = units(at_origin);
+        dx_ = units(exact(g.dx));
+        dy_ = units(exact(g.dy));
+    }
+    /// |a - the plane at the centre of pixel (x, y)|: the difference exact, then rounded
+    /// once to double.
+    double distance(double a, int x, int y) const {
+        const Integer plane = origin_ + dx_ * x + dy_ * y; // units of 2^-shift
+        int e = 0;
+        const double m = std::frexp(a, &e); // a = m 2^e, 1/2 <= |m| < 1
+        const auto mantissa = static_cast<std::int64_t>(std::ldexp(m, 53));
+        const int a_shift = shift_ + e - 53; // a = mantissa 2^a_shift units
+        if (a_shift < 0) { // a has bits finer than the plane's: a fraction after all
+            return to_double(abs(exact(a) - Rational(plane, Integer(1) << shift_)));
+        }
+        const Integer difference = (Integer(mantissa) << a_shift) - plane;
+        return std::ldexp(to_double(Rational(abs(difference))), -shift_); // exact scaling
+    }
+
+  private:
+    // The power of two in r's denominator (r is dyadic: a sum of products of doubles).
+    static int bits_below_one(const Rational& r) {
+        return static_cast<int>(boost::multiprecision::msb(denominator(r)));
+    }
+    Integer units(const Rational& r) const {
+        return numerator(r) << (shift_ - bits_below_one(r));
+    }
+    int shift_ = 0;
+    Integer origin_, dx_, dy_;
+};
 
 /// The stepping error of one size: worst and mean over every drawn pixel, in eps S.
 struct SizeError {
@@ -48,15 +94,10 @@ SizeError stepping_error(int leg, int triangles, SplitMix& random) {
         const double size =
             std::max({std::abs(c[0][0]), std::abs(c[1][0]), std::abs(c[2][0])}) +
             (std::abs(g.dx) + std::abs(g.dy)) * (x0 + leg + 1.0);
-        const long double eps_s = 0x1p-52L * size;
+        const double eps_s = 0x1p-52 * size;
+        const ExactPlane plane(c[0][0], g, x0, y0);
         scanline_interpolate(v, c, viewport, [&](int x, int y, const Attributes<1>& a) {
-            const long double plane = static_cast<long double>(c[0][0]) +
-                                      static_cast<long double>(g.dx) *
-                                          (x + 0.5L - static_cast<long double>(x0)) +
-                                      static_cast<long double>(g.dy) *
-                                          (y + 0.5L - static_cast<long double>(y0));
-            const auto e = static_cast<double>(
-                std::abs(static_cast<long double>(a[0]) - plane) / eps_s);
+            const double e = plane.distance(a[0], x, y) / eps_s;
             worst = std::max(worst, e);
             sum += e;
             ++pixels;

@@ -1,10 +1,10 @@
 // Chapter 1 tests, part 1: the gradient identities. Where the claim is exact algebra the
 // test runs the library's own templates in exact rational arithmetic; where it is a
 // floating-point claim it states its tolerance and why.
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/raster/gradient_stability.hpp"
 #include "exactpixels/raster/gradients.hpp"
 #include "support/measured_facts.hpp"
-#include "support/rational.hpp"
 
 #include <doctest/doctest.h>
 
@@ -17,7 +17,6 @@
 #include <tuple>
 
 using namespace exactpixels;
-using exactpixels::testing::Rational;
 using exactpixels::testing::record_fact;
 
 namespace {
@@ -180,13 +179,16 @@ TEST_CASE("split edge and closed form agree on random triangles" *
             s.c[i] = static_cast<float>(std::nearbyint(s.c[i] * 0x1p20) * 0x1p-20);
         }
         const double kappa = shape_factor(s);
-        const Gradient<long double> exact = exact_gradient(s);
+        const Gradient<Rational> exact = exact_gradient(s);
         if (!(kappa < 1e5)) {
             continue; // near-degenerate: the error bound grows without limit
         }
-        const double size = term_size(s, std::hypot(double(exact.dx), double(exact.dy)));
-        const auto error = [&](auto g) {
-            return std::hypot(double(g.dx - exact.dx), double(g.dy - exact.dy)) / size;
+        const double size =
+            term_size(s, std::hypot(to_double(exact.dx), to_double(exact.dy)));
+        const auto error = [&](auto g) { // the difference exact, rounded once
+            return std::hypot(to_double(Rational(g.dx) - exact.dx),
+                              to_double(Rational(g.dy) - exact.dy)) /
+                   size;
         };
         PlaneSamples<float> f{};
         for (int i = 0; i < 3; ++i) {
@@ -329,51 +331,39 @@ TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
     }
 }
 
-TEST_CASE("the stability study's reference is the exact gradient to three roundings" *
+TEST_CASE("the stability study's reference is the exact gradient" *
           doctest::description("points: 2; exercise: ch01-closed-form")) {
-    // exact_gradient computes @eq:closed-form in 128-bit integers and rounds three times:
-    // numerator and denominator to long double, then their quotient; each rounding is at
-    // most u = 2^-digits relative, so it lies within about 3u of the exact gradient.
-    // Check it against the library's closed form run in Rational arithmetic on the same
-    // inputs (also for the triangles moved to about 4000 px, Exercise 5, in double and
-    // rounded to float), whose conversion to long double rounds three times too: the two
-    // agree within 6u, and 8u allows for the products of the small terms. The study
-    // measures double to fractions of 2^-52, so a long double no wider than a double
-    // (MSVC, Apple Silicon) is no reference at all: there this test fails.
-    constexpr int digits = std::numeric_limits<long double>::digits;
-    REQUIRE_MESSAGE(digits >= 64, "long double has "
-                                      << digits
-                                      << " significand bits: "
-                                         "no wider than the double it should measure");
-    const long double u = std::ldexp(1.0L, -digits);
+    // exact_gradient computes @eq:closed-form in integers (every input in units of
+    // 2^-40) and keeps each component as an exact fraction. Check it against the
+    // library's closed form run in Rational arithmetic on the exact values of the same
+    // doubles (also for the triangles moved to about 4000 px, Exercise 5, in double and
+    // rounded to float): a second, independent computation, which must give the very
+    // same fractions. Neither rounds, so the reference is the same on every platform,
+    // finer than any floating type (the former one, a wider float, was a plain double
+    // on MSVC and Apple Silicon).
+    int compared = 0;
     for (const auto& [delta, origin, as_float] :
          {std::tuple{1e-2, 0.0, false}, std::tuple{1e-9, 0.0, false},
           std::tuple{0.0, 0.0, false}, std::tuple{1e-2, 3072.0, false},
           std::tuple{1e-2, 3072.0, true}, std::tuple{1e-9, 3072.0, true}}) {
         for (const PlaneSamples<double>& s :
              stability_triangles(delta, 50, 7, as_float, origin)) {
-            // In units of 2^-40 every input is an integer below 2^52; scaling x, y and
-            // c alike leaves dc/dx and dc/dy unchanged. Subtracting vertex 0 leaves
-            // differences below 2^50 (the triangles span at most 1000 px), so the
-            // products stay below 2^101.
-            PlaneSamples<Rational> shifted{};
+            PlaneSamples<Rational> r{};
             for (int i = 0; i < 3; ++i) {
-                const auto units = [](double v) { return std::int64_t(v * 0x1p40); };
-                shifted.x[i] = Rational(units(s.x[i]) - units(s.x[0]));
-                shifted.y[i] = Rational(units(s.y[i]) - units(s.y[0]));
-                shifted.c[i] = Rational(units(s.c[i]) - units(s.c[0]));
+                r.x[i] = exact(s.x[i]);
+                r.y[i] = exact(s.y[i]);
+                r.c[i] = exact(s.c[i]);
             }
-            const Gradient<Rational> g = closed_form_gradient(shifted);
-            const Gradient<long double> e = exact_gradient(s);
-            const auto close = [u](long double approx, const Rational& truth) {
-                const long double t = static_cast<long double>(truth.num()) /
-                                      static_cast<long double>(truth.den());
-                return std::abs(approx - t) <= 8 * u * std::abs(t);
-            };
-            REQUIRE(close(e.dx, g.dx));
-            REQUIRE(close(e.dy, g.dy));
+            const Gradient<Rational> g = closed_form_gradient(r);
+            const Gradient<Rational> e = exact_gradient(s);
+            INFO("dc/dx " << g.dx << " vs " << e.dx << ", dc/dy " << g.dy << " vs "
+                          << e.dy);
+            REQUIRE(e.dx == g.dx);
+            REQUIRE(e.dy == g.dy);
+            compared += g.dx != 0 || g.dy != 0;
         }
     }
+    CHECK(compared == 6 * 50); // the study keeps only triangles with a gradient
 }
 
 TEST_CASE("neither gradient loses accuracy as the y-delta shrinks" *

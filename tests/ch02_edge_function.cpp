@@ -1,9 +1,9 @@
 // Chapter 2 tests: the edge function's identities (sum, stepping, barycentrics, the
 // gradient), the top-left rule as a bias, and the exact fixed-point range.
 #include "ch02_grid.hpp"
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/raster/edge_function.hpp"
 #include "exactpixels/raster/gradients.hpp"
-#include "support/rational.hpp"
 
 #include <doctest/doctest.h>
 
@@ -12,14 +12,13 @@
 #include <random>
 
 using namespace exactpixels;
-using testing::Int128;
-using testing::Rational;
 
 namespace {
 
-/// The edge function in 128-bit integers: the reference that cannot overflow here.
-Int128 wide_edge(FixedPoint2 a, FixedPoint2 b, FixedPoint2 p) {
-    return Int128{b.x - a.x} * Int128{p.y - a.y} - Int128{b.y - a.y} * Int128{p.x - a.x};
+/// The edge function in exact integers: the reference that cannot overflow.
+Integer wide_edge(FixedPoint2 a, FixedPoint2 b, FixedPoint2 p) {
+    return Integer{b.x - a.x} * Integer{p.y - a.y} -
+           Integer{b.y - a.y} * Integer{p.x - a.x};
 }
 
 /// A random fixed-point point anywhere in the exact range.
@@ -44,8 +43,8 @@ TEST_CASE("the three edge functions sum to twice the area at every point, exactl
         const std::int64_t e2 = edge_function(v[0], v[1], p);
         const std::int64_t area2 = edge_function(v[0], v[1], v[2]);
         // Each value equals the 128-bit reference (no overflow anywhere in the range) ...
-        REQUIRE(Int128{e0} == wide_edge(v[1], v[2], p));
-        REQUIRE(Int128{area2} == wide_edge(v[0], v[1], v[2]));
+        REQUIRE(Integer{e0} == wide_edge(v[1], v[2], p));
+        REQUIRE(Integer{area2} == wide_edge(v[0], v[1], v[2]));
         // ... and the identity (@eq:edge-sum) holds exactly.
         REQUIRE(e0 + e1 + e2 == area2);
     }
@@ -159,7 +158,7 @@ TEST_CASE("the fixed-point range: exact at its edge, an error beyond it") {
     const std::int64_t m = max_fixed_coordinate;
     const std::array<FixedPoint2, 3> big{{{-m, -m}, {m, -m}, {-m, m}}};
     const FixedPoint2 corner{m, m};
-    CHECK(Int128{edge_function(big[1], big[2], corner)} ==
+    CHECK(Integer{edge_function(big[1], big[2], corner)} ==
           wide_edge(big[1], big[2], corner));
     CHECK(edge_function(big[0], big[1], big[2]) == 4 * m * m);
     CHECK_NOTHROW(check_fixed_range(corner));
@@ -176,26 +175,10 @@ TEST_CASE("the fixed-point range: exact at its edge, an error beyond it") {
 }
 
 namespace {
-/// floor(a / b) for b > 0 in 128-bit integers.
-Int128 floor_div128(Int128 a, Int128 b) {
-    const Int128 q = a / b;
-    return (a % b != 0 && a < 0) ? q - 1 : q;
-}
-
-/// The nearest integer to 256 v, halves up, from v's exact binary value: v = M 2^e with
-/// M an integer of at most 53 bits, so 256 v + 1/2 = (2^(9+e) M + 1) / 2 is a fraction
-/// computed without rounding. Valid for |v| < 2^54 and e >= -100.
-Int128 exact_snap(double v) {
-    int e = 0;
-    const double m = std::frexp(v, &e); // v = m 2^e, 1/2 <= |m| < 1
-    const auto M = static_cast<Int128>(std::ldexp(m, 53));
-    const int shift = e - 53 + subpixel_bits; // 256 v = M 2^shift
-    if (shift >= 0) {
-        return M << shift;
-    }
-    REQUIRE(shift >= -100);
-    const Int128 denominator = Int128{1} << -shift;
-    return floor_div128(2 * M + denominator, 2 * denominator);
+/// The nearest integer to 256 v, halves up: floor(256 v + 1/2) of v's exact value,
+/// computed without rounding, for any finite v.
+Integer exact_snap(double v) {
+    return floor_of(Rational(1 << subpixel_bits) * exact(v) + Rational(1, 2));
 }
 } // namespace
 
@@ -219,7 +202,7 @@ TEST_CASE("snapping rounds 256 v to the nearest integer exactly, halves up") {
         for (const double v :
              {half, std::nextafter(half, -1e300), std::nextafter(half, 1e300), any(rng),
               std::ldexp(any(rng), -40), -below_half, below_half}) {
-            REQUIRE(static_cast<Int128>(snap_to_subpixel(v)) == exact_snap(v));
+            REQUIRE(Integer{snap_to_subpixel(v)} == exact_snap(v));
             ++checked;
         }
     }

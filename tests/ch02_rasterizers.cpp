@@ -2,11 +2,11 @@
 // meshes, agreement between the traversals and with chapter 1's scanline rasterizer,
 // invariances, block classification, the range limits, and where float differs.
 #include "ch02_grid.hpp"
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/naive_rasterizer.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "support/meshes.hpp"
-#include "support/rational.hpp"
 
 #include <doctest/doctest.h>
 
@@ -332,15 +332,14 @@ TEST_CASE(
     const EdgeSetup<FloatEdge> s = setup_edges(v);
     const FloatEdge& e = s.edge[2];
     REQUIRE_FALSE(e.top_left);
-    const auto exact = [&](int x, int y) { // the edge value at a centre, exactly
-        using exactpixels::testing::Rational;
-        const auto r = [](float f) { return Rational::from_double(f); };
+    const auto exact_edge = [&](int x, int y) { // the edge value at a centre, exactly
+        const auto r = [](float f) { return exact(f); };
         const Rational px = Rational(2 * x + 1, 2), py = Rational(2 * y + 1, 2);
         return (r(v[1].x) - r(v[0].x)) * (py - r(v[0].y)) -
                (r(v[1].y) - r(v[0].y)) * (px - r(v[0].x));
     };
-    CHECK(exact(2513, 309) > exactpixels::testing::Rational(0)); // covered
-    CHECK(e.at(2513, 309) == 0.0f);                              // but rounded to 0
+    CHECK(exact_edge(2513, 309) > 0); // covered
+    CHECK(e.at(2513, 309) == 0.0f);   // but rounded to 0
     int corners_passing = 0;
     for (const auto& [x, y] : {std::pair{2513, 302}, std::pair{2520, 302},
                                std::pair{2513, 309}, std::pair{2520, 309}}) {
@@ -412,13 +411,12 @@ TEST_CASE("classification is never wrong: a block called inside or outside is") 
 }
 
 TEST_CASE("triangles at the edge of the exact range rasterize exactly") {
-    // The reference: 128-bit edge functions at every pixel centre of the window, inside
-    // when all three have the sign of the area. The data has no centre exactly on an
-    // edge (checked), so no fill rule is needed.
-    using exactpixels::testing::Int128;
+    // The reference: edge functions in exact integers at every pixel centre of the
+    // window, inside when all three have the sign of the area. The data has no centre
+    // exactly on an edge (checked), so no fill rule is needed.
     const auto wide = [](FixedPoint2 a, FixedPoint2 b, FixedPoint2 p) {
-        return Int128{b.x - a.x} * Int128{p.y - a.y} -
-               Int128{b.y - a.y} * Int128{p.x - a.x};
+        return Integer{b.x - a.x} * Integer{p.y - a.y} -
+               Integer{b.y - a.y} * Integer{p.x - a.x};
     };
     const auto reference = [&](const std::array<FixedPoint2, 3>& v, PixelRect window) {
         Grid g{window.x_end - window.x_begin, window.y_end - window.y_begin};
@@ -427,7 +425,7 @@ TEST_CASE("triangles at the edge of the exact range rasterize exactly") {
             for (int x = window.x_begin; x < window.x_end; ++x) {
                 int inside = 0;
                 for (int i = 0; i < 3; ++i) {
-                    const Int128 e =
+                    const Integer e =
                         wide(v[(i + 1) % 3], v[(i + 2) % 3], fixed_pixel_centre(x, y));
                     REQUIRE(e != 0); // no ties in the data
                     inside += (e > 0) == positive;

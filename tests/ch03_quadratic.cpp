@@ -1,10 +1,10 @@
 // Chapter 3 tests: Pursey's quadratic and Thellier's form of it, forward differencing,
 // and the closed-form errors of the affine and quadratic mappers, checked in exact
 // rational arithmetic wherever the claim is exact.
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/texture/perspective_error.hpp"
 #include "exactpixels/texture/quadratic.hpp"
 #include "support/measured_facts.hpp"
-#include "support/rational.hpp"
 
 #include <doctest/doctest.h>
 
@@ -14,7 +14,6 @@
 #include <random>
 
 using namespace exactpixels;
-using exactpixels::testing::Rational;
 using exactpixels::testing::record_fact;
 
 namespace {
@@ -61,14 +60,14 @@ TEST_CASE("Thellier's and Pursey's coefficients agree in float within the stated
     for (int trial = 0; trial < 2000; ++trial) {
         const float u0 = texel(random), u2 = texel(random), w0 = depth(random),
                     w2 = depth(random), n = float(steps(random));
-        const auto R = [](float x) { return Rational::from_double(x); };
+        const auto R = [](float x) { return exact(x); };
         const Quadratic<Rational> exact =
             pursey_quadratic(R(u0), R(w0), R(u2), R(w2), R(n));
         const double scale = std::abs(double(u0)) + std::abs(double(u2));
         for (const Quadratic<float>& q : {pursey_quadratic(u0, w0, u2, w2, n),
                                           thellier_quadratic(u0, w0, u2, w2, n)}) {
-            const double a_error = std::abs(q.a - exact.a.to_double());
-            const double b_error = std::abs(q.b - exact.b.to_double());
+            const double a_error = std::abs(q.a - to_double(exact.a));
+            const double b_error = std::abs(q.b - to_double(exact.b));
             const double a_allowed = 32 * eps * scale / (double(n) * n);
             const double b_allowed = 32 * eps * scale / n;
             CHECK(a_error <= a_allowed);
@@ -133,13 +132,11 @@ TEST_CASE("forward differences in float stay within the stated bound over long s
             const float w0 = 1.0f, w2 = float(r);
             const Quadratic<float> q =
                 thellier_quadratic(3.25f, w0, 700.5f, w2, float(n));
-            const Quadratic<Rational> exact{Rational::from_double(q.a),
-                                            Rational::from_double(q.b),
-                                            Rational::from_double(q.u0)};
+            const Quadratic<Rational> q_exact{exact(q.a), exact(q.b), exact(q.u0)};
             ForwardDifferences<float> f = forward_differences(q);
             double max_u = 0.0, max_du = 0.0, worst = 0.0, bound = 0.0;
             for (int t = 0; t <= n; ++t) {
-                const double truth = evaluate(exact, Rational(t)).to_double();
+                const double truth = to_double(evaluate(q_exact, Rational(t)));
                 max_u = std::max(max_u, std::abs(truth));
                 max_du = std::max(max_du, std::abs(double(f.du)));
                 bound = eps / 2 * (t * max_u + double(t) * t * max_du) + 1e-12;
@@ -167,7 +164,7 @@ TEST_CASE("the affine and quadratic errors have the closed forms derived in the 
     // u0 = 0, u2 = 1, w0 = 1, w2 = r, one step (n = 1): the error at t is the mapper's
     // value minus the exact one, as a fraction of the span's extent.
     const Rational one(1), half(1, 2);
-    for (const Rational r :
+    for (const Rational& r :
          {Rational(2), Rational(1, 3), Rational(9), Rational(100), Rational(7, 5)}) {
         const Quadratic<Rational> q = pursey_quadratic(Rational(0), one, one, r, one);
         const Rational k = r - one;
@@ -181,10 +178,10 @@ TEST_CASE("the affine and quadratic errors have the closed forms derived in the 
             CHECK(evaluate(q, t) - exact == Rational(2) * k * k * t * (t - half) *
                                                 (one - t) / ((r + one) * (r - k * t)));
             // The double forms in perspective_error.hpp compute the same functions.
-            CHECK(affine_error(r.to_double(), t.to_double()) ==
-                  doctest::Approx((t - exact).to_double()).epsilon(1e-12).scale(1.0));
-            CHECK(quadratic_error(r.to_double(), t.to_double()) ==
-                  doctest::Approx((evaluate(q, t) - exact).to_double()).scale(1.0));
+            CHECK(affine_error(to_double(r), to_double(t)) ==
+                  doctest::Approx(to_double(t - exact)).epsilon(1e-12).scale(1.0));
+            CHECK(quadratic_error(to_double(r), to_double(t)) ==
+                  doctest::Approx(to_double(evaluate(q, t) - exact)).scale(1.0));
         }
     }
 }
@@ -203,9 +200,8 @@ TEST_CASE("the affine error peaks at sqrt r / (sqrt r + 1) with the derived boun
             const Rational t(i, 200);
             CHECK(abs(error(t)) <= abs(bound)); // the peak is the largest error
         }
-        CHECK(affine_error_bound(r.to_double()) ==
-              doctest::Approx(abs(bound).to_double()));
-        CHECK(affine_worst_t(r.to_double()) == doctest::Approx(t_star.to_double()));
+        CHECK(affine_error_bound(to_double(r)) == doctest::Approx(to_double(abs(bound))));
+        CHECK(affine_worst_t(to_double(r)) == doctest::Approx(to_double(t_star)));
     }
 }
 

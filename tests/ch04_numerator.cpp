@@ -3,9 +3,9 @@
 // (@eq:numerator-constant), even across 1/w = 0, and its sign is the sign of du/dx, which
 // is that of dc/dx (c = u - 1/2 differs from u by a constant); in float it is within a
 // stated bound; per row it can differ across a triangle.
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/texture/rounding.hpp"
 #include "support/measured_facts.hpp"
-#include "support/rational.hpp"
 
 #include <doctest/doctest.h>
 
@@ -17,7 +17,6 @@
 #include <vector>
 
 using namespace exactpixels;
-using testing::Rational;
 using testing::record_fact;
 
 namespace {
@@ -173,13 +172,13 @@ TEST_CASE("the float numerator is within the stated rounding bound of the exact 
     int sign_checks = 0;
     for (int i = 0; i < span_count; ++i) {
         const Coordinate c = random_span(random, i).c;
-        const auto p0 = static_cast<float>(c.p.to_double()); // exact: dyadic, 21 bits
-        const auto q0 = static_cast<float>(c.q.to_double());
-        const auto dp = static_cast<float>(c.dp.dx.to_double());
-        const auto dq = static_cast<float>(c.dq.dx.to_double());
-        REQUIRE(Rational::from_double(p0) == c.p);
-        REQUIRE(Rational::from_double(q0) == c.q);
-        REQUIRE(Rational::from_double(dq) == c.dq.dx);
+        const auto p0 = static_cast<float>(to_double(c.p)); // exact: dyadic, 21 bits
+        const auto q0 = static_cast<float>(to_double(c.q));
+        const auto dp = static_cast<float>(to_double(c.dp.dx));
+        const auto dq = static_cast<float>(to_double(c.dq.dx));
+        REQUIRE(exact(p0) == c.p);
+        REQUIRE(exact(q0) == c.q);
+        REQUIRE(exact(dq) == c.dq.dx);
         const Rational n = numerator_x(c);
         for (int t = 0; t < span_length; ++t) {
             const auto tf = static_cast<float>(t);
@@ -191,12 +190,12 @@ TEST_CASE("the float numerator is within the stated rounding bound of the exact 
                           (std::abs(double{q0}) + std::abs(double{dq} * t)) +
                       std::abs(double{dq}) *
                           (std::abs(double{p0}) + std::abs(double{dp} * t)));
-            const Rational error = abs(Rational::from_double(n_float) - n);
+            const Rational error = abs(exact(n_float) - n);
             INFO("span " << i << ", pixel " << t);
-            CHECK(error <= Rational::from_double(bound));
-            worst = std::max(worst, error.to_double() / bound);
-            if (abs(n) > Rational::from_double(bound)) {
-                CHECK(sign(Rational::from_double(n_float)) == sign(n));
+            CHECK(error <= exact(bound));
+            worst = std::max(worst, to_double(error) / bound);
+            if (abs(n) > exact(bound)) {
+                CHECK(sign(exact(n_float)) == sign(n));
                 ++sign_checks;
             }
         }
@@ -222,10 +221,10 @@ TEST_CASE("the chosen rule can differ between rows of one perspective triangle" 
         // Exact barycentric interpolation of v/w and 1/w, then the divide.
         std::array<Rational, 3> vx, vy, q, pv;
         for (int i = 0; i < 3; ++i) {
-            vx[i] = Rational::from_double(wall[i].position.x);
-            vy[i] = Rational::from_double(wall[i].position.y);
-            q[i] = Rational(1) / Rational::from_double(wall[i].w);
-            pv[i] = Rational::from_double(wall[i].uv.y) * q[i];
+            vx[i] = exact(wall[i].position.x);
+            vy[i] = exact(wall[i].position.y);
+            q[i] = Rational(1) / exact(wall[i].w);
+            pv[i] = exact(wall[i].uv.y) * q[i];
         }
         auto cross = [&](int i, const Rational& ax, const Rational& ay,
                          const Rational& bx, const Rational& by) {
@@ -242,7 +241,7 @@ TEST_CASE("the chosen rule can differ between rows of one perspective triangle" 
     const TexelRounding whole = choose_rounding(wall);
     for (int y = 12; y < 72; ++y) {
         const double centre_y = y + 0.5;
-        const Rational yc = Rational::from_double(centre_y);
+        const Rational yc = exact(centre_y);
         const int secant_sign = sign(v_at(Rational(13), yc) - v_at(Rational(12), yc));
         const TexelRounding row = choose_rounding_on_row(wall, centre_y);
         INFO("row " << y);

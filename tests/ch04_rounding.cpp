@@ -1,8 +1,8 @@
 // Chapter 4 tests: the two rounding rules, the single floor with a modifier
 // (@eq:modifier), and the choice of rule from the gradient's signs.
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/texture/rounding.hpp"
-#include "support/rational.hpp"
 
 #include <doctest/doctest.h>
 
@@ -11,7 +11,6 @@
 #include <random>
 
 using namespace exactpixels;
-using testing::Rational;
 
 namespace {
 
@@ -19,15 +18,6 @@ namespace {
 // pairs): under half a second in Release and a few seconds under the sanitizers, so
 // the range is the same in every build.
 constexpr std::int64_t exhaustive_limit = std::int64_t{1} << 20;
-
-/// floor(r) of an exact rational.
-std::int64_t floor_of(const Rational& r) {
-    auto q = static_cast<std::int64_t>(r.num() / r.den()); // truncates towards zero
-    if (Rational(q) > r) {
-        --q;
-    }
-    return q;
-}
 
 } // namespace
 
@@ -215,13 +205,15 @@ TEST_CASE("with the chosen rule a span samples only the texels between its ends"
         const Rational slope = Rational(b - a) / (x1 - x0); // du/dx = dc/dx
         const RoundingRule rule = choose_rule(slope, Rational(0));
         const std::int64_t lo = std::min(a, b), hi = std::max(a, b);
-        for (std::int64_t x = floor_of(x0) - 1; x <= floor_of(x1) + 1; ++x) {
+        const auto first = static_cast<std::int64_t>(floor_of(x0)) - 1;
+        const auto last = static_cast<std::int64_t>(floor_of(x1)) + 1;
+        for (std::int64_t x = first; x <= last; ++x) {
             const Rational centre = Rational(x) + Rational(1, 2);
             if (centre < x0 || centre >= x1) {
                 continue; // not covered
             }
             const Rational u = Rational(a) + slope * (centre - x0);
-            const std::int64_t rule1 = floor_of(u);
+            const auto rule1 = static_cast<std::int64_t>(floor_of(u));
             const bool tie = Rational(rule1) == u;
             const std::int64_t picked =
                 (rule == RoundingRule::ties_down && tie) ? rule1 - 1 : rule1;

@@ -1,14 +1,14 @@
 // Chapter 6, hard cases of coverage: slivers, the 720-sliver fan, coordinates at and past
 // the fixed-point limits, zero area after snapping, vertex order and winding, and input
 // that is not a number. Each test states its tolerance; "exact" means pixel for pixel
-// against an independent brute-force test in 128-bit integers.
+// against an independent brute-force test in exact integers.
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
 #include "support/measured_facts.hpp"
-#include "support/rational.hpp"
 
 #include <doctest/doctest.h>
 
@@ -20,21 +20,21 @@
 #include <vector>
 
 using namespace exactpixels;
-using exactpixels::testing::Int128;
 using exactpixels::testing::record_fact;
 
 namespace {
 
-/// Twice the signed area of a, b, p in 128-bit integers (units of 1/65536 px^2).
-Int128 orient(FixedPoint2 a, FixedPoint2 b, FixedPoint2 p) {
-    return Int128{b.x - a.x} * Int128{p.y - a.y} - Int128{b.y - a.y} * Int128{p.x - a.x};
+/// Twice the signed area of a, b, p in exact integers (units of 1/65536 px^2).
+Integer orient(FixedPoint2 a, FixedPoint2 b, FixedPoint2 p) {
+    return Integer{b.x - a.x} * Integer{p.y - a.y} -
+           Integer{b.y - a.y} * Integer{p.x - a.x};
 }
 
 /// The top-left rule for pixel (x, y) straight from its definition: the centre is
 /// strictly inside every edge, or on an edge that is a top edge or a left edge. An
 /// independent reference for every rasterizer (no stepping, no bias trick).
 bool exactly_covered(std::array<FixedPoint2, 3> v, int x, int y) {
-    const Int128 area = orient(v[0], v[1], v[2]);
+    const Integer area = orient(v[0], v[1], v[2]);
     if (area == 0) {
         return false;
     }
@@ -45,7 +45,7 @@ bool exactly_covered(std::array<FixedPoint2, 3> v, int x, int y) {
     for (int i = 0; i < 3; ++i) {
         const FixedPoint2 a = v[static_cast<std::size_t>((i + 1) % 3)];
         const FixedPoint2 b = v[static_cast<std::size_t>((i + 2) % 3)];
-        const Int128 e = orient(a, b, p);
+        const Integer e = orient(a, b, p);
         const std::int64_t dx = b.x - a.x, dy = b.y - a.y;
         const bool top_or_left = dy < 0 || (dy == 0 && dx > 0);
         if (e < 0 || (e == 0 && !top_or_left)) {

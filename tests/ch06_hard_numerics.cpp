@@ -1,6 +1,7 @@
 // Chapter 6, hard cases of arithmetic: near-zero y-deltas in the gradient setup, tiny
 // triangles far from the origin, triangles nearly edge-on to the camera, and long spans
 // stepped in float. Each test states its tolerance and where it comes from.
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/raster/gradient_stability.hpp"
 #include "exactpixels/raster/gradients.hpp"
@@ -16,6 +17,7 @@
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <optional>
 #include <string>
 
 using namespace exactpixels;
@@ -31,7 +33,7 @@ constexpr int trials = 200; // Debug and sanitizer builds: the same checks, fewe
 
 TEST_CASE("near-zero y-deltas: both gradient setups stay finite and close to exact") {
     // Chapter 1's study, fewer triangles: y-deltas from 1e-2 px down to 1e-12 px and 0.
-    // The reference is the exact gradient (128-bit integers). Tolerance, in machine
+    // The reference is the exact gradient (exact rationals). Tolerance, in machine
     // epsilons of the precision, on the largest error over all triangles: 2^8 for the
     // closed form, and the same for the split edge; never NaN or infinite.
     const std::vector<StabilityRow> rows = gradient_stability_study(trials, 5);
@@ -84,18 +86,34 @@ TEST_CASE("near-zero y-delta triangles keep twice their area far from zero") {
 }
 
 namespace {
-/// c at screen point p from the plane through three vertices, in long double with every
-/// coordinate taken relative to vertex 0 first (the differences are exact): the
-/// reference for the far-from-origin case.
-long double plane_reference(const std::array<Point2, 3>& v,
-                            const std::array<double, 3>& c, Point2 p) {
-    using L = long double;
-    const L x1 = L(v[1].x) - L(v[0].x), y1 = L(v[1].y) - L(v[0].y);
-    const L x2 = L(v[2].x) - L(v[0].x), y2 = L(v[2].y) - L(v[0].y);
-    const L c1 = L(c[1]) - L(c[0]), c2 = L(c[2]) - L(c[0]);
-    const L area = x2 * y1 - x1 * y2;
-    const L gx = (c2 * y1 - c1 * y2) / area, gy = (c1 * x2 - c2 * x1) / area;
-    return L(c[0]) + gx * (L(p.x) - L(v[0].x)) + gy * (L(p.y) - L(v[0].y));
+/// The plane through three vertices and their values c, exactly: the reference for the
+/// far-from-origin and edge-on cases. Its gradient is @eq:closed-form written out
+/// again (not the library's template) in exact rationals, so nothing rounds.
+class ExactPlane {
+  public:
+    /// The plane through (v[i], c[i]); the vertices must not be collinear.
+    ExactPlane(const std::array<Point2, 3>& v, const std::array<double, 3>& c)
+        : x0_(exact(v[0].x)), y0_(exact(v[0].y)), c0_(exact(c[0])) {
+        const Rational x1 = exact(v[1].x) - x0_, y1 = exact(v[1].y) - y0_;
+        const Rational x2 = exact(v[2].x) - x0_, y2 = exact(v[2].y) - y0_;
+        const Rational c1 = exact(c[1]) - c0_, c2 = exact(c[2]) - c0_;
+        const Rational area = x2 * y1 - x1 * y2;
+        REQUIRE(area != 0);
+        gx_ = (c2 * y1 - c1 * y2) / area;
+        gy_ = (c1 * x2 - c2 * x1) / area;
+    }
+    /// c at screen point p, exactly.
+    Rational at(Point2 p) const {
+        return c0_ + gx_ * (exact(p.x) - x0_) + gy_ * (exact(p.y) - y0_);
+    }
+
+  private:
+    Rational x0_, y0_, c0_, gx_, gy_;
+};
+
+/// |computed - truth|, the difference exact and rounded once.
+double error(double computed, const Rational& truth) {
+    return to_double(abs(exact(computed) - truth));
 }
 } // namespace
 
@@ -121,12 +139,12 @@ TEST_CASE("a tiny far triangle: float loses it, relative coordinates keep it") {
     const Gradient<double> gs = gradient_closed_form<double>(snapped, c);
     const Gradient<float> gf = gradient_closed_form<float>(vf, cf);
     const Gradient<float> gr = gradient_closed_form<float>(rf, cf);
+    const ExactPlane plane(v, c), plane_snapped(snapped, c);
     double e_float = 0, e_relative = 0, e_double = 0, e_fixed = 0;
     for (int j = 0; j < 3; ++j) {
         for (int i = 0; i < 3; ++i) {
             const Point2 p = base + Point2{i + 0.5, j + 0.5};
-            const long double truth = plane_reference(v, c, p);
-            const long double truth_snapped = plane_reference(snapped, c, p);
+            const Rational truth = plane.at(p), truth_snapped = plane_snapped.at(p);
             const glm::vec2 pf(p);        // exact: half-integers near 1e6
             const glm::vec2 pr(p - v[0]); // the safeguard: relative first
             const float c_float = gf.dx * (pf.x - vf[0].x) + gf.dy * (pf.y - vf[0].y);
@@ -134,10 +152,10 @@ TEST_CASE("a tiny far triangle: float loses it, relative coordinates keep it") {
             const double c_double = gd.dx * (p.x - v[0].x) + gd.dy * (p.y - v[0].y);
             const double c_fixed =
                 gs.dx * (p.x - snapped[0].x) + gs.dy * (p.y - snapped[0].y);
-            e_float = std::max(e_float, double(std::abs(c_float - truth)));
-            e_relative = std::max(e_relative, double(std::abs(c_rel - truth)));
-            e_double = std::max(e_double, double(std::abs(c_double - truth)));
-            e_fixed = std::max(e_fixed, double(std::abs(c_fixed - truth_snapped)));
+            e_float = std::max(e_float, error(c_float, truth));
+            e_relative = std::max(e_relative, error(c_rel, truth));
+            e_double = std::max(e_double, error(c_double, truth));
+            e_fixed = std::max(e_fixed, error(c_fixed, truth_snapped));
         }
     }
     MESSAGE("far tiny triangle, largest error in c: float "
@@ -157,7 +175,7 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
     // A quad whose left edge is at depth 1 and whose right edge is 10^4 times deeper:
     // along each row 1/w falls from 1 to nearly 1e-4, and at the far end the divide
     // (u/w) / (1/w) magnifies the rounding of both. The reference evaluates the same
-    // planes (through the snapped corners) in long double. Tolerances: double 1e-6
+    // planes (through the snapped corners) exactly. Tolerances: double 1e-6
     // texels; 16.16: half a unit (2^-17 texels) plus 1e-6; float: u/w and 1/w are each
     // rounded to about eps of their largest value along the row, so at the far pixel u
     // is off by up to 2 eps R relatively, R the ratio of 1/w across the row (eq.
@@ -172,7 +190,7 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
     double ratio = 1.0; // the largest ratio of 1/w along a row, at pixel centres
     int pixels = 0;
     int float_wrong_texels = 0; // float's texel is not the one under the exact (u, v)
-    long double wrong_q = 1.0L; // the largest 1/w there (1/w is 1 at the near edge)
+    Rational wrong_q = 1;       // the largest 1/w there (1/w is 1 at the near edge)
     const Precision precisions[3] = {Precision::float64, Precision::fixed,
                                      Precision::float32};
     for (const auto& t : quad) {
@@ -180,15 +198,26 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
         for (std::size_t k = 0; k < 3; ++k) {
             p[k] = to_pixels(snap_in_range(t[k].position));
         }
-        const auto plane = [&](auto f, Point2 at) {
-            return plane_reference(p, {f(t[0]), f(t[1]), f(t[2])}, at);
+        const auto plane = [&](auto f) {
+            return ExactPlane(p, {f(t[0]), f(t[1]), f(t[2])});
         };
+        const ExactPlane q_plane = plane([](const TexturedVertex& v) { return 1 / v.w; });
+        const ExactPlane u_plane =
+            plane([](const TexturedVertex& v) { return v.uv.x / v.w; });
+        const ExactPlane v_plane =
+            plane([](const TexturedVertex& v) { return v.uv.y / v.w; });
+        // The exact 1/w, u and v at each pixel centre, made once for all three
+        // precisions.
+        struct Truth {
+            Rational q, u, v;
+        };
+        std::vector<std::optional<Truth>> truths(320 * 64);
         for (int k = 0; k < 3; ++k) {
             TexelMap map(320, 64);
             map_textured_triangle(
                 map, t, {MapperKind::exact, 16, precisions[k], {}, Wrap::repeat});
             for (int y = 0; y < 64; ++y) {
-                long double q_lo = 1e30L, q_hi = 0.0L;
+                std::optional<Rational> q_lo, q_hi;
                 for (int x = 0; x < 320; ++x) {
                     const std::size_t at = std::size_t(y) * 320 + std::size_t(x);
                     if (!map.covered[at]) {
@@ -196,27 +225,24 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
                     }
                     pixels += k == 0;
                     REQUIRE(std::isfinite(map.u[at]));
-                    const Point2 s = pixel_centre(x, y);
-                    const long double q =
-                        plane([](const TexturedVertex& v) { return 1 / v.w; }, s);
-                    const long double u =
-                        plane([](const TexturedVertex& v) { return v.uv.x / v.w; }, s) /
-                        q;
-                    const long double v =
-                        plane([](const TexturedVertex& v) { return v.uv.y / v.w; }, s) /
-                        q;
-                    q_lo = std::min(q_lo, q);
-                    q_hi = std::max(q_hi, q);
-                    worst[k] = std::max({worst[k], double(std::abs(map.u[at] - u)),
-                                         double(std::abs(map.v[at] - v))});
-                    if (k == 2 && (map.i[at] != int(std::floor(u)) ||
-                                   map.j[at] != int(std::floor(v)))) {
+                    if (!truths[at]) {
+                        const Point2 s = pixel_centre(x, y);
+                        const Rational q = q_plane.at(s);
+                        truths[at] = Truth{q, u_plane.at(s) / q, v_plane.at(s) / q};
+                    }
+                    const auto& [q, u, v] = *truths[at];
+                    q_lo = q_lo ? std::min(*q_lo, q) : q;
+                    q_hi = q_hi ? std::max(*q_hi, q) : q;
+                    worst[k] =
+                        std::max({worst[k], error(map.u[at], u), error(map.v[at], v)});
+                    if (k == 2 &&
+                        (map.i[at] != floor_of(u) || map.j[at] != floor_of(v))) {
                         ++float_wrong_texels;
                         wrong_q = float_wrong_texels == 1 ? q : std::max(wrong_q, q);
                     }
                 }
-                if (q_hi > 0) {
-                    ratio = std::max(ratio, double(q_hi / q_lo));
+                if (q_hi) {
+                    ratio = std::max(ratio, to_double(*q_hi / *q_lo));
                 }
             }
         }
@@ -225,21 +251,21 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
                         << ", worst texel error: double " << worst[0] << ", 16.16 "
                         << worst[1] << ", float " << worst[2]
                         << "; float picks another texel at " << float_wrong_texels
-                        << " pixels, 1/w at most " << double(wrong_q));
+                        << " pixels, 1/w at most " << to_double(wrong_q));
     record_fact("ch06_edge_on_pixels", pixels);
     record_fact("ch06_edge_on_ratio", ratio);
     record_fact("ch06_edge_on_double", worst[0]);
     record_fact("ch06_edge_on_fixed", worst[1]);
     record_fact("ch06_edge_on_float", worst[2]);
     record_fact("ch06_edge_on_float_wrong_texels", float_wrong_texels);
-    record_fact("ch06_edge_on_float_wrong_q", double(wrong_q));
+    record_fact("ch06_edge_on_float_wrong_q", to_double(wrong_q));
     CHECK(pixels > 5000);
     CHECK(ratio > 1000.0); // "by thousands": 1/w falls by more than a factor 1000
     CHECK(worst[0] <= 1e-6);
     CHECK(worst[1] <= 0x1p-17 + 1e-6);
     CHECK(worst[2] <= 8 * 0x1p-24 * ratio * 4096.0);
     // Where float takes another texel, it is at the far end: 1/w below a hundredth.
-    CHECK((float_wrong_texels == 0 || wrong_q < 0.01L));
+    CHECK((float_wrong_texels == 0 || wrong_q < Rational(1, 100)));
 }
 
 TEST_CASE("long spans in float: stepping drifts, re-evaluating the plane does not") {

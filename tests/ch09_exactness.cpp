@@ -4,6 +4,7 @@
 // portable ones; the tiled renderer's picture does not depend on the thread count; the
 // textured runs draw the texels of chapter 3's exact mapper under perspective.
 #include "ch02_grid.hpp"
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/raster/block_masks.hpp"
 #include "exactpixels/raster/depth_lanes.hpp"
 #include "exactpixels/raster/row_runs.hpp"
@@ -236,16 +237,15 @@ TEST_CASE(
     // Exercise 2 of chapter 9: run_of_row_fast starts each edge's end from the double
     // estimate w * (1 / |s_x|), clamped to the row and truncated, as below. For
     // |w| < 2^52 the start is at most one column from the exact end (computed here in
-    // 128-bit integers); above, up to the 2^60 of @eq:edge-range, an edge with s_x > 0
+    // exact integers); above, up to the 2^60 of @eq:edge-range, an edge with s_x > 0
     // whose quotient lies just above an integer can start two columns short, and one
     // with s_x < 0 is never more than one column off. Both worst cases occur.
-    __extension__ typedef __int128 Int128;
     std::mt19937_64 rng(97);
     const auto below = [&](std::int64_t limit) {
         return static_cast<std::int64_t>(rng() % static_cast<std::uint64_t>(limit));
     };
-    const auto floor_div = [](Int128 a, Int128 b) { // b > 0
-        return a >= 0 ? a / b : -((-a + b - 1) / b);
+    const auto floor_div = [](const Integer& a, const Integer& b) { // b > 0
+        return a >= 0 ? Integer{a / b} : Integer{-((-a + b - 1) / b)};
     };
     int worst_small = 0, worst_rising = 0, worst_falling = 0;
     long near_2_60 = 0;
@@ -258,26 +258,27 @@ TEST_CASE(
         const std::int64_t q = below(n + 5) - 2;
         const std::int64_t r_choice[] = {0, 1, s - 1, below(s)};
         const std::int64_t r = std::max<std::int64_t>(0, r_choice[(trial / 3) % 4]);
-        const Int128 w_wide = static_cast<Int128>(q) * s + r;
-        if (w_wide >= (Int128{1} << 60) || w_wide <= -(Int128{1} << 60)) {
+        const Integer w_wide = Integer{q} * s + r;
+        if (w_wide >= (Integer{1} << 60) || w_wide <= -(Integer{1} << 60)) {
             continue;
         }
-        near_2_60 += w_wide >= (Int128{1} << 59);
-        const bool small = w_wide < (Int128{1} << 52) && w_wide > -(Int128{1} << 52);
+        near_2_60 += w_wide >= (Integer{1} << 59);
+        const bool small = w_wide < (Integer{1} << 52) && w_wide > -(Integer{1} << 52);
         const double inv = 1.0 / static_cast<double>(s);
         const double last = static_cast<double>(n);
         for (const bool rising : {true, false}) {
             // rising: step_x = s > 0 and w = -w_wide, the first k with w + k s >= 0;
             // falling: step_x = -s and w = w_wide, one past the last k with w - k s >= 0.
-            const auto w = static_cast<std::int64_t>(rising ? -w_wide : w_wide);
+            const auto w = (rising ? -w_wide : w_wide).convert_to<std::int64_t>();
             const double estimate = static_cast<double>(w) * inv;
             const auto start =
                 static_cast<std::int64_t>(rising ? std::clamp(-estimate, 0.0, last)
                                                  : std::clamp(estimate + 1.0, 0.0, last));
-            const Int128 exact = rising ? -floor_div(-w_wide, s) // ceil(w_wide / s)
-                                        : floor_div(w_wide, s) + 1;
-            const auto clamped = static_cast<std::int64_t>(
-                std::clamp<Int128>(exact, 0, static_cast<Int128>(n)));
+            const Integer exact =
+                rising ? -floor_div(-w_wide, Integer{s}) // ceil(w_wide / s)
+                       : floor_div(w_wide, Integer{s}) + 1;
+            const auto clamped =
+                static_cast<std::int64_t>(std::clamp<Integer>(exact, 0, Integer{n}));
             const auto distance = static_cast<int>(std::abs(start - clamped));
             CAPTURE(w);
             CAPTURE(s);

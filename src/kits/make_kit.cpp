@@ -1033,8 +1033,8 @@ void make_kit(const Options& options) {
     // names (Ubuntu's and WSL's too), and Homebrew's formulae for macOS (checked against
     // homebrew-core: it has no formula for stb or tinyobjloader).
     std::string packages = "cmake g++ make pkg-config doctest-dev libglm-dev libstb-dev "
-                           "libpng-dev libfmt-dev libcli11-dev";
-    std::string brew_packages = "cmake pkgconf doctest glm libpng fmt cli11";
+                           "libpng-dev libfmt-dev libcli11-dev libboost-dev";
+    std::string brew_packages = "cmake pkgconf doctest glm libpng fmt cli11 boost";
     const bool scene = std::any_of(kit.begin(), kit.end(), [](const auto& file) {
         return starts_with(file.first.generic_string(), "src/exactpixels/scene/");
     });

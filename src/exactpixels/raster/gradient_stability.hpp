@@ -9,17 +9,18 @@
 // px, or exactly 0) and the third 1 to 64 px above or below them; x spans up to 1000
 // px, c lies in [0, 1]. Every input is a multiple of 2^-40 below 2^10 in magnitude (for
 // the float trials also rounded to float, where a y-delta below the spacing of floats
-// near y, 2^-17 .. 2^-14 px, becomes 0 or one spacing), and the exact gradient is a ratio
-// of two 128-bit integers (@eq:closed-form with integer inputs): the reference converts
-// both to long double and divides, three roundings, so with a 64-bit significand (x86-64,
-// GCC or Clang) it is within 3 * 2^-64 of the exact ratio. Where long double is a double
-// (MSVC, Apple Silicon) it is no wider than what it measures. With an `origin`
+// near y, 2^-17 .. 2^-14 px, becomes 0 or one spacing), and the reference is the exact
+// gradient, a ratio of two integers (@eq:closed-form with integer inputs) kept as an
+// exact Rational (exactpixels/base/exact.hpp). With an `origin`
 // (chapter 1's Exercise 5) every x and y is moved by that many px before the rounding, so
 // the same triangles lie near the origin instead (inputs then below 2^12 in magnitude).
 // The error of a computed gradient g is the relative error of the vector: |g - g_exact| /
-// |g_exact|, in units of the precision's machine epsilon (float 2^-23, double 2^-52).
+// |g_exact|, in units of the precision's machine epsilon (float 2^-23, double 2^-52),
+// computed exactly and rounded once to double (its square; then a square root): the same
+// numbers on every platform.
 #pragma once
 
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/raster/gradients.hpp"
 
 #include <cstdint>
@@ -46,11 +47,10 @@ struct StabilityRow {
 /// The y-deltas the study measures, largest first; the last one is exactly 0.
 std::vector<double> stability_y_deltas();
 
-/// The exact gradient of the triangle (@eq:closed-form): numerator and denominator in
-/// 128-bit integers, each converted to long double, then divided (three roundings).
-/// Every input must be a multiple of 2^-40 with magnitude below 2^12 (asserted); zero
-/// area gives {0, 0}.
-Gradient<long double> exact_gradient(const PlaneSamples<double>& s);
+/// The exact gradient of the triangle (@eq:closed-form), each component an exact ratio
+/// of two integers, with no rounding at all. Every input must be a multiple of 2^-40
+/// with magnitude below 2^12 (asserted); zero area gives {0, 0}.
+Gradient<Rational> exact_gradient(const PlaneSamples<double>& s);
 
 /// The trial triangles for one y-delta: `count` of them from a fixed pseudo-random
 /// sequence (`seed`), identical on every platform. Inputs obey exact_gradient's rule;

@@ -16,9 +16,10 @@
 //   - gradient_closed_form: the ratio of two cross products, any vertex order
 //   (@eq:closed-form).
 // Every function is a template on the number type: float and double for rasterizers,
-// long double or an exact rational in the chapter's tests (any type with + - * /, < and
-// construction from int works). A triangle of zero area (three collinear or coincident
-// points) has no gradient: both methods return {0, 0}, never NaN or infinity from 0/0.
+// the exact Rational of exactpixels/base/exact.hpp in the chapter's tests (any type with
+// + - * /, < and construction from int works). A triangle of zero area (three collinear
+// or coincident points) has no gradient: both methods return {0, 0}, never NaN or
+// infinity from 0/0.
 #pragma once
 
 #include <glm/glm.hpp>
@@ -35,7 +36,7 @@ template <class Real> struct Gradient {
 };
 
 /// Three vertices and the value of c at each, as plain numbers of type T (so that the
-/// same formulas run in float, double, long double and exact rational arithmetic).
+/// same formulas run in float, double and exact rational arithmetic).
 template <class T> struct PlaneSamples {
     std::array<T, 3> x; ///< vertex x in pixels
     std::array<T, 3> y; ///< vertex y in pixels
