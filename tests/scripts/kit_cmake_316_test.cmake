@@ -10,7 +10,7 @@
 # write it another way.
 cmake_minimum_required(VERSION 3.25)
 set(commands # every command here is in CMake 3.0 unless noted
-  add_custom_target add_dependencies add_executable add_library add_subdirectory add_test
+  add_compile_options add_custom_target add_dependencies add_executable add_library add_subdirectory add_test
   cmake_minimum_required continue # 3.2
   else elseif endforeach endfunction endif endmacro endwhile enable_testing file
   find_package find_path foreach function if include list macro message option
