@@ -1,7 +1,8 @@
-// The teacher's edition and the student book: every exercise's worked solution (a
+// The teacher's edition and the students' editions: every exercise's worked solution (a
 // `::: solution` block in a chapter's source, see book/AUTHORING.md) appears in the
-// teacher's edition (build/book-teacher/) and nowhere in the student book (build/book/:
-// its HTML pages and the LaTeX source of its PDF). The kits are checked by the kit tests
+// teacher's edition (build/book-teacher/) and nowhere in the public book (build/book/) or
+// the course edition (build/book-course/): their HTML pages and the LaTeX source of their
+// PDF. The kits are checked by the kit tests
 // (tests/assignments_kits.cpp), which prove no solution text reaches a kit.
 //
 // A solution is recognised by phrases of its plain text: runs of at least six words with
@@ -9,6 +10,7 @@
 // white space are removed.
 //
 // Label `bookcheck`: runs in the `book` workflow after both books are built.
+#include "bookcheck_editions.hpp"
 #include "support/text_file.hpp"
 
 #include <doctest/doctest.h>
@@ -137,27 +139,28 @@ std::string book_text(const fs::path& book) {
 
 } // namespace
 
-TEST_CASE("the teacher's edition holds every worked solution, the student book none") {
-    const fs::path student = fs::path(EXACTPIXELS_BINARY_DIR) / "book";
-    const fs::path teacher = fs::path(EXACTPIXELS_BINARY_DIR) / "book-teacher";
-    REQUIRE(fs::exists(student / "latex/exact-pixels.tex"));
-    REQUIRE(fs::exists(teacher / "latex/exact-pixels.tex"));
+TEST_CASE("the teacher's edition holds every worked solution, the other editions none") {
     const auto all = solutions();
     REQUIRE(!all.empty());
-    const std::string student_text = book_text(student);
-    const std::string teacher_text = book_text(teacher);
-    int phrases = 0;
-    for (const auto& solution : all) {
-        CAPTURE(solution.where);
-        CHECK(!solution.phrases.empty()); // every solution can be recognised
-        for (const auto& phrase : solution.phrases) {
-            CAPTURE(phrase);
-            CHECK(teacher_text.find(phrase) != std::string::npos);
-            CHECK(student_text.find(phrase) == std::string::npos);
-            ++phrases;
+    for (const auto& edition : exactpixels::bookcheck::editions) {
+        const fs::path book = exactpixels::bookcheck::edition_folder(edition);
+        const std::string name = edition.folder; // doctest prints a char* as a pointer
+        INFO("edition " << name);
+        REQUIRE(fs::exists(book / "latex/exact-pixels.tex"));
+        const std::string text = book_text(book);
+        int phrases = 0;
+        for (const auto& solution : all) {
+            CAPTURE(solution.where);
+            CHECK(!solution.phrases.empty()); // every solution can be recognised
+            for (const auto& phrase : solution.phrases) {
+                CAPTURE(phrase);
+                CHECK((text.find(phrase) != std::string::npos) == edition.with_solutions);
+                ++phrases;
+            }
         }
+        MESSAGE(name << ": " << all.size() << " solutions, " << phrases
+                               << " phrases checked");
+        // The markers themselves: a student's edition has no solution block at all.
+        CHECK((text.find("Solution.") != std::string::npos) == edition.with_solutions);
     }
-    MESSAGE(all.size() << " solutions, " << phrases << " phrases checked");
-    // The markers themselves: the student book has no solution block at all.
-    CHECK(student_text.find("Solution.") == std::string::npos);
 }
