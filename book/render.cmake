@@ -58,6 +58,14 @@ set(edition_line "Edition ${book_edition}, version ${VERSION}, commit ${book_com
 
 file(MAKE_DIRECTORY ${BOOK_DIR} ${BOOK_DIR}/source ${BOOK_DIR}/latex/figures)
 file(COPY_FILE ${ROOT}/book/style.css ${BOOK_DIR}/style.css)
+# The pages show figures from figures/ beside them: an edition rendered outside the
+# figure folder's book (the course and teacher's editions) gets its own copy.
+get_filename_component(figure_parent ${FIGURE_DIR} DIRECTORY)
+if(NOT figure_parent STREQUAL BOOK_DIR)
+  file(GLOB figure_images ${FIGURE_DIR}/*.svg ${FIGURE_DIR}/*.png)
+  file(REMOVE_RECURSE ${BOOK_DIR}/figures)
+  file(COPY ${figure_images} DESTINATION ${BOOK_DIR}/figures)
+endif()
 
 set(filter_env EP_ROOT=${ROOT} EP_FIGURES=${FIGURE_DIR} EP_ALL_CHAPTERS=${all_dirs}
     EP_OUT=${BOOK_DIR} EP_LATEX_FIGURES=${BOOK_DIR}/latex/figures)

@@ -541,10 +541,35 @@ TEST_CASE(
     }
     CHECK(read_file(kit / "chapters/07-fake/chapter.md").find("3. []{.exercise") !=
           std::string::npos);
+    // The kit says no more than the course edition: text marked `.not-in-course` (span
+    // or div, nested markup and all) is gone, `.course-only` text stays, unwrapped.
+    const std::string chapter_md = read_file(kit / "chapters/07-fake/chapter.md");
+    for (const std::string& text : {chapter_md, readme}) {
+        CHECK(text.find("PUBLIC-") == std::string::npos);
+        CHECK(text.find("not-in-course") == std::string::npos);
+        CHECK(text.find("course-only") == std::string::npos);
+        CHECK(text.find("Derive the triangle number, COURSE-SPAN") != std::string::npos);
+        CHECK(text.find("COURSE-DIV text.") != std::string::npos);
+    }
     CHECK(readme.find("Not part of the README") == std::string::npos);
     CHECK(readme.find("worth 6 points") != std::string::npos);
     CHECK(readme.find("cmake --build build --target grade") != std::string::npos);
     CHECK(readme.find("@") == std::string::npos); // every placeholder filled
+
+    // `make-kit stub` (the course edition's API reference reads the library through it)
+    // stubs the regions of every chapter, 07's and 08's alike.
+    const auto stubbed = run_command(std::string("'") + EXACTPIXELS_MAKE_KIT +
+                                     "' stub --source " + quoted(tree) + " --file " +
+                                     quoted(tree / "src/exactpixels/answer.hpp"));
+    REQUIRE(stubbed.exit_code == 0);
+    CHECK(stubbed.out.find("    // EXERCISE ch07-answer: six times seven.\n"
+                           "    return 0; // stub: a neutral value\n") !=
+          std::string::npos);
+    CHECK(stubbed.out.find("    // EXERCISE ch08-twice: add x to itself; this hint is "
+                           "long enough that clang-format wraps it.\n    (void)x;\n") !=
+          std::string::npos);
+    CHECK(stubbed.out.find("six * 7") == std::string::npos);
+    CHECK(stubbed.out.find("x + x") == std::string::npos);
 
     // Chapter 08's kit takes the wrapped hint whole.
     const fs::path kit08 = kits / "ch08";

@@ -186,18 +186,21 @@ std::vector<SolutionLine> solution_lines() {
     return found;
 }
 
-/// The solution lines that appear in some HTML page of `book` (its top level and its
-/// source pages).
-std::vector<SolutionLine> printed_solutions(const fs::path& book) {
+/// The text of every HTML page of `book` (its top level, its source pages and its API
+/// reference), as a reader sees it, white space collapsed, one page a line.
+std::string book_text(const fs::path& book) {
     std::string text;
     for (const auto& entry : fs::recursive_directory_iterator(book)) {
-        const auto rel = fs::relative(entry.path(), book).string();
-        // The API reference is Doxygen's, of the whole library, and in the public book
-        // only: the course edition has none.
-        if (entry.path().extension() == ".html" && rel.rfind("api/", 0) != 0) {
+        if (entry.path().extension() == ".html") {
             text += collapsed(html_text(read_text(entry.path()))) + "\n";
         }
     }
+    return text;
+}
+
+/// The solution lines that appear in some HTML page of `book`.
+std::vector<SolutionLine> printed_solutions(const fs::path& book) {
+    const std::string text = book_text(book);
     std::vector<SolutionLine> printed;
     for (const auto& line : solution_lines()) {
         if (text.find(line.code) != std::string::npos) {
@@ -205,6 +208,82 @@ std::vector<SolutionLine> printed_solutions(const fs::path& book) {
         }
     }
     return printed;
+}
+
+/// A page's text with no white space at all and U+2212 (MathML's minus) as '-': an
+/// expression compares equal however it is spaced, in code, in prose or in maths (whose
+/// MathML carries its TeX as an annotation, so a formula is found by its TeX too).
+std::string squeezed(const std::string& text) {
+    static const std::string minus = "\u2212";
+    std::string out;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text.compare(i, minus.size(), minus) == 0) {
+            out += '-';
+            i += minus.size() - 1;
+        } else if (text[i] != ' ' && text[i] != '\n' && text[i] != '\t' &&
+                   text[i] != '\r') {
+            out += text[i];
+        }
+    }
+    return out;
+}
+
+/// What would give an exercise's answer away outside its region: the decisive expression
+/// of its solution as the text, the maths (its TeX) or a comment of a listing stated it,
+/// written here without white space. The course edition states the idea instead
+/// (`.not-in-course` / `.course-only`, book/AUTHORING.md); the public book keeps them all,
+/// which the second test below requires, so that no entry here is a string that never
+/// occurs.
+struct GiveAway {
+    const char* exercise;
+    const char* text;
+};
+const GiveAway give_aways[] = {
+    {"ch02-edge-bias", "dy<0||(dy==0&&dx>0)"},
+    {"ch02-edge-bias", "aleftedgerunsup"},
+    {"ch02-edge-bias", "aleftedgegoesupthescreen"},
+    {"ch02-barycentric", R"(\lambda_i(p)&=\frac{E_i(p)}{2A})"},
+    {"ch02-barycentric", "lambda_i=E_i/(E_0+E_1+E_2)"},
+    {"ch02-barycentric", "-(y_{i+2}-y_{i+1})/2A"},
+    {"ch04-modifier", "D/2-1"},
+    {"ch04-modifier", R"(\tfrac12-1/D)"},
+    {"ch04-modifier", "oneunit(1/D)smaller"},
+    {"ch05-texel-error", "std::max(std::abs(u-u_ref),std::abs(v-v_ref))"},
+    {"ch05-texel-error", R"(e_k=\max\left()"},
+    {"ch05-texel-error", "largerofthetwocoordinateerrors"},
+    {"ch05-texel-error", "Thelargerofthetwo:below1/2"},
+    {"ch08-bilinear", "C=U-D/2"},
+    {"ch08-bilinear", "f_u=C-iD"},
+    {"ch08-bilinear", "Cu-i*D"},
+    {"ch08-derivatives", R"(\frac{p_xq-p\,q_x}{q^2})"},
+    {"ch08-derivatives", "numerator_x(u)*inv_q2"},
+    {"ch08-derivatives", "numeratoroverq^2"},
+    {"ch08-derivatives", "dividedbyq2q^2"},
+    {"ch08-derivatives", "|N_x|/q^2"},
+    {"ch09-run-of-row", "ceil_div(-w[i],step)"},
+    {"ch09-run-of-row", "floor_div(w[i],-step)+1"},
+    {"ch09-run-of-row", R"(k\ge\left\lceil\dfrac{-w}{s_x}\right\rceil)"},
+    {"ch09-run-of-row", R"(k=\lceil-w/s\rceil)"},
+    {"ch09-run-of-row", R"(\lfloorw/s\rfloor+1)"},
+    {"ch09-run-of-row", "k>=ceil(-w/step)"},
+};
+
+/// The give-aways found in `book`, each with the page it is on.
+std::vector<std::string> give_aways_in(const fs::path& book) {
+    std::vector<std::string> found;
+    for (const auto& entry : fs::recursive_directory_iterator(book)) {
+        if (entry.path().extension() != ".html") {
+            continue;
+        }
+        const std::string text = squeezed(html_text(read_text(entry.path())));
+        for (const auto& g : give_aways) {
+            if (text.find(g.text) != std::string::npos) {
+                found.push_back(std::string(g.exercise) + ": \"" + g.text + "\" on " +
+                                fs::relative(entry.path(), book).string());
+            }
+        }
+    }
+    return found;
 }
 
 } // namespace
@@ -234,4 +313,26 @@ TEST_CASE("the same search finds the exercises' solutions in the public book") {
     // The whole of exercise ch02-edge-bias, chapter 2's top-left rule, is one of them.
     CHECK(per_exercise["ch02-edge-bias"] == 1);
     CHECK(per_exercise.size() >= 10);
+}
+
+TEST_CASE("no text of the course edition gives an exercise's answer away") {
+    const fs::path course = fs::path(EXACTPIXELS_BINARY_DIR) / "book-course";
+    REQUIRE(fs::exists(course / "index.html"));
+    for (const auto& found : give_aways_in(course)) {
+        FAIL_CHECK("the course edition gives the answer away: " << found);
+    }
+}
+
+TEST_CASE("the public book states every answer the course edition keeps back") {
+    const fs::path public_book = fs::path(EXACTPIXELS_BINARY_DIR) / "book";
+    REQUIRE(fs::exists(public_book / "index.html"));
+    const auto found = give_aways_in(public_book);
+    for (const auto& g : give_aways) {
+        const std::string prefix = std::string(g.exercise) + ": \"" + g.text + "\"";
+        CHECK_MESSAGE(std::any_of(found.begin(), found.end(),
+                                  [&](const std::string& f) {
+                                      return f.rfind(prefix, 0) == 0;
+                                  }),
+                      "never in the public book: " << prefix);
+    }
 }

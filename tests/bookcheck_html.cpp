@@ -2,12 +2,15 @@
 // contents, appendices and the source pages of named tests) is opened in headless
 // Chromium, and the check fails on a broken link or image, a console error, math that did
 // not render, or a listing or equation wider than its box. The first screen of every
-// top-level page is saved in build/book/screenshots/ for a person to look at.
+// top-level page is saved in build/book/screenshots/ for a person to look at. The same
+// check runs on each edition (build/book-course/ and build/book-teacher/ too,
+// bookcheck_editions.hpp), whose links must resolve inside its own folder.
 //
 // These tests need the built book, so they carry the CTest label `bookcheck` and run in
 // the `book` workflow after the book is rendered (cmake --workflow --preset book), never
 // in the `test` workflow.
 #include "bookcheck_cdp.hpp"
+#include "bookcheck_editions.hpp"
 
 #include "support/text_file.hpp"
 
@@ -307,20 +310,30 @@ TEST_CASE("the browser check catches each fault a reader would see") {
     }
 }
 
-TEST_CASE("every page of the built HTML book reads without a fault in a browser") {
-    const fs::path book = fs::path(EXACTPIXELS_BINARY_DIR) / "book";
-    REQUIRE_MESSAGE(fs::exists(book / "index.html"),
-                    "no " << (book / "index.html").string()
-                          << ": build the book first (cmake --build --preset book)");
-    const BookReport report = check_html_book(book, book / "screenshots");
-    MESSAGE("checked " << report.pages << " pages, " << report.links << " links ("
-                       << report.external_links << " external, not followed), "
-                       << report.images << " images; first screens in "
-                       << (book / "screenshots").string());
-    for (const auto& p : report.problems) {
-        FAIL_CHECK(p);
+// Every edition: the public book, the course edition and the teacher's edition. Each
+// links only within its own folder (its API reference included), so a link that
+// resolves in one edition and not in another fails here.
+TEST_CASE("every page of each edition of the HTML book reads without a fault in a browser") {
+    for (const auto& edition : exactpixels::bookcheck::editions) {
+        const fs::path book = exactpixels::bookcheck::edition_folder(edition);
+        const std::string name = edition.folder; // doctest prints a char* as a pointer
+        INFO("edition " << name);
+        if (!fs::exists(book / "index.html")) {
+            FAIL_CHECK("no " << (book / "index.html").string()
+                             << ": build the editions first (cmake --build --preset book)");
+            continue;
+        }
+        const BookReport report = check_html_book(book, book / "screenshots");
+        MESSAGE(name << ": checked " << report.pages << " pages, "
+                               << report.links << " links (" << report.external_links
+                               << " external, not followed), " << report.images
+                               << " images; first screens in "
+                               << (book / "screenshots").string());
+        for (const auto& p : report.problems) {
+            FAIL_CHECK(name << "/" << p);
+        }
+        CHECK(report.problems.empty());
+        CHECK(report.pages >= 2);
+        CHECK(!report.screenshots.empty());
     }
-    CHECK(report.problems.empty());
-    CHECK(report.pages >= 2);
-    CHECK(!report.screenshots.empty());
 }

@@ -14,13 +14,17 @@
 // Overfull lines of prose are listed but do not fail: the text can be reworded later, a
 // listing or an equation cannot be read when it runs off the page.
 //
-// Label `bookcheck`: runs in the `book` workflow after the book is built.
+// It runs on each edition's PDF in turn (build/book/, build/book-course/,
+// build/book-teacher/; bookcheck_editions.hpp), each rendered into its own pages/.
+//
+// Label `bookcheck`: runs in the `book` workflow after the editions are built.
 #include "support/process.hpp"
 #include "support/text_lines.hpp"
 
 #include "exactpixels/base/png.hpp"
 
 #include "support/text_file.hpp"
+#include "bookcheck_editions.hpp"
 
 #include <doctest/doctest.h>
 
@@ -375,8 +379,10 @@ TEST_CASE(
     CHECK(notes[0].find("text 30.0 pt") != std::string::npos);
 }
 
-TEST_CASE("every page of the built PDF book prints without a fault") {
-    const fs::path book = fs::path(EXACTPIXELS_BINARY_DIR) / "book";
+namespace {
+
+/// The PDF of the edition in folder `book`: its LaTeX log, its figures and every page.
+void check_pdf_edition(const fs::path& book) {
     const fs::path pdf = book / "exact-pixels.pdf";
     const fs::path latex = book / "latex";
     REQUIRE_MESSAGE(fs::exists(pdf), "no " << pdf.string()
@@ -476,4 +482,15 @@ TEST_CASE("every page of the built PDF book prints without a fault") {
     }
     CHECK(problems.empty());
     fs::remove_all(scratch);
+}
+
+} // namespace
+
+TEST_CASE("every page of each edition of the PDF book prints without a fault") {
+    for (const auto& edition : exactpixels::bookcheck::editions) {
+        const std::string name = edition.folder; // doctest prints a char* as a pointer
+        INFO("edition " << name);
+        MESSAGE("edition " << name);
+        check_pdf_edition(exactpixels::bookcheck::edition_folder(edition));
+    }
 }

@@ -1,6 +1,7 @@
 // Chapter 3 tests: the span mappers against the perspective projection they model and
 // against the error bounds the chapter derives.
 #include "exactpixels/texture/perspective_error.hpp"
+#include "exactpixels/texture/rounding.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
 
@@ -267,7 +268,10 @@ TEST_CASE("fixed-point inner loops agree with double within their rounding") {
 }
 
 TEST_CASE("rule 1 floors, rule 2 takes ceil - 1, and they differ only at ties") {
-    const std::int32_t D = texel_scale, rule1 = D / 2, rule2 = D / 2 - 1;
+    // Rule 2's bias is chapter 4's modifier (@eq:modifier), which chapter 4's tests
+    // derive and check; here it must give ceil(u) - 1.
+    const std::int32_t D = texel_scale, rule1 = D / 2;
+    const std::int32_t rule2 = texel_bias(RoundingRule::ties_down);
     CHECK(fixed_texel_index(3 * D, rule1) == 3);
     CHECK(fixed_texel_index(3 * D, rule2) == 2);
     CHECK(fixed_texel_index(3 * D + 1, rule2) == 3);

@@ -19,6 +19,31 @@ namespace {
 // the range is the same in every build.
 constexpr std::int64_t exhaustive_limit = std::int64_t{1} << 20;
 
+/// The fill-rule reading of a choice of rule, checked independently of the code's sign
+/// test: u(x, y) = u0 + a x + b y with a tie at (0, 0) (u0 an integer: c = u - 1/2 is half
+/// way between two texel centres; a and b are the gradient of c as of u). The texel the
+/// rule `choose(a, b)` picks must be the one that holds u a small step `side` (+1: right,
+/// or below when a = 0; -1: left, or above) from the sample; a constant u takes rule 1.
+template <class Choose> void check_tie_goes_to(int side, Choose&& choose) {
+    std::mt19937 random(44);
+    std::uniform_int_distribution<int> numerator(-8, 8);
+    const Rational nudge(side, 1024);
+    for (int trial = 0; trial < 2000; ++trial) {
+        const Rational a(numerator(random), 4), b(numerator(random), 4);
+        const std::int64_t u0 = numerator(random);
+        const RoundingRule rule = choose(a, b);
+        const std::int64_t picked = rule == RoundingRule::ties_up ? u0 : u0 - 1;
+        INFO("dc/dx = " << a << ", dc/dy = " << b << ", u = " << u0);
+        if (a != Rational(0)) {
+            CHECK(picked == floor_of(Rational(u0) + a * nudge));
+        } else if (b != Rational(0)) {
+            CHECK(picked == floor_of(Rational(u0) + b * nudge));
+        } else {
+            CHECK(rule == RoundingRule::ties_up);
+        }
+    }
+}
+
 } // namespace
 
 TEST_CASE("floor_div and ceil_div are exact for every sign") {
@@ -47,7 +72,7 @@ TEST_CASE("the two rules agree except on ties, where rule 2 is one less") {
     }
 }
 
-TEST_CASE("ceil(N/D - 1/2) = floor((N + D/2 - 1)/D) for every N in +-2^20, k = 1..16" *
+TEST_CASE("both rules are the single floor with their modifier for every N in +-2^20, k = 1..16" *
           doctest::description("points: 5; exercise: ch04-modifier")) {
     // Plain loops and one CHECK per k: 34 million comparisons must stay fast.
     for (int k = 1; k <= 16; ++k) {
@@ -157,28 +182,20 @@ TEST_CASE("the rule follows the sign of dc/dx, and of dc/dy when dc/dx is zero" 
 
 TEST_CASE("a sample on a texel edge goes to the texel on its right, or below it" *
           doctest::description("points: 2; exercise: ch04-choose-rule")) {
-    // The fill-rule reading of the choice, checked independently of the code's sign
-    // test: u(x, y) = u0 + a x + b y with a tie at (0, 0) (u0 an integer: c = u - 1/2 is
-    // half way between two texel centres; a and b are the gradient of c as of u). The
-    // texel the chosen rule picks must be the one that holds u a little to the right of
-    // the sample, or, when a = 0, a little below it.
-    std::mt19937 random(44);
-    std::uniform_int_distribution<int> numerator(-8, 8);
-    const Rational nudge(1, 1024);
-    for (int trial = 0; trial < 2000; ++trial) {
-        const Rational a(numerator(random), 4), b(numerator(random), 4);
-        const std::int64_t u0 = numerator(random);
-        const RoundingRule rule = choose_rule(a, b);
-        const std::int64_t picked = rule == RoundingRule::ties_up ? u0 : u0 - 1;
-        INFO("dc/dx = " << a << ", dc/dy = " << b << ", u = " << u0);
-        if (a != Rational(0)) {
-            CHECK(picked == floor_of(Rational(u0) + a * nudge));
-        } else if (b != Rational(0)) {
-            CHECK(picked == floor_of(Rational(u0) + b * nudge));
-        } else {
-            CHECK(rule == RoundingRule::ties_up);
-        }
-    }
+    check_tie_goes_to(+1, [](Rational a, Rational b) { return choose_rule(a, b); });
+}
+
+TEST_CASE("a sample on a texel edge goes to the texel on its left, or above it" *
+          doctest::description("points: 20; exercise: ch04-choose-rule-left-up")) {
+    // The course's variant of the exercise (the opposite convention), checked the same
+    // way, and on the edge cases of its table.
+    check_tie_goes_to(-1, [](Rational a, Rational b) { return choose_rule_left_up(a, b); });
+    using enum RoundingRule;
+    CHECK(choose_rule_left_up(1.0, -5.0) == ties_down);
+    CHECK(choose_rule_left_up(-1e-30, 0.0) == ties_up);
+    CHECK(choose_rule_left_up(-0.0, 2.0) == ties_down); // -0 is zero: dc/dy decides
+    CHECK(choose_rule_left_up(0.0, -2.0) == ties_up);
+    CHECK(choose_rule_left_up(0.0, 0.0) == ties_up); // constant c: rule 1 by convention
 }
 
 TEST_CASE("with the chosen rule a span samples only the texels between its ends" *

@@ -31,7 +31,7 @@ MapperConfig find(const std::string& name) {
 }
 } // namespace
 
-TEST_CASE("the texel error is the larger of the two coordinate errors" *
+TEST_CASE("the texel error and its three summaries on a hand-made pair of maps" *
           doctest::description("points: 7; exercise: ch05-texel-error")) {
     CHECK(texel_error(3.25, 7.0, 3.0, 7.5) == 0.5);
     CHECK(texel_error(-1.0, 2.0, 1.0, 2.25) == 2.0);

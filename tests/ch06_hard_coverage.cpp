@@ -46,9 +46,12 @@ bool exactly_covered(std::array<FixedPoint2, 3> v, int x, int y) {
         const FixedPoint2 a = v[static_cast<std::size_t>((i + 1) % 3)];
         const FixedPoint2 b = v[static_cast<std::size_t>((i + 2) % 3)];
         const Integer e = orient(a, b, p);
+        // A centre on the edge (e == 0) counts when the point moved by (t, t^2), t > 0
+        // as small as need be, is inside: then the sign of e's step along x (-dy)
+        // decides, and on a horizontal edge that of its step along y (dx).
         const std::int64_t dx = b.x - a.x, dy = b.y - a.y;
-        const bool top_or_left = dy < 0 || (dy == 0 && dx > 0);
-        if (e < 0 || (e == 0 && !top_or_left)) {
+        const bool inside = e != 0 ? e > 0 : (dy != 0 ? -dy > 0 : dx > 0);
+        if (!inside) {
             return false;
         }
     }

@@ -19,6 +19,8 @@
 --   EP_COURSE        "1" for the course edition: every exercise region in a listing is
 --                    shown as its stub, as the student's kit has it (see "Listings pulled
 --                    from source" below); the public book shows the solution
+--                    and text marked for the public book only is replaced by its course
+--                    variant (see "Text of one edition" below)
 --   EP_EDITION       the edition's banner ("Course edition", ...), shown on the source
 --                    pages this filter writes (the chapters get it from the template)
 --   EP_PAGE          set for a page that is not a chapter (the contents page, the
@@ -300,6 +302,45 @@ end
 -- and none of its solution lines. The other editions show the solution and drop the stub.
 local course = os.getenv("EP_COURSE") == "1"
 
+-- Text of one edition. Where the text around an exercise would state its answer, the
+-- chapter gives the course edition its own wording:
+--   ::: not-in-course             [text]{.not-in-course}
+--   the public book's text        dropped in the course edition, kept (unwrapped) in the
+--   :::                           public book and the teacher's edition
+--   ::: course-only               [text]{.course-only}
+--   the course edition's text     kept (unwrapped) in the course edition only
+--   :::
+-- Both may hold anything a chapter may (a labelled equation in each variant keeps its
+-- number). The choice is made first, before labels are collected, so every later check
+-- sees only the edition's text.
+local edition_classes = { ["not-in-course"] = false, ["course-only"] = true }
+local function edition_choice(el)
+  local choice
+  for class, course_only in pairs(edition_classes) do
+    if el.classes:includes(class) then
+      if choice ~= nil then
+        error("a block or span is both .not-in-course and .course-only", 0)
+      end
+      choice = course_only == course
+    end
+  end
+  return choice
+end
+local function for_this_edition(blocks)
+  return pandoc.Pandoc(blocks):walk({
+    Div = function(div)
+      local keep = edition_choice(div)
+      if keep == nil then return nil end
+      return keep and div.content or {}
+    end,
+    Span = function(span)
+      local keep = edition_choice(span)
+      if keep == nil then return nil end
+      return keep and span.content or {}
+    end,
+  }).blocks
+end
+
 -- Exercise region ID -> "2.3": chapter number and place in the chapter's Exercises list,
 -- read from the []{.exercise ... region=ID} tags (filled by collect_labels).
 local exercise_numbers = {}
@@ -329,6 +370,7 @@ local function collect_labels()
     local text = read_file(root .. "/" .. chapter_file(dir))
     if text then
       local doc = pandoc.read(text, "markdown")
+      doc.blocks = for_this_edition(doc.blocks)
       collect_exercise_numbers(dir, doc.blocks)
       local state = { h1 = 0, dirs = { dir } }
       each_block(doc.blocks, state, function(block, counters)
@@ -1351,6 +1393,7 @@ end
 
 function Pandoc(doc)
   collect_labels()
+  doc.blocks = for_this_edition(doc.blocks)
   if page_file then return render_page(doc) end
   -- Before the student book drops the solutions, so that both editions are checked.
   local h1_seen, texts = 0, {}

@@ -6,6 +6,7 @@
 //   make-kit restore --source ROOT --kit DIR
 //   make-kit list --source ROOT
 //   make-kit check --source ROOT [--chapter NN]
+//   make-kit stub --source ROOT --file FILE
 //
 // `kit` writes DIR as a self-contained CMake project: of src/, the library layers that
 // chapter NN's code includes and those beneath them (src/exactpixels/layers.txt), the
@@ -32,6 +33,9 @@
 // that name it; every region has a tag and every tag's region exists; a test that names
 // no exercise declares no points (it would give points for nothing). It prints every
 // disagreement, with file and line, and exits 1 if there is one.
+// `stub` prints FILE (a path under ROOT) with every exercise region, of any chapter,
+// replaced by its stub as a kit has it: the course edition's API reference reads the
+// library through it (Doxygen's INPUT_FILTER), so it shows no solution.
 //
 // The kit is checked while it is made: every exercise region of chapter NN must be named
 // by a test of chapter NN with points > 0, and every exercise a test names must exist.
@@ -182,9 +186,9 @@ struct Processed {
     std::vector<Region> regions;    // every exercise region found in it
 };
 
-/// Reads the markers of one file. Regions of `stub_chapter` ("ch02") are replaced by
-/// their stubs between the kit's EXERCISE comments; all other regions keep their
-/// solution.
+/// Reads the markers of one file. Regions of `stub_chapter` ("ch02", or "*" for every
+/// chapter) are replaced by their stubs between the kit's EXERCISE comments; all other
+/// regions keep their solution.
 Processed process_file(const fs::path& rel, const std::string& text,
                        const std::string& stub_chapter) {
     Processed result;
@@ -197,7 +201,10 @@ Processed process_file(const fs::path& rel, const std::string& text,
         const std::string_view rest = first == std::string::npos
                                           ? std::string_view{}
                                           : std::string_view(line).substr(first);
-        const bool stubbing = open && open->chapter() == stub_chapter;
+        const auto stubbed = [&](const Region& region) {
+            return stub_chapter == "*" || region.chapter() == stub_chapter;
+        };
+        const bool stubbing = open && stubbed(*open);
         if (starts_with(rest, "//>") || starts_with(rest, "//<")) {
             const std::string_view body = trim(rest.substr(3));
             const bool exercise = starts_with(body, "exercise ") || body == "exercise";
@@ -237,7 +244,7 @@ Processed process_file(const fs::path& rel, const std::string& text,
                                    " has no hint ('//> exercise " + id + ": hint')");
                 }
                 open = Region{id, hint, rel, open_line, {}, {}, 0};
-                if (open->chapter() == stub_chapter) {
+                if (stubbed(*open)) {
                     result.lines.push_back(indent + kit_begin + id + ": " + hint);
                     open->kit_line = result.lines.size();
                 }
@@ -606,6 +613,73 @@ std::string without_solutions(const std::string& text) {
     return join_lines(kept);
 }
 
+/// Chapter text as the course edition has it (book/AUTHORING.md, "Exercise regions"):
+/// a `::: not-in-course` fenced div, with whatever it nests, and a `[...]{.not-in-course}`
+/// span are dropped; a `::: course-only` div and a `[...]{.course-only}` span are kept
+/// without their markup. A kit goes to the students of a course, so its chapter text and
+/// its README say no more than the course edition does.
+std::string course_text(const std::string& text) {
+    // Divs, line by line: a stack of the fenced divs open, each dropped, unwrapped or kept.
+    enum class Div { keep, drop, unwrap };
+    std::vector<Div> open;
+    std::vector<std::string> kept;
+    for (const auto& line : split_lines(text)) {
+        const std::string_view t = trim(line);
+        const auto colons = t.find_first_not_of(':');
+        const bool fence = starts_with(t, ":::");
+        const std::string_view rest =
+            colons == std::string_view::npos ? std::string_view{} : trim(t.substr(colons));
+        const bool dropping = std::find(open.begin(), open.end(), Div::drop) != open.end();
+        if (fence && rest.empty() && !open.empty()) {
+            const Div closed = open.back();
+            open.pop_back();
+            if (closed == Div::keep && !dropping) {
+                kept.push_back(line);
+            }
+            continue;
+        }
+        if (fence && !rest.empty()) {
+            const Div div = rest.find("not-in-course") != std::string_view::npos ? Div::drop
+                            : rest.find("course-only") != std::string_view::npos
+                                ? Div::unwrap
+                                : Div::keep;
+            open.push_back(div);
+            if (div == Div::keep && !dropping) {
+                kept.push_back(line);
+            }
+            continue;
+        }
+        if (!dropping) {
+            kept.push_back(line);
+        }
+    }
+    std::string out = join_lines(kept);
+    // Spans, over the whole text (a span may run over lines): the '[' that opens each is
+    // found by counting brackets back from its "]{.class}".
+    for (const auto& [marker, keep] : {std::pair<std::string, bool>{"]{.not-in-course}", false},
+                                       std::pair<std::string, bool>{"]{.course-only}", true}}) {
+        for (auto at = out.find(marker); at != std::string::npos; at = out.find(marker)) {
+            int depth = 0;
+            std::size_t open_at = std::string::npos;
+            for (std::size_t i = at; i-- > 0;) {
+                if (out[i] == ']') {
+                    ++depth;
+                } else if (out[i] == '[' && depth-- == 0) {
+                    open_at = i;
+                    break;
+                }
+            }
+            if (open_at == std::string::npos) {
+                throw KitError("a '" + marker.substr(1) + "' span has no opening '['");
+            }
+            const std::string inner = out.substr(open_at + 1, at - open_at - 1);
+            out = out.substr(0, open_at) + (keep ? inner : std::string{}) +
+                  out.substr(at + marker.size());
+        }
+    }
+    return out;
+}
+
 /// The attributes of a `[]{.exercise kind=K marks=N region=R}` tag that starts at `at`.
 std::map<std::string, std::string> tag_attributes(const std::string& text, std::size_t at,
                                                   std::size_t* end) {
@@ -679,7 +753,8 @@ std::string book_exercises(const fs::path& chapter_md) {
     }
     std::vector<std::string> kept;
     bool inside = false;
-    for (const auto& line : split_lines(without_solutions(read_text(chapter_md)))) {
+    for (const auto& line :
+         split_lines(without_solutions(course_text(read_text(chapter_md))))) {
         if (starts_with(line, "## ")) {
             inside = starts_with(line, "## Exercises");
             continue;
@@ -855,7 +930,7 @@ points_disagreements(const fs::path& root, const std::string& number,
 
 struct Options {
     std::string command;
-    fs::path source, template_dir, out, kit;
+    fs::path source, template_dir, out, kit, file;
     std::string chapter, version = "0.0.0";
     std::string commit = "unknown"; ///< of the source tree, stamped on the kit
 };
@@ -960,7 +1035,9 @@ void make_kit(const Options& options) {
         }
         if (!is_code_file(rel)) {
             const std::string text = read_text(root / rel);
-            kit[rel] = rel.filename() == "chapter.md" ? without_solutions(text) : text;
+            kit[rel] = rel.filename() == "chapter.md"
+                           ? without_solutions(course_text(text))
+                           : text;
             continue;
         }
         auto processed = process_file(rel, read_text(root / rel), chapter);
@@ -1165,6 +1242,13 @@ void restore_kit(const Options& options) {
               << (restored == 1 ? "" : "s") << " in " << kit.string() << "\n";
 }
 
+void print_stubbed(const Options& options) {
+    const fs::path root = fs::canonical(options.source);
+    const fs::path file = fs::canonical(options.file);
+    std::cout << join_lines(
+        process_file(fs::relative(file, root), read_text(file), "*").lines);
+}
+
 void list_regions(const Options& options) {
     const fs::path root = fs::canonical(options.source);
     const auto regions = all_regions(root);
@@ -1229,7 +1313,7 @@ int check_points(const Options& options) {
 Options parse(int argc, char** argv) {
     if (argc < 2) {
         throw KitError(
-            "usage: make-kit kit|restore|list|check --source ROOT [options]; see the "
+            "usage: make-kit kit|restore|list|check|stub --source ROOT [options]; see the "
             "top of src/kits/make_kit.cpp");
     }
     Options options;
@@ -1254,6 +1338,8 @@ Options parse(int argc, char** argv) {
             options.version = value;
         } else if (flag == "--commit") {
             options.commit = value;
+        } else if (flag == "--file") {
+            options.file = value;
         } else {
             throw KitError("unknown option " + flag);
         }
@@ -1279,6 +1365,9 @@ Options parse(int argc, char** argv) {
     if (options.command == "restore" && options.kit.empty()) {
         throw KitError("make-kit restore wants --kit");
     }
+    if (options.command == "stub" && options.file.empty()) {
+        throw KitError("make-kit stub wants --file");
+    }
     return options;
 }
 
@@ -1295,9 +1384,11 @@ int main(int argc, char** argv) {
             list_regions(options);
         } else if (options.command == "check") {
             return check_points(options);
+        } else if (options.command == "stub") {
+            print_stubbed(options);
         } else {
             throw KitError("unknown command '" + options.command +
-                           "' (kit, restore, list, check)");
+                           "' (kit, restore, list, check, stub)");
         }
     } catch (const std::exception& error) {
         std::cerr << "make-kit: " << error.what() << "\n";

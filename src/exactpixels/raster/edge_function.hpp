@@ -52,10 +52,11 @@ constexpr FixedPoint2 fixed_pixel_centre(int x, int y) {
 
 //> top-left
 /// True when the edge a -> b, of a triangle oriented so that its inside is to the right
-/// of every edge (y down), is a top edge (horizontal, going right, the inside below it)
-/// or a left edge (going up, the inside to its right). (dx, dy) = b - a.
+/// of every edge (y down), is a top edge (horizontal, the inside below it) or a left edge
+/// (the inside to its right). (dx, dy) = b - a.
 template <class T> constexpr bool is_top_left(T dx, T dy) {
-    //> exercise ch02-edge-bias: top edge: horizontal, going right; left: going up.
+    //> exercise ch02-edge-bias: which signs of dx and dy make a top edge, and a left one?
+    // A top edge goes right along the row; a left edge goes up the screen.
     return dy < 0 || (dy == 0 && dx > 0);
     //| (void)dx, (void)dy;
     //| return false; // stub: no edge owns its centres, so shared edges leave gaps
@@ -165,12 +166,12 @@ inline EdgeSetup<FloatEdge> setup_edges(const std::array<Point2f, 3>& v) {
 
 //> barycentric
 /// The barycentric weights of the centre of pixel (x, y) in the snapped triangle v
-/// (@eq:edge-barycentric): lambda_i = E_i / (E_0 + E_1 + E_2), in double. They sum to 1
-/// (up to one rounding each) and are 1 at vertex i, 0 at the other two. Zero area: {0, 0,
-/// 0}.
+/// (@eq:edge-barycentric), in double. They sum to 1 (up to one rounding each) and are 1
+/// at vertex i, 0 at the other two. Zero area: {0, 0, 0}.
 inline std::array<double, 3> barycentric(const std::array<FixedPoint2, 3>& v,
                                          FixedPoint2 p) {
-    //> exercise ch02-barycentric: each weight is an edge function over twice the area.
+    //> exercise ch02-barycentric: scale the edge functions of @eq:edge-sum to sum to one.
+    // lambda_i = E_i / (E_0 + E_1 + E_2), E_i the edge opposite vertex i.
     const std::int64_t e0 = edge_function(v[1], v[2], p);
     const std::int64_t e1 = edge_function(v[2], v[0], p);
     const std::int64_t e2 = edge_function(v[0], v[1], p);

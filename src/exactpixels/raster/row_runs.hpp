@@ -29,11 +29,13 @@ namespace exactpixels {
 //> run-of-row
 /// The columns k = 0 .. n - 1 (offsets from the row's first pixel) that pass all three
 /// edges, whose values at k = 0 are w: [k_begin, k_end), empty when k_begin >= k_end.
-/// w + k step >= 0 is k >= ceil(-w / step) for step > 0 and k <= floor(w / -step) for
-/// step < 0; a zero step passes every k or none.
+/// Each edge's w + k step >= 0 is a half line of k (@eq:fast-run); a zero step passes
+/// every k or none.
 inline std::pair<std::int64_t, std::int64_t>
 run_of_row(const EdgeSetup<FixedEdge>& s, const std::array<std::int64_t, 3>& w, int n) {
     //> exercise ch09-run-of-row: each edge bounds k from one side (@eq:fast-run).
+    // w + k step >= 0 is k >= ceil(-w / step) for step > 0, k <= floor(w / -step) for
+    // step < 0.
     std::int64_t k_begin = 0, k_end = n;
     for (std::size_t i = 0; i < 3; ++i) {
         const std::int64_t step = s.edge[i].step_x();
@@ -148,8 +150,8 @@ void traverse_runs_fast(const EdgeSetup<FixedEdge>& s, PixelRect r, SpanFn&& emi
 //> run-end
 /// One end of the covered runs, the crossing of one edge with s_x != 0, stepped down the
 /// rows without a division (@eq:fast-step). With s = |s_x| and s_y = Q s + R,
-/// 0 <= R < s: for s_x > 0, k is the first column that passes, ceil(-w / s); for
-/// s_x < 0, one past the last, floor(w / s) + 1. e in [0, s) is the edge's value at the
+/// 0 <= R < s: for s_x > 0, k is the first column that passes; for s_x < 0, one past
+/// the last (@eq:fast-run). e in [0, s) is the edge's value at the
 /// column k (s_x > 0) or k - 1 (s_x < 0), which tells when a row's step crosses one
 /// column more than Q.
 struct RunEnd {

@@ -163,7 +163,7 @@ struct SceneMesh {
     /// For a mesh read from an OBJ file: the file, and for each triangle the line of
     /// the face it was cut from, so that a message about a triangle can name it.
     std::string model;
-    std::vector<std::size_t> model_lines;
+    std::vector<std::size_t> model_lines; ///< the OBJ line of each triangle's face
 };
 
 /// How a message names triangle `k` of `mesh`: "triangle k", and for a model's

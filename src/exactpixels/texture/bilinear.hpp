@@ -9,8 +9,8 @@
 // Conventions (chapters 3, 4 and 8). u is in texels, texel i covers [i, i+1), its
 // centre is at u = i + 1/2. The fixed-point coordinate is U = u * D with D = 2^16, as
 // chapter 3's fixed loops hold it. Bilinear sampling measures from texel centres, like
-// chapter 4's rounding: C = U - D/2, the left texel is i = floor(C / D) and the
-// fraction f = C - i D lies in [0, D) (@eq:bilinear-split). Texel i gets weight D - f,
+// chapter 4's rounding, and splits that coordinate into the left texel i and the
+// fraction f in [0, D) (@eq:bilinear-split). Texel i gets weight D - f,
 // texel i + 1 weight f (@eq:bilinear-sample); both directions multiply, so the four
 // weights are integers summing to D^2. At a texel centre f = 0 and the sample is that
 // texel, exactly. Indices outside the image are wrapped (repeat or clamp) as
@@ -39,7 +39,8 @@ struct BilinearTaps {
 /// The texels and fractions of a bilinear sample at (U, V) in 16.16 (@eq:bilinear-split).
 constexpr BilinearTaps bilinear_taps(std::int32_t U, std::int32_t V) {
     constexpr std::int64_t D = texel_scale;
-    //> exercise ch08-bilinear: measure from texel centres (C = U - D/2); split C into floor and fraction.
+    //> exercise ch08-bilinear: measure from texel centres; split that into floor and fraction.
+    // C = U - D/2 is 0 at texel 0's centre.
     const std::int64_t Cu = std::int64_t{U} - D / 2; // u - 1/2: 0 at texel 0's centre
     const std::int64_t Cv = std::int64_t{V} - D / 2;
     const std::int64_t i = Cu >> texel_fraction_bits; // floor(Cu / D), also for Cu < 0

@@ -11,8 +11,8 @@
 // Conventions (chapters 1, 3, 4 and 8). Screen positions in pixels (origin top-left, y
 // down), u and v in texels of level 0. Under perspective p = u/w, s = v/w and q = 1/w are
 // linear on screen (chapter 3), with constant gradients over a triangle (chapter 1), so
-//   du/dx = (p_x q - p q_x) / q^2,   du/dy = (p_y q - p q_y) / q^2 (@eq:derivatives)
-// and the same for v with s: the numerators of chapter 4 (@eq:numerator) over q^2. A
+// du/dx and du/dy follow from u = p / q by the quotient rule (@eq:derivatives), and the
+// same for v with s; chapter 4's numerators (@eq:numerator) appear in them. A
 // pixel maps to a parallelogram of texels spanned by (du/dx, dv/dx) and (du/dy, dv/dy);
 // the isotropic level is lambda = log2 of the longer of the two sides (@eq:level). Level
 // 0 is the full texture, lambda < 0 is magnification. The derivatives are defined
@@ -37,10 +37,11 @@ struct TexelDerivatives {
 
 //> exact-derivatives
 /// The derivatives of u = p / q and v = s / q at a point from the projected coordinates
-/// there (@eq:derivatives): chapter 4's numerators over q^2. q must be nonzero.
+/// there (@eq:derivatives). q must be nonzero.
 inline TexelDerivatives exact_derivatives(const ProjectedCoordinate<double>& u,
                                           const ProjectedCoordinate<double>& v) {
-    //> exercise ch08-derivatives: du/dx is chapter 4's numerator over q^2 (@eq:derivatives).
+    //> exercise ch08-derivatives: the quotient rule on u = p / q (@eq:derivatives).
+    // du/dx is chapter 4's numerator over q^2.
     const double inv_q2 = 1.0 / (u.q * u.q);
     return {numerator_x(u) * inv_q2, numerator_x(v) * inv_q2, numerator_y(u) * inv_q2,
             numerator_y(v) * inv_q2};

@@ -2,7 +2,7 @@
 //
 // Usage:
 //   RoundingRule r = choose_rule(du.dx, du.dy);          // from the gradient's signs
-//   std::int64_t m = rounding_modifier(r, 16);            // D/2 or D/2 - 1, D = 2^16
+//   std::int64_t m = rounding_modifier(r, 16);            // in units of 1/D, D = 2^16
 //   std::int64_t i = round_with_modifier(C, m, 16);       // floor((C + m) / D)
 //   TexelRounding t = choose_rounding(triangle, MapperKind::exact); // for chapter 3
 //
@@ -12,8 +12,8 @@
 //   rule 2: ceil(c - 1/2)  = ceil(u) - 1     (a tie goes to the smaller index)
 // and the two differ only when u is an integer (c is half way between two centres).
 // In fixed point a coordinate is an integer C = c * D with D = 2^k, 1 <= k <= 30, and
-// |C| <= 2^61; both rules are one floor, floor((C + m) / D), with the modifier
-// m = D/2 (rule 1) or m = D/2 - 1 (rule 2) (@eq:modifier). chapter 3's 16.16 inner loops
+// |C| <= 2^61; both rules are one floor, floor((C + m) / D), each with its own modifier
+// m (@eq:modifier; m = D/2 for rule 1). chapter 3's 16.16 inner loops
 // hold U = u * D = C + D/2, so their TexelRounding bias is exactly this modifier.
 //
 // The rule is chosen like the top-left fill rule: a sample on the boundary between two
@@ -68,11 +68,12 @@ constexpr std::int64_t round_ties_down(std::int64_t C, int k) {
 
 //> modifier
 /// The modifier m that makes floor((C + m) / D) follow `rule` (@eq:modifier), in units of
-/// 1/D with D = 2^k: D/2 for rule 1, D/2 - 1 for rule 2. Error unless 1 <= k <= 30.
+/// 1/D with D = 2^k. Error unless 1 <= k <= 30.
 constexpr std::int64_t rounding_modifier(RoundingRule rule, int k) {
     check_fraction_bits(k);
     const std::int64_t D = std::int64_t{1} << k;
-    //> exercise ch04-modifier: rule 2 is rule 1 with the modifier one unit (1/D) smaller.
+    //> exercise ch04-modifier: rule 1's m is D/2; rule 2's follows from @eq:ceil-to-floor.
+    // Rule 2 is rule 1 with the modifier one unit (1/D) smaller.
     return rule == RoundingRule::ties_up ? D / 2 : D / 2 - 1;
     //| (void)rule;
     //| return D / 2; // stub: rule 1 for both
@@ -110,6 +111,25 @@ template <class Real> RoundingRule choose_rule(Real dc_dx, Real dc_dy) {
     //< exercise ch04-choose-rule
 }
 //< choose-rule
+
+//> choose-rule-left-up
+/// The rule for the opposite convention (exercise ch04-choose-rule-left-up):
+/// a sample on a texel edge goes to the texel on its left on screen (-x),
+/// or above it when the edge is horizontal; a constant coordinate takes rule 1.
+template <class Real> RoundingRule choose_rule_left_up(Real dc_dx, Real dc_dy) {
+    //> exercise ch04-choose-rule-left-up: which texel lies to the left, or above?
+    // Left of a tie at u = n lies u - t dc/dx (small t > 0): texel n
+    // when c falls to the right (rule 1), n - 1 when it grows (rule 2);
+    // above it, the same with dc/dy.
+    if (dc_dx != Real(0)) {
+        return dc_dx < Real(0) ? RoundingRule::ties_up : RoundingRule::ties_down;
+    }
+    return dc_dy > Real(0) ? RoundingRule::ties_down : RoundingRule::ties_up;
+    //| (void)dc_dx, (void)dc_dy;
+    //| return RoundingRule::ties_up; // stub: always rule 1
+    //< exercise ch04-choose-rule-left-up
+}
+//< choose-rule-left-up
 
 /// A texture coordinate u (or v) under perspective, around one screen point: p = u/w
 /// and q = 1/w there, and their screen gradients (both are linear in x and y).

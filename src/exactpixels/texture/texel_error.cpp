@@ -11,7 +11,8 @@ namespace exactpixels {
 
 //> texel-error
 double texel_error(double u, double v, double u_ref, double v_ref) {
-    //> exercise ch05-texel-error: the larger of the two coordinate errors, in texels.
+    //> exercise ch05-texel-error: one error in texels from the two coordinate errors.
+    // The larger of the two: below 1/2 exactly when neither coordinate is half a texel off.
     return std::max(std::abs(u - u_ref), std::abs(v - v_ref));
     //| (void)u, (void)v, (void)u_ref, (void)v_ref;
     //| return 0.0; // stub: every mapper looks perfect

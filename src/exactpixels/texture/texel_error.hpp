@@ -8,8 +8,8 @@
 //   TexelError e = compare_texel_maps(reference, candidate);
 //   // e.worst, e.mean in texels; e.differing_share in [0, 1]; e.wrong_at_ties, pixels
 //
-// The texel error at a pixel is the larger of |u - u_ref| and |v - v_ref|, in texels,
-// where (u, v) is the coordinate the mapper computed there (16.16 values divided by
+// The texel error at a pixel is one number in texels made from |u - u_ref| and
+// |v - v_ref| (@eq:texel-error), where (u, v) is the coordinate the mapper computed there (16.16 values divided by
 // 2^16) and (u_ref, v_ref) the reference's. A pixel "differs" when the texel indices
 // (i, j) the two picked are not the same (compared before wrapping). A pixel is a "tie"
 // when the reference's u or v is a whole number: the sample lies exactly on a texel edge,
@@ -40,7 +40,7 @@ struct TexelError {
     std::int64_t not_finite = 0;
 };
 
-/// The texel error at one pixel: max(|u - u_ref|, |v - v_ref|), texels.
+/// The texel error at one pixel, in texels (@eq:texel-error).
 double texel_error(double u, double v, double u_ref, double v_ref);
 
 /// Compares two maps of the same size pixel by pixel (Error if the sizes differ).

@@ -56,8 +56,9 @@ inline constexpr int texel_fraction_bits = 16;
 inline constexpr std::int32_t texel_scale = std::int32_t{1} << texel_fraction_bits;
 
 /// How a fixed-point inner loop turns U = u * D into a texel index:
-/// floor((U + bias - D/2) / D). bias = D/2 gives floor(u) (rule 1), bias = D/2 - 1
-/// gives ceil(u) - 1 (rule 2). Default: rule 1 in both directions. Chapter 4 picks it.
+/// floor((U + bias - D/2) / D). bias = D/2 gives floor(u) (rule 1); chapter 4's
+/// rounding_modifier gives the bias of ceil(u) - 1 (rule 2). Default: rule 1 in both
+/// directions. Chapter 4 picks it.
 struct TexelRounding {
     std::int32_t u_bias = 1 << 15; ///< bias added to U before the floor division
     std::int32_t v_bias = 1 << 15; ///< bias added to V before the floor division
@@ -87,7 +88,7 @@ constexpr int fixed_texel_index(std::int32_t U, std::int32_t bias) {
 }
 
 /// The texel index for a real coordinate u under the same bias: floor(u) for bias = D/2,
-/// ceil(u) - 1 for bias = D/2 - 1. Agrees with fixed_texel_index(u * D, bias) whenever
+/// ceil(u) - 1 for rule 2's bias. Agrees with fixed_texel_index(u * D, bias) whenever
 /// u * D is an integer. Every real mapper calls it for every pixel, twice: within
 /// |u| < 2^30 it rounds with floor_to_int and ceil_to_int (base/floor_to_int.hpp), which
 /// are exact and need no call into the maths library; beyond, std::floor and std::ceil.
@@ -100,8 +101,8 @@ constexpr int fixed_texel_index(std::int32_t U, std::int32_t bias) {
         const double x = u + double(offset) / texel_scale;
         return small ? floor_to_int(x) : static_cast<int>(std::floor(x));
     }
-    // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1; bias = D/2 - 1
-    // makes this ceil(u) - 1, rule 2.
+    // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1: with rule 2's bias
+    // this is ceil(u) - 1.
     const double x = u + double(offset + 1) / texel_scale;
     return (small ? ceil_to_int(x) : static_cast<int>(std::ceil(x))) - 1;
 }
@@ -145,7 +146,9 @@ struct TexturePlanes {
 /// that texture_planes and chapter 4's choose_rounding interpolate, for a caller that
 /// needs both to divide once.
 struct CornerQuotients {
-    std::array<double, 3> u_w, v_w, one_w; ///< at corners 0, 1, 2
+    std::array<double, 3> u_w;   ///< u/w at corners 0, 1, 2
+    std::array<double, 3> v_w;   ///< v/w at corners 0, 1, 2
+    std::array<double, 3> one_w; ///< 1/w at corners 0, 1, 2
 };
 
 /// The quotients at the corners of `v`.
