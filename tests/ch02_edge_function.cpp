@@ -3,6 +3,7 @@
 #include "ch02_grid.hpp"
 #include "exactpixels/raster/edge_function.hpp"
 #include "exactpixels/raster/gradients.hpp"
+#include "support/printing.hpp"
 #include "support/rational.hpp"
 
 #include <doctest/doctest.h>

@@ -5,6 +5,7 @@
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/naive_rasterizer.hpp"
 #include "exactpixels/raster/scanline.hpp"
+#include "support/printing.hpp"
 #include "support/meshes.hpp"
 #include "support/rational.hpp"
 
