@@ -22,6 +22,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -232,12 +233,13 @@ std::string run_grade(const fs::path& build_dir, std::string* printed = nullptr)
     return text;
 }
 
-/// The time limit of one test case: the runner's named constant.
-int kit_time_limit(const fs::path& kit) {
+/// A named constant of the kit's grade runner, `constexpr int NAME = N;`: the time limit
+/// of a test case time_limits.txt does not list, and the rule that derives the others.
+int runner_constant(const fs::path& kit, const std::string& name) {
     std::smatch match;
     const std::string runner = read_file(kit / "grade_runner.cpp");
     std::regex_search(runner, match,
-                      std::regex("constexpr int test_time_limit_seconds = ([0-9]+);"));
+                      std::regex("constexpr int " + name + " = ([0-9]+);"));
     REQUIRE(match.size() == 2);
     return std::stoi(match[1].str());
 }
@@ -707,8 +709,11 @@ TEST_CASE("every chapter's kit builds on its own; fresh it fails exactly its exe
 
         // Fresh: every test of an exercise fails, every other test passes, and every
         // exercise is checked by at least one test.
-        const Grade fresh = parse_grade(run_grade(build_dir));
+        const std::string fresh_text = run_grade(build_dir);
+        const Grade fresh = parse_grade(fresh_text);
         CHECK(fresh.well_formed);
+        // Every failed check shows the values it compared (tests/support/printing.hpp).
+        CHECK(fresh_text.find("{?}") == std::string::npos);
         std::set<std::string> checked;
         for (const auto& line : fresh.cases) {
             INFO("fresh ch" << number << ": " << line.status << " " << line.exercise
@@ -758,7 +763,7 @@ TEST_CASE("every chapter's kit builds on its own; fresh it fails exactly its exe
         CHECK(slowest.lines == full.cases.size());
         MESSAGE("ch" << number << " solved: the test cases took " << slowest.total
                      << " s in all, the slowest " << slowest.line);
-        CHECK(slowest.seconds * 3 <= kit_time_limit(kit));
+        CHECK(slowest.seconds * 3 <= runner_constant(kit, "test_time_limit_seconds"));
         CHECK(full.passed == full.counted);
         // Stable: the same test cases, in the same order, declaring the same points.
         REQUIRE(full.cases.size() == fresh.cases.size());
@@ -788,8 +793,9 @@ const BuiltFixtureKit& built_fixture_kit() {
 }
 
 /// Replaces the kit's library with `header` and `source`, builds, and runs the grade
-/// runner with a time limit of `seconds`; returns the parsed grade.
-Grade grade_broken(const std::string& header, const std::string& source, int seconds) {
+/// runner with a time limit of `seconds` (and `options`); returns the parsed grade.
+Grade grade_broken(const std::string& header, const std::string& source, int seconds,
+                   const std::string& options = "") {
     const auto& fixture = built_fixture_kit();
     write_file(fixture.kit / "src/exactpixels/answer.hpp", header);
     write_file(fixture.kit / "src/exactpixels/answer.cpp", source);
@@ -797,10 +803,10 @@ Grade grade_broken(const std::string& header, const std::string& source, int sec
     INFO(built.out << built.err);
     REQUIRE(built.exit_code == 0);
     const fs::path grade_file = fixture.build / "broken-grade.txt";
-    const auto ran =
-        run_command(quoted(fixture.build / "bin/grade-runner") + " --tests " +
-                    quoted(fixture.build / "bin/test_ch07") + " --grade-file " +
-                    quoted(grade_file) + " --time-limit " + std::to_string(seconds));
+    const auto ran = run_command(quoted(fixture.build / "bin/grade-runner") +
+                                 " --tests " + quoted(fixture.build / "bin/test_ch07") +
+                                 " --grade-file " + quoted(grade_file) +
+                                 " --time-limit " + std::to_string(seconds) + options);
     INFO(ran.out << ran.err);
     CHECK(ran.exit_code == 0);
     const std::string text = read_file(grade_file);
@@ -859,7 +865,8 @@ TEST_CASE(
         CHECK(rerun.find("-fsanitize=address") != std::string::npos);
         CHECK(reason_with(grade.cases[1], "--first=2 --last=2") != "");
         CHECK(grade.cases[1].status == "FAIL");
-        CHECK(reason_with(grade.cases[1], "timed out: still running after 2 s") != "");
+        CHECK(reason_with(grade.cases[1],
+                          "time limit 2 s exceeded: still running after 2 s") != "");
         CHECK(grade.cases[2].status == "PASS"); // twice: still runs, still scores
         CHECK(grade.cases[2].earned == 1);
         CHECK(grade.cases[3].status == "PASS");
@@ -902,20 +909,51 @@ TEST_CASE(
         CHECK(reason_with(grade.cases[1], "stopped early with exit status 3") != "");
         CHECK(grade.earned == 4);
     }
-    // The kit states its limit: the runner's named constant, in the README.
+    {
+        INFO("round 4: both exercises never end, and all test cases together may take 3 "
+             "s");
+        const auto& fixture = built_fixture_kit();
+        write_file(fixture.build / "time_limits.txt", "# a budget only\nbudget 3\n");
+        const Grade grade = grade_broken(
+            std::string(broken_header_start) +
+                "inline int answer() {\n    volatile int spin = 0;\n"
+                "    while (spin == 0) {\n    }\n    return 42;\n}\n" +
+                broken_header_end,
+            "#include \"exactpixels/answer.hpp\"\nnamespace fake {\n"
+            "int triangle_number(int n) {\n    volatile int spin = 0;\n"
+            "    while (spin == 0) {\n    }\n    return n;\n}\n} // namespace fake\n",
+            2, " --time-limits " + quoted(fixture.build / "time_limits.txt"));
+        REQUIRE(grade.well_formed);
+        REQUIRE(grade.cases.size() == 5);
+        // Its own limit of 2 s, then the 1 s left of the budget, then nothing.
+        CHECK(reason_with(grade.cases[0], "time limit 2 s exceeded") != "");
+        CHECK(reason_with(grade.cases[1], "stopped: the 3 s that all test cases may take "
+                                          "together ran out while it ran") != "");
+        CHECK(reason_with(grade.cases[1], "--first=2 --last=2") != "");
+        for (const std::size_t i : {2, 3}) {
+            CHECK(grade.cases[i].status == "FAIL");
+            CHECK(reason_with(grade.cases[i], "not run: the 3 s that all test cases may "
+                                              "take together were used up") != "");
+        }
+        CHECK(grade.cases[4].status == "SKIP");
+        CHECK(grade.earned == 0);
+    }
+    // The kit states its limits and the rule that derives them: the runner's named
+    // constants, in the README.
     const auto& fixture = built_fixture_kit();
-    const std::string runner = read_file(fixture.kit / "grade_runner.cpp");
-    const std::smatch limit = [&] {
-        std::smatch match;
-        std::regex_search(
-            runner, match,
-            std::regex("constexpr int test_time_limit_seconds = ([0-9]+);"));
-        return match;
-    }();
-    REQUIRE(limit.size() == 2);
-    CHECK(read_file(fixture.kit / "README.md")
-              .find("longer than **" + limit[1].str() + " seconds**") !=
+    const auto constant = [&](const std::string& name) {
+        return std::to_string(runner_constant(fixture.kit, name));
+    };
+    std::string readme = read_file(fixture.kit / "README.md");
+    std::replace(readme.begin(), readme.end(), '\n', ' ');
+    CHECK(readme.find("allows **" + constant("test_time_limit_seconds") + " seconds**") !=
           std::string::npos);
+    CHECK(readme.find(
+              "**" + constant("limit_multiple") + " times the solution's time plus " +
+              constant("limit_floor_seconds") + " seconds**") != std::string::npos);
+    CHECK(readme.find(
+              "**" + constant("budget_multiple") + " times the solution's total plus " +
+              constant("budget_floor_seconds") + " seconds**") != std::string::npos);
 }
 
 namespace {
@@ -950,14 +988,19 @@ print("score %g of %g, %d tests" % (r["score"], sum(t["max_score"] for t in r["t
                                       len(r["tests"])))
 )";
 
-/// Runs ROOT/source/run_autograder ROOT on the files `submission` puts in
-/// ROOT/submission; returns the check's summary line and the JSON text.
-std::pair<std::string, std::string> autograde(const fs::path& root) {
+/// Runs ROOT/source/run_autograder (ROOT named by AUTOGRADER_ROOT) on the files in
+/// ROOT/submission; returns the check's summary line and the JSON text, and what the
+/// autograder printed in `printed`.
+std::pair<std::string, std::string> autograde(const fs::path& root,
+                                              std::string* printed = nullptr) {
     fs::remove_all(root / "results");
-    const auto ran =
-        run_command(std::string("AUTOGRADER_CMAKE_ARGS=-DCMAKE_CXX_COMPILER=") +
-                    EXACTPIXELS_CXX_COMPILER + " " +
-                    quoted(root / "source/run_autograder") + " " + quoted(root));
+    const auto ran = run_command(
+        "AUTOGRADER_ROOT=" + quoted(root) +
+        " AUTOGRADER_CMAKE_ARGS=-DCMAKE_CXX_COMPILER=" + EXACTPIXELS_CXX_COMPILER + " " +
+        quoted(root / "source/run_autograder"));
+    if (printed != nullptr) {
+        *printed = ran.out;
+    }
     INFO(ran.out << ran.err);
     CHECK(ran.exit_code == 0);
     const fs::path json = root / "results/results.json";
@@ -974,23 +1017,35 @@ std::pair<std::string, std::string> autograde(const fs::path& root) {
     return {summary, read_file(json)};
 }
 
+/// A fixture kit's assignment (made by the assignment script into NAME-assignments) and
+/// a Gradescope-like ROOT (NAME-root) whose source/ is its autograder zip, unpacked.
+struct GradescopeRoot {
+    fs::path out, root;
+};
+
+GradescopeRoot gradescope_root(const std::string& name,
+                               const std::string& extra_options = "") {
+    const fs::path out = scratch(name + "-assignments");
+    const auto made = run_command(cmake() + " -DMAKE_KIT='" + EXACTPIXELS_MAKE_KIT +
+                                  "' -DSOURCE=" + quoted(fixture_tree()) +
+                                  " -DCHAPTER=07 -DOUTPUT=" + quoted(out) +
+                                  extra_options + " -P '" + EXACTPIXELS_KIT_SCRIPT + "'");
+    INFO(made.out << made.err);
+    REQUIRE(made.exit_code == 0);
+    const fs::path root = scratch(name + "-root");
+    REQUIRE(run_command("mkdir -p " + quoted(root / "source") + " && cd " +
+                        quoted(root / "source") + " && " + cmake() + " -E tar xf " +
+                        quoted(out / "ch07-gradescope.zip"))
+                .exit_code == 0);
+    return {out, root};
+}
+
 } // namespace
 
 TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, solved "
           "full marks, a region that does not compile its stub's with the first error; "
           "results.json as specified") {
-    const fs::path out = scratch("gradescope-assignments");
-    const auto made = run_command(cmake() + " -DMAKE_KIT='" + EXACTPIXELS_MAKE_KIT +
-                                  "' -DSOURCE=" + quoted(fixture_tree()) +
-                                  " -DCHAPTER=07 -DOUTPUT=" + quoted(out) + " -P '" +
-                                  EXACTPIXELS_KIT_SCRIPT + "'");
-    INFO(made.out << made.err);
-    REQUIRE(made.exit_code == 0);
-    const fs::path root = scratch("gradescope-root");
-    REQUIRE(run_command("mkdir -p " + quoted(root / "source") + " && cd " +
-                        quoted(root / "source") + " && " + cmake() + " -E tar xf " +
-                        quoted(out / "ch07-gradescope.zip"))
-                .exit_code == 0);
+    const auto [out, root] = gradescope_root("gradescope");
     // Gradescope's layout: setup.sh and an executable run_autograder at the zip's root.
     for (const char* script : {"setup.sh", "run_autograder"}) {
         CAPTURE(script);
@@ -1008,7 +1063,37 @@ TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, 
                "#include <doctest/doctest.h>\nTEST_CASE(\"free points\" * "
                "doctest::description(\"points: 100\")) {}\n");
     const auto [fresh, fresh_json] = autograde(root);
-    CHECK(fresh == "score 1 of 6, 4 tests");
+    CHECK(fresh == "score 1 of 7, 5 tests");
+    // The hidden test: in the autograder's zip, not in the students' kit or zip, and in
+    // results.json shown only after the grades are published, with the printed lines
+    // (which name it) hidden.
+    const std::string hidden_file = "tests/hidden/ch07_hidden.cpp";
+    CHECK_FALSE(fs::exists(out / "ch07" / hidden_file));
+    CHECK(fs::exists(root / "source" / hidden_file));
+    const auto zipped = [&](const fs::path& zip) {
+        const auto listed = run_command(cmake() + " -E tar tf " + quoted(zip));
+        REQUIRE(listed.exit_code == 0);
+        return lines_of(listed.out);
+    };
+    const auto student_zip = zipped(out / "ch07.zip");
+    CHECK(std::count(student_zip.begin(), student_zip.end(),
+                     "ch07/tests/ch07_fake.cpp") == 1);
+    CHECK(std::count(student_zip.begin(), student_zip.end(), "ch07/" + hidden_file) == 0);
+    const auto autograder_zip = zipped(out / "ch07-gradescope.zip");
+    CHECK(std::count(autograder_zip.begin(), autograder_zip.end(), hidden_file) == 1);
+    write_file(root / "visibility.py",
+               "import json, sys\n"
+               "r = json.load(open(sys.argv[1]))\n"
+               "print(r['stdout_visibility'], sorted((t['visibility'], t['name']) "
+               "for t in r['tests'] if t['visibility'] != 'visible'),\n"
+               "      sum(t['visibility'] == 'visible' for t in r['tests']))\n");
+    const auto visibility = run_command("python3 " + quoted(root / "visibility.py") +
+                                        " " + quoted(root / "results/results.json"));
+    CHECK(visibility.out ==
+          "hidden [('after_published', 'a hidden triangle number')] 4\n");
+    // The summary students see counts the visible test cases only.
+    CHECK(fresh_json.find("TOTAL 1/6 points of the visible test cases; 1 more test case "
+                          "is shown when the grades are published") != std::string::npos);
     CHECK(
         fresh_json.find("\"tags\": [\"ch07-answer\", \"implement\", \"difficulty 2\"]") !=
         std::string::npos);
@@ -1023,7 +1108,7 @@ TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, 
     fs::create_directories(root / "submission/ch07");
     fs::copy(out / "ch07/src", root / "submission/ch07/src", fs::copy_options::recursive);
     const auto [solved, solved_json] = autograde(root);
-    CHECK(solved == "score 6 of 6, 4 tests");
+    CHECK(solved == "score 7 of 7, 5 tests");
 
     // A region that does not compile costs its own exercise only: it is graded with its
     // stub, with the compiler's first error on the kit's line of the region's text (the
@@ -1034,9 +1119,9 @@ TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, 
                "    return n +;\n"
                "    // END EXERCISE ch07-triangle\n");
     const auto [broken, broken_json] = autograde(root);
-    CHECK(broken == "score 4 of 6, 4 tests");
+    CHECK(broken == "score 4 of 7, 5 tests");
     CHECK(broken_json.find("ch07-triangle: does not compile, graded with its stub; the "
-                           "compiler's first error: src/exactpixels/answer.cpp:8:") !=
+                           "compiler's first error: src/exactpixels/answer.cpp:10:") !=
           std::string::npos);
     CHECK(broken_json.find("ch07-answer: taken from the submission") !=
           std::string::npos);
@@ -1047,18 +1132,7 @@ TEST_CASE("the Gradescope autograder: fresh kit scores the non-exercise points, 
 
 TEST_CASE("a submission cannot give itself marks: only its exercise regions are taken, "
           "and the grader alone decides each test case") {
-    const fs::path out = scratch("forging-assignments");
-    const auto made = run_command(cmake() + " -DMAKE_KIT='" + EXACTPIXELS_MAKE_KIT +
-                                  "' -DSOURCE=" + quoted(fixture_tree()) +
-                                  " -DCHAPTER=07 -DOUTPUT=" + quoted(out) + " -P '" +
-                                  EXACTPIXELS_KIT_SCRIPT + "'");
-    INFO(made.out << made.err);
-    REQUIRE(made.exit_code == 0);
-    const fs::path root = scratch("forging-root");
-    REQUIRE(run_command("mkdir -p " + quoted(root / "source") + " && cd " +
-                        quoted(root / "source") + " && " + cmake() + " -E tar xf " +
-                        quoted(out / "ch07-gradescope.zip"))
-                .exit_code == 0);
+    const auto root = gradescope_root("forging").root;
 
     // The forgery of issue 31 (tests/fixtures/kits/forging): an unsolved kit whose
     // answer.hpp includes a header that rewrites the test program's report as it exits,
@@ -1067,7 +1141,7 @@ TEST_CASE("a submission cannot give itself marks: only its exercise regions are 
              fs::copy_options::recursive);
     const auto [forged, forged_json] = autograde(root);
     // Only the point of the test that checks no exercise: 0 for both exercises.
-    CHECK(forged == "score 1 of 6, 4 tests");
+    CHECK(forged == "score 1 of 7, 5 tests");
     CHECK(forged_json.find("ch07-answer: taken from the submission") !=
           std::string::npos);
     CHECK(forged_json.find("ch07-triangle: not taken, it holds a preprocessor line; "
@@ -1075,7 +1149,7 @@ TEST_CASE("a submission cannot give itself marks: only its exercise regions are 
     const std::string grade = read_file(root / "results/grade.txt");
     CHECK(grade.find("FAIL 0/3 ch07-answer the answer is 42\n") != std::string::npos);
     CHECK(grade.find("FAIL 0/2 ch07-triangle triangle numbers\n") != std::string::npos);
-    CHECK(grade.find("TOTAL 1/6 points") != std::string::npos);
+    CHECK(grade.find("TOTAL 1/7 points") != std::string::npos);
 }
 
 TEST_CASE("a submitted region is refused when it could reach outside its region") {
@@ -1156,4 +1230,161 @@ TEST_CASE("code under test cannot speak for the grade reporter: no report file t
     CHECK(grade.cases[0].status == "FAIL");
     CHECK(grade.cases[1].status == "FAIL");
     CHECK(grade.earned == 1);
+}
+
+namespace {
+
+/// The fixture kit with its solutions restored and the hidden test added, built once: the
+/// program whose test cases give a kit its time limits, as the book's own test_chNN does
+/// for a chapter's kit.
+const fs::path& solved_fixture_build() {
+    static const fs::path solved = [] {
+        const fs::path kit = scratch("solved-kit") / "ch07";
+        const fs::path build_dir = scratch("solved-build");
+        REQUIRE(make_kit(fixture_tree(), "07", kit).exit_code == 0);
+        REQUIRE(restore_kit(fixture_tree(), kit).exit_code == 0);
+        fs::create_directories(kit / "tests/hidden");
+        fs::copy_file(fixture_tree() / "tests/hidden/ch07_hidden.cpp",
+                      kit / "tests/hidden/ch07_hidden.cpp");
+        REQUIRE(configure(kit, build_dir).exit_code == 0);
+        const auto built = build(build_dir);
+        INFO(built.out << built.err);
+        REQUIRE(built.exit_code == 0);
+        return build_dir;
+    }();
+    return solved;
+}
+
+/// A submission for the fixture kit `kit` (fresh): its src/ with the ch07-answer region
+/// solved and the ch07-triangle region's stub replaced by `triangle`.
+void submit(const fs::path& kit, const fs::path& root, const std::string& triangle) {
+    fs::remove_all(root / "submission");
+    fs::create_directories(root / "submission");
+    fs::copy(kit / "src", root / "submission/src", fs::copy_options::recursive);
+    const auto replace = [&](const std::string& file, const std::string& stub,
+                             const std::string& text) {
+        std::string code = read_file(root / "submission" / file);
+        REQUIRE(code.find(stub) != std::string::npos);
+        code.replace(code.find(stub), stub.size(), text);
+        write_file(root / "submission" / file, code);
+    };
+    replace("src/exactpixels/answer.hpp", "    return 0; // stub: a neutral value\n",
+            "    return 42;\n");
+    replace("src/exactpixels/answer.cpp", "    (void)n; // stub: the sum of nothing\n",
+            triangle);
+}
+
+} // namespace
+
+TEST_CASE("each test case's time limit comes from the solution's own time; a region that "
+          "never ends is stopped in seconds and the other exercises still score") {
+    const fs::path solved = solved_fixture_build();
+    const auto [out, root] = gradescope_root(
+        "timed", " -DGRADE_RUNNER=" + quoted(solved / "bin/grade-runner") +
+                     " -DTIMING_PROGRAM=" + quoted(solved / "bin/test_ch07"));
+    // time_limits.txt, in the students' kit and the autograder: per test case (the hidden
+    // one too, the skipped one not) MULTIPLE x the solution's time + FLOOR s, rounded up,
+    // and a budget of BUDGET_MULTIPLE x the total + BUDGET_FLOOR s.
+    const std::string limits = read_file(out / "ch07/time_limits.txt");
+    CHECK(read_file(root / "source/time_limits.txt") == limits);
+    const fs::path kit = out / "ch07";
+    std::map<std::string, int> limit_of;
+    double total = 0;
+    int budget = 0;
+    for (const auto& line : lines_of(limits)) {
+        if (line.empty() || line[0] == '#') {
+            continue;
+        }
+        std::istringstream in(line);
+        std::string first, name;
+        double measured = -1;
+        in >> first;
+        if (first == "budget") {
+            in >> budget;
+            continue;
+        }
+        in >> measured;
+        in.get();
+        std::getline(in, name);
+        CAPTURE(line);
+        REQUIRE(measured >= 0);
+        CHECK(std::stoi(first) == static_cast<int>(std::ceil(
+                                      runner_constant(kit, "limit_multiple") * measured +
+                                      runner_constant(kit, "limit_floor_seconds"))));
+        limit_of[name] = std::stoi(first);
+        total += measured;
+    }
+    CHECK(limit_of.size() == 5);
+    CHECK(limit_of.count("a hidden triangle number") == 1);
+    CHECK(budget ==
+          static_cast<int>(std::ceil(runner_constant(kit, "budget_multiple") * total +
+                                     runner_constant(kit, "budget_floor_seconds"))));
+
+    // ch07-triangle never ends: its two test cases stop at their limits, a few seconds
+    // each, with the rerun command; ch07-answer and the rest score as before.
+    submit(kit, root,
+           "    volatile int spin = 0;\n    while (spin == 0) {\n    }\n    (void)n;\n");
+    std::string printed;
+    const auto [summary, json] = autograde(root, &printed);
+    CHECK(summary == "score 4 of 7, 5 tests");
+    const Grade grade = parse_grade(read_file(root / "results/grade.txt"));
+    REQUIRE(grade.well_formed);
+    int stopped = 0;
+    for (const auto& line : grade.cases) {
+        CAPTURE(line.name);
+        if (line.exercise != "ch07-triangle") {
+            CHECK(line.status != "FAIL");
+            continue;
+        }
+        ++stopped;
+        const std::string seconds = std::to_string(limit_of.at(line.name)) + " s";
+        CHECK(reason_with(line, "time limit " + seconds +
+                                    " exceeded: still running after " + seconds) != "");
+        CHECK(reason_with(line, "to run this test case alone: ") != "");
+    }
+    CHECK(stopped == 2);
+    // The grade arrived in seconds: the stopped cases took about their limits, and all
+    // test cases together little more.
+    const Slowest slowest = slowest_case(printed);
+    INFO(printed);
+    CHECK(slowest.lines == 6); // the skipped test case's line too
+    CHECK(slowest.seconds < limit_of.at("triangle numbers") + 3);
+    CHECK(slowest.total <
+          limit_of.at("triangle numbers") + limit_of.at("a hidden triangle number") + 5);
+    MESSAGE("an endless region: the test cases took " << slowest.total << " s in all");
+}
+
+TEST_CASE("run as root, the autograder builds and runs a submission as an unprivileged "
+          "user that can read neither the autograder's files nor write its results") {
+    const auto [out, root] = gradescope_root("isolated");
+    // The ch07-triangle region reads the autograder's script and overwrites results.json
+    // when it can, and then returns a wrong sum; when both fail, the right one.
+    const std::string at = root.string();
+    submit(
+        out / "ch07", root,
+        "    std::FILE* source = std::fopen(\"" + at +
+            "/source/run_autograder\", \"r\");\n"
+            "    std::FILE* results = std::fopen(\"" +
+            at + "/results/results.json\", \"w\");\n" +
+            "    const bool reached = source != nullptr || results != nullptr;\n"
+            "    if (source != nullptr) {\n        std::fclose(source);\n    }\n"
+            "    if (results != nullptr) {\n"
+            "        std::fputs(\"{\\\"score\\\": 100, \\\"tests\\\": []}\\n\", "
+            "results);\n"
+            "        std::fclose(results);\n    }\n"
+            "    for (int k = 1; k <= n && !reached; ++k) {\n        sum += k;\n    }\n");
+    std::string printed;
+    const auto [summary, json] = autograde(root, &printed);
+    CHECK(json.find("ch07-triangle: taken from the submission") != std::string::npos);
+    if (::geteuid() != 0) {
+        // At a desk: no isolation, and the autograder says so.
+        CHECK(
+            printed.find("not run as root, so the submission is built and run as you") !=
+            std::string::npos);
+        MESSAGE("not root: the isolation of the autograder was not tested");
+        return;
+    }
+    CHECK(printed.find("building and running the submission as ") != std::string::npos);
+    // Both attempts failed: every test case passes, and results.json is the grader's.
+    CHECK(summary == "score 7 of 7, 5 tests");
 }

@@ -3,6 +3,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/base/test_pattern.hpp"
+#include "support/printing.hpp"
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>

@@ -6,6 +6,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/base/test_pattern.hpp"
+#include "support/printing.hpp"
 #include "support/png_chunks.hpp"
 
 #include <doctest/doctest.h>

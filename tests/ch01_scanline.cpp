@@ -4,6 +4,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/raster/gradients.hpp"
 #include "exactpixels/raster/scanline.hpp"
+#include "support/printing.hpp"
 #include "support/measured_facts.hpp"
 
 #include <doctest/doctest.h>

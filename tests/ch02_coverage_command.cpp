@@ -1,5 +1,6 @@
 // Chapter 2 tests: `exactpixels coverage`, every rasterizer/precision pair, and the
 // messages and exit code for malformed input.
+#include "support/printing.hpp"
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>

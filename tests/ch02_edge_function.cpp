@@ -4,6 +4,7 @@
 #include "exactpixels/base/exact.hpp"
 #include "exactpixels/raster/edge_function.hpp"
 #include "exactpixels/raster/gradients.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 

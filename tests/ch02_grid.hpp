@@ -5,8 +5,10 @@
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/scanline.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <ostream>
 #include <random>
 #include <string>
 #include <vector>
@@ -52,6 +54,14 @@ struct Grid {
     }
     /// Grids are equal when sizes and counts are.
     friend bool operator==(const Grid&, const Grid&) = default;
+    /// How a failed check prints a grid: its size, pixels outside, and its mask on one
+    /// line (rows separated by '/').
+    friend std::ostream& operator<<(std::ostream& out, const Grid& grid) {
+        std::string rows = grid.mask();
+        std::replace(rows.begin(), rows.end(), '\n', '/');
+        return out << grid.width << "x" << grid.height << " grid, " << grid.outside
+                   << " outside: " << rows;
+    }
 };
 
 /// The rasterizers and precisions a test can run.

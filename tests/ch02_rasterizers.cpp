@@ -6,6 +6,7 @@
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/naive_rasterizer.hpp"
 #include "exactpixels/raster/scanline.hpp"
+#include "support/printing.hpp"
 #include "support/meshes.hpp"
 
 #include <doctest/doctest.h>

@@ -9,6 +9,7 @@
 #include "exactpixels/texture/perspective_error.hpp"
 #include "exactpixels/texture/texture.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
+#include "support/printing.hpp"
 #include "support/measured_facts.hpp"
 #include "support/process.hpp"
 

@@ -6,6 +6,7 @@
 #include "exactpixels/texture/rounding.hpp"
 #include "exactpixels/texture/texture.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 

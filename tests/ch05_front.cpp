@@ -2,6 +2,7 @@
 // times compared within the run's noise (lab/pareto_front.hpp).
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/lab/pareto_front.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 

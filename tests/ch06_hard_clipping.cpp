@@ -5,6 +5,7 @@
 // agree bit for bit.
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/texture/clipping.hpp"
+#include "support/printing.hpp"
 #include "support/measured_facts.hpp"
 
 #include <doctest/doctest.h>

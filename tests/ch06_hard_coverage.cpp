@@ -8,6 +8,7 @@
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
+#include "support/printing.hpp"
 #include "support/measured_facts.hpp"
 
 #include <doctest/doctest.h>

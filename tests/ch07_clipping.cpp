@@ -10,6 +10,7 @@
 #include "exactpixels/scene/scene_renderer.hpp"
 #include "exactpixels/texture/clipping.hpp"
 #include "exactpixels/texture/perspective.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>

@@ -13,6 +13,7 @@
 #include "exactpixels/scene/scene_renderer.hpp"
 #include "exactpixels/texture/rounding.hpp"
 #include "exactpixels/texture/texture.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>

@@ -7,6 +7,7 @@
 #include "exactpixels/scene/supersampled_reference.hpp"
 #include "exactpixels/texture/srgb.hpp"
 #include "exactpixels/texture/texture.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 

@@ -6,6 +6,7 @@
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 #include "exactpixels/texture/srgb.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -260,7 +261,8 @@ TEST_CASE(
     const Scene scene = load_scene(shipped_scene_folder() / "lit.toml");
     const auto torus = std::find_if(scene.meshes.begin(), scene.meshes.end(),
                                     [](const SceneMesh& m) { return m.name == "torus"; });
-    REQUIRE(torus != scene.meshes.end());
+    const bool has_torus = torus != scene.meshes.end();
+    REQUIRE(has_torus);
     REQUIRE(torus->normals == NormalSource::smooth);
     const std::vector<CornerNormals> normals = mesh_normals(*torus);
     double worst = 0.0, worst_face = 0.0;

@@ -10,6 +10,7 @@
 #include "exactpixels/scene/obj_model.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
+#include "support/printing.hpp"
 #include "support/measured_facts.hpp"
 #include "support/png_chunks.hpp"
 

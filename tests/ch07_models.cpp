@@ -11,6 +11,7 @@
 #include "exactpixels/scene/obj_model.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
+#include "support/printing.hpp"
 #include "support/process.hpp"
 
 #include <doctest/doctest.h>

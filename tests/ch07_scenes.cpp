@@ -10,6 +10,7 @@
 #include "exactpixels/texture/quadratic.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
 #include "exactpixels/texture/texture.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+#include "support/printing.hpp"
 // Chapter 7 tests: the comparisons @sec:scene-speed states about the big torus against
 // llvmpipe, checked against the committed, dated run
 // (chapters/07-scenes/big_scene_results.md, written by big_scene.sh beside it). A new run

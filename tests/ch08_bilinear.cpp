@@ -4,6 +4,7 @@
 #include "exactpixels/texture/srgb.hpp"
 #include "exactpixels/texture/texture.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 

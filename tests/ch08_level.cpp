@@ -4,6 +4,7 @@
 #include "exactpixels/texture/filter.hpp"
 #include "exactpixels/texture/level_of_detail.hpp"
 #include "exactpixels/texture/perspective.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 

@@ -3,6 +3,7 @@
 // cannot state an ordering that the data does not show.
 #include "exactpixels/lab/filter_measure.hpp"
 #include "exactpixels/texture/ewa.hpp"
+#include "support/printing.hpp"
 #include "support/measured_facts.hpp"
 
 #include <doctest/doctest.h>

@@ -3,6 +3,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/texture/mipmap.hpp"
 #include "exactpixels/texture/texture.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 

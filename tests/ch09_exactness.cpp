@@ -13,6 +13,7 @@
 #include "exactpixels/raster/tiled_rasterizer.hpp"
 #include "exactpixels/raster/tiny_triangle.hpp"
 #include "exactpixels/texture/textured_runs.hpp"
+#include "support/printing.hpp"
 #include "support/meshes.hpp"
 
 #include <doctest/doctest.h>

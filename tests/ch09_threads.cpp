@@ -7,6 +7,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/worker_pool.hpp"
 #include "exactpixels/raster/tiled_rasterizer.hpp"
+#include "support/printing.hpp"
 #include "support/meshes.hpp"
 
 #include <doctest/doctest.h>

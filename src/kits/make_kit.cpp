@@ -2,7 +2,7 @@
 //
 // Usage:
 //   make-kit kit --source ROOT --template DIR --chapter NN --out DIR [--version V]
-//                [--commit C]
+//                [--commit C] [--time-limits FILE]
 //   make-kit restore --source ROOT --kit DIR
 //   make-kit list --source ROOT
 //   make-kit check --source ROOT [--chapter NN]
@@ -21,8 +21,11 @@
 // while every other chapter keeps its solution; every marker line (`//>`, `//<`, `//|`)
 // is removed. The template folder supplies the kit's CMakeLists.txt, README.md, its
 // grader (grade_runner.cpp) and Gradescope's two scripts, setup.sh and run_autograder
-// (NAME.in with @CHAPTER@-style placeholders, or NAME copied as it is). DIR is deleted
-// first if it holds an earlier kit.
+// (NAME.in with @CHAPTER@-style placeholders, or NAME copied as it is). --time-limits
+// FILE (written by grade-runner --measure from the solution) becomes the kit's
+// time_limits.txt. The teacher's hidden tests (tests/hidden/) never go into a kit (the
+// assignment script adds them to the autograder's zip only). DIR is deleted first if it
+// holds an earlier kit.
 //
 // `restore` puts the solution of every exercise back between those comments in a kit
 // (the teacher's copy; the kit tests use it to prove the stubs are the only difference).
@@ -811,9 +814,10 @@ std::string chapter_title(const fs::path& chapter_md) {
 const char* const template_files[] = {"CMakeLists.txt", "README.md", "grade_runner.cpp",
                                       "run_autograder", "setup.sh"};
 
-/// The per-test time limit the grade runner states as a named constant, for the README.
-std::string time_limit(const fs::path& template_dir) {
-    const std::string name = "constexpr int test_time_limit_seconds = ";
+/// A number the grade runner states as a named constant (`constexpr int NAME = N;`), for
+/// the README: the time limits and the rule that derives them.
+std::string runner_constant(const fs::path& template_dir, const std::string& constant) {
+    const std::string name = "constexpr int " + constant + " = ";
     const std::string text = read_text(template_dir / "grade_runner.cpp");
     const auto at = text.find(name);
     const auto end = at == std::string::npos ? at : text.find(';', at);
@@ -930,7 +934,7 @@ points_disagreements(const fs::path& root, const std::string& number,
 
 struct Options {
     std::string command;
-    fs::path source, template_dir, out, kit, file;
+    fs::path source, template_dir, out, kit, file, time_limits;
     std::string chapter, version = "0.0.0";
     std::string commit = "unknown"; ///< of the source tree, stamped on the kit
 };
@@ -1074,6 +1078,10 @@ void make_kit(const Options& options) {
         }
     }
     kit["exercises.txt"] = exercise_list;
+    // The time limits measured on the solution (grade-runner --measure), when given.
+    if (!options.time_limits.empty()) {
+        kit["time_limits.txt"] = read_text(options.time_limits);
+    }
     std::string table;
     if (stubbed.empty()) {
         table = "This chapter has no implementation exercises yet: the kit builds the "
@@ -1132,7 +1140,14 @@ void make_kit(const Options& options) {
                 "with "
                 "`-DSTB_INCLUDE_DIR=that/folder`.";
     const std::map<std::string, std::string> values = {
-        {"@TIME_LIMIT@", time_limit(options.template_dir)},
+        {"@TIME_LIMIT@",
+         runner_constant(options.template_dir, "test_time_limit_seconds")},
+        {"@LIMIT_MULTIPLE@", runner_constant(options.template_dir, "limit_multiple")},
+        {"@LIMIT_FLOOR@", runner_constant(options.template_dir, "limit_floor_seconds")},
+        {"@BUDGET_MULTIPLE@", runner_constant(options.template_dir, "budget_multiple")},
+        {"@BUDGET_FLOOR@", runner_constant(options.template_dir, "budget_floor_seconds")},
+        {"@DEFAULT_BUDGET@",
+         runner_constant(options.template_dir, "default_budget_seconds")},
         {"@PACKAGES@", packages},
         {"@BREW_PACKAGES@", brew_packages},
         {"@BREW_MISSING@", brew_missing},
@@ -1340,6 +1355,8 @@ Options parse(int argc, char** argv) {
             options.commit = value;
         } else if (flag == "--file") {
             options.file = value;
+        } else if (flag == "--time-limits") {
+            options.time_limits = value;
         } else {
             throw KitError("unknown option " + flag);
         }

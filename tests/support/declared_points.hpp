@@ -1,13 +1,17 @@
 // declared_points.hpp: what a test case declares about grading in its doctest
-// description, "points: N; exercise: ID". The grade reporter reads it from the running
-// test case, make-kit from the test's source text: one reading for both.
+// description, "points: N; exercise: ID" (and, rarely, "visibility: V"). The grade
+// reporter reads it from the running test case, make-kit from the test's source text:
+// one reading for both.
 //
 // Usage:
 //   DeclaredPoints d = parse_declared_points("points: 2; exercise: ch02-edge-bias");
 //   // d.points == 2, d.exercise == "ch02-edge-bias", d.bad_points empty
 //
 // Items are separated by ';', keys and values by ':', spaces around both are ignored,
-// unknown keys are ignored, and either item may be missing (0 points, no exercise).
+// unknown keys are ignored, and any item may be missing (0 points, no exercise, no
+// visibility). The visibility is Gradescope's ("visible", "hidden", "after_due_date",
+// "after_published"); the grade runner gives a test case of tests/hidden/ without one
+// "after_published".
 #pragma once
 
 #include <string>
@@ -20,6 +24,7 @@ struct DeclaredPoints {
     int points = 0;         ///< points earned when the test case passes
     std::string exercise;   ///< the exercise region it checks; empty for none
     std::string bad_points; ///< the `points` value when it is not a whole number
+    std::string visibility; ///< Gradescope's visibility; empty when not declared
 };
 
 /// `text` without leading and trailing spaces and tabs.
@@ -59,6 +64,8 @@ inline DeclaredPoints parse_declared_points(std::string_view description) {
             declared.bad_points = whole ? "" : std::string(value);
         } else if (key == "exercise") {
             declared.exercise = std::string(value);
+        } else if (key == "visibility") {
+            declared.visibility = std::string(value);
         }
     }
     return declared;

@@ -27,9 +27,12 @@
 // Below a FAIL line come the reasons, each on a line of its own that starts with two
 // spaces: the first failed checks (file name, line, expression and values), an exception
 // the test case threw, a crash doctest caught. `--list-test-cases --reporters=grade`
-// prints "TEST RUN|SKIP POINTS EXERCISE NAME" per test case (SKIP: marked doctest::skip),
-// in the order of a run; the kits' grade runner (src/kits/template/grade_runner.cpp)
-// reads it to run every test case in a process of its own.
+// prints "TEST RUN|SKIP POINTS EXERCISE VISIBILITY NAME" per test case (SKIP: marked
+// doctest::skip), in the order of a run; the kits' grade runner
+// (src/kits/template/grade_runner.cpp) reads it to run every test case in a process of
+// its own. VISIBILITY is Gradescope's: the description's "visibility: V", else
+// "after_published" for a test case in a folder named hidden (the teacher's hidden tests,
+// tests/hidden/, which only the autograder holds), else "visible".
 //
 // Run by the grade runner, the reporter writes nowhere a file name says: the runner sets
 // EXACTPIXELS_GRADE_CHANNEL=K,R, the reporter reads a random key from descriptor K
@@ -42,10 +45,10 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <memory>
 #include <ostream>
 #include <sstream>
+#include <streambuf>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -59,17 +62,70 @@ namespace {
 /// What a test case's description declares (declared_points.hpp), with "-" for no
 /// exercise as the grade lines print it.
 struct Declared {
-    int points = 0;             ///< points earned when the test case passes
-    std::string exercise = "-"; ///< the exercise region it checks, "-" for none
+    int points = 0;                     ///< points earned when the test case passes
+    std::string exercise = "-";         ///< the exercise region it checks, "-" for none
+    std::string visibility = "visible"; ///< see the top of the file
 };
 
-Declared parse_description(const char* description) {
-    if (description == nullptr) {
-        return {};
+Declared parse_description(const doctest::TestCaseData& test) {
+    Declared declared;
+    const std::string_view file = test.m_file.c_str();
+    if (file.find("/hidden/") != std::string_view::npos ||
+        file.find("\\hidden\\") != std::string_view::npos) {
+        declared.visibility = "after_published";
     }
-    const DeclaredPoints d = parse_declared_points(description);
-    return {d.points, d.exercise.empty() ? "-" : d.exercise};
+    if (test.m_description == nullptr) {
+        return declared;
+    }
+    const DeclaredPoints d = parse_declared_points(test.m_description);
+    declared.points = d.points;
+    declared.exercise = d.exercise.empty() ? "-" : d.exercise;
+    if (!d.visibility.empty()) {
+        declared.visibility = d.visibility;
+    }
+    return declared;
 }
+
+/// An output stream buffer that writes to a file descriptor (the grade runner's pipe).
+/// Not /dev/fd/N: a test program the grader runs as another user, and cannot read, may
+/// not open its own /proc/self/fd.
+class DescriptorBuffer : public std::streambuf {
+  public:
+    explicit DescriptorBuffer(int fd) : fd_(fd) {}
+    ~DescriptorBuffer() override {
+        sync();
+        ::close(fd_);
+    }
+
+  protected:
+    int overflow(int c) override {
+        if (c != traits_type::eof()) {
+            pending_.push_back(static_cast<char>(c));
+        }
+        return traits_type::not_eof(c);
+    }
+    std::streamsize xsputn(const char* text, std::streamsize n) override {
+        pending_.append(text, static_cast<std::size_t>(n));
+        return n;
+    }
+    int sync() override {
+        std::size_t done = 0;
+        while (done < pending_.size()) {
+            const ssize_t n =
+                ::write(fd_, pending_.data() + done, pending_.size() - done);
+            if (n <= 0) {
+                return -1;
+            }
+            done += static_cast<std::size_t>(n);
+        }
+        pending_.clear();
+        return 0;
+    }
+
+  private:
+    int fd_;
+    std::string pending_;
+};
 
 /// Prints one line per test case and a total; see the top of this file.
 class GradeReporter : public doctest::IReporter {
@@ -81,10 +137,10 @@ class GradeReporter : public doctest::IReporter {
     void report_query(const doctest::QueryData& query) override {
         // With --list-test-cases: every test case with its declared points.
         for (unsigned i = 0; i < query.num_data; ++i) {
-            const Declared d = parse_description(query.data[i]->m_description);
+            const Declared d = parse_description(*query.data[i]);
             out() << prefix_ << "TEST " << (query.data[i]->m_skip ? "SKIP " : "RUN ")
-                  << d.points << ' ' << d.exercise << ' ' << query.data[i]->m_name
-                  << '\n';
+                  << d.points << ' ' << d.exercise << ' ' << d.visibility << ' '
+                  << query.data[i]->m_name << '\n';
         }
     }
 
@@ -140,7 +196,7 @@ class GradeReporter : public doctest::IReporter {
 
   private:
     void line(const char* status, const doctest::TestCaseData& test, bool passed) {
-        const Declared d = parse_description(test.m_description);
+        const Declared d = parse_description(test);
         const int earned = passed ? d.points : 0;
         if (status[0] != 'S') { // a skipped test case counts in neither total
             earned_ += earned;
@@ -183,9 +239,8 @@ class GradeReporter : public doctest::IReporter {
             text.pop_back();
         }
         prefix_ = text + ' ';
-        channel_ =
-            std::make_unique<std::ofstream>("/dev/fd/" + std::to_string(report_fd));
-        ::close(report_fd);
+        buffer_ = std::make_unique<DescriptorBuffer>(report_fd);
+        channel_ = std::make_unique<std::ostream>(buffer_.get());
     }
 
     std::ostream& out() { return channel_ ? *channel_ : out_; }
@@ -217,8 +272,9 @@ class GradeReporter : public doctest::IReporter {
     static constexpr std::size_t max_reason_chars = 300;
 
     std::ostream& out_;
-    std::unique_ptr<std::ofstream> channel_; // the grade runner's pipe, if any
-    std::string prefix_;                     // its key and a space, or nothing
+    std::unique_ptr<DescriptorBuffer> buffer_; // the grade runner's pipe, if any
+    std::unique_ptr<std::ostream> channel_;    // writing into it
+    std::string prefix_;                       // its key and a space, or nothing
     const doctest::TestCaseData* current_ = nullptr;
     std::vector<std::string> reasons_; // why the current test case fails
     int failed_checks_ = 0;

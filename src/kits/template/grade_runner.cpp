@@ -3,9 +3,15 @@
 // library, so it builds even when the student's code does not compile).
 //
 //   grade-runner --tests PROGRAM --grade-file FILE [--results-json FILE]
-//                [--time-limit SECONDS] [--build-dir DIR --target NAME]
+//                [--time-limit SECONDS] [--time-limits FILE] [--build-dir DIR --target
+//                NAME]
 //                [--total-points N] [--source-dir DIR] [--exercises FILE]
-//                [--submission DIR]
+//                [--submission DIR] [--hidden-tests DIR] [--run-as UID:GID]
+//   grade-runner --tests PROGRAM --measure FILE
+//
+// --measure runs each test case of PROGRAM (the solution's) once and writes its time
+// limits to FILE (time_limits.txt): "budget SECONDS", then "LIMIT MEASURED NAME" per test
+// case, by the rule at limit_multiple below; it fails if a test case fails.
 //
 // With --submission (a student's folder holding src/), it first puts the text of each of
 // the submission's exercise regions into the same region of the kit at --source-dir
@@ -19,10 +25,18 @@
 // grade says so, with the compiler's first error (paths shown relative to
 // --source-dir), and scores 0 of --total-points. Then it asks PROGRAM (a doctest test
 // program linking tests/support/grade_reporter.cpp) for its test cases and runs each in
-// a process of its own, stopped after the time limit (test_time_limit_seconds below,
-// unless --time-limit says otherwise). A test case that crashes (a signal such as a
-// segmentation fault or an abort), hangs past the limit, exits early or throws scores 0
-// with a line saying what happened, and every other test case still runs and scores.
+// a process of its own, stopped after its time limit (from --time-limits FILE, else
+// --time-limit, else test_time_limit_seconds below); all of them together stop at the
+// budget of FILE (else default_budget_seconds), and the test cases left are reported as
+// not run. A test case that crashes (a signal such as a segmentation fault or an abort),
+// hangs past the limit, exits early or throws scores 0 with a line saying what happened,
+// and every other test case still runs and scores.
+//
+// With --run-as UID:GID (the grader running as root), the build and every test process
+// run as that user, in an empty home of their own; after the build, --hidden-tests DIR
+// (the hidden tests' sources) is removed, and --source-dir and --build-dir become root's
+// and read-only to that user (lock_down), so code under test cannot change what a later
+// test case runs or reads.
 //
 // Each test case reports to the runner through pipes (see Channel), never a file, and
 // its line is printed as soon as it ended, "[I/N] STATUS E/D EXERCISE NAME (S s)"; a
@@ -33,8 +47,10 @@
 // --results-json writes the same grade in Gradescope's results.json format
 // (https://gradescope-autograders.readthedocs.io/en/latest/specs/): the total "score",
 // an "output" summary, and per test case "name", "score", "max_score", "status" (passed
-// or failed), "output" (the reasons) and "tags" (the exercise, see --exercises). Skipped
-// test cases are left out of both totals, as in the grade reporter.
+// or failed), "output" (the reasons), "tags" (the exercise, see --exercises) and
+// "visibility" (the reporter's: "after_published" for a hidden test); with any hidden
+// test case, "stdout_visibility" is "hidden" and the summary counts the visible ones.
+// Skipped test cases are left out of both totals, as in the grade reporter.
 //
 // --exercises names the kit's exercises.txt (lines "ID KIND MARKS", written by make-kit
 // from the chapter's exercise tags): the grade then opens with one line per exercise,
@@ -48,11 +64,13 @@
 #include <cctype>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <grp.h>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -61,6 +79,7 @@
 #include <stdexcept>
 #include <string.h>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -70,12 +89,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Seconds one test case may run before it is stopped and scores 0: at least three times
-/// the slowest test case of any chapter's solution, as tests/assignments_kits.cpp checks
-/// on every kit, so that it stops an endless loop but not a slow machine. (Chapter 7's
-/// "the worst inputs under the limits stay under the stated peaks" takes about 9 s; a
-/// limit per test case would let the others stop sooner.)
+/// Seconds a test case that time_limits.txt does not list may run before it is stopped
+/// and scores 0: at least three times the slowest test case of any chapter's solution,
+/// as tests/assignments_kits.cpp checks on every kit, so that it stops an endless loop
+/// but not a slow machine. (Chapter 7's "the worst inputs under the limits stay under
+/// the stated peaks" takes about 9 s.)
 constexpr int test_time_limit_seconds = 60;
+/// The rule of `--measure`, which times each test case of the solution and writes
+/// time_limits.txt: a test case's limit is limit_multiple times the solution's time plus
+/// limit_floor_seconds, rounded up to a whole second; all test cases together get
+/// budget_multiple times the solution's total plus budget_floor_seconds. The floor
+/// covers a machine that is busy or slower; the multiple, a solution that is slower
+/// than the book's but not endless.
+constexpr int limit_multiple = 5;
+constexpr int limit_floor_seconds = 5;
+constexpr int budget_multiple = 3;
+constexpr int budget_floor_seconds = 30;
+/// Seconds all test cases together may take when time_limits.txt sets no budget.
+constexpr int default_budget_seconds = 300;
 /// Seconds the build of a submission may take.
 constexpr int build_time_limit_seconds = 900;
 /// Lines of a crashed test case's own output quoted in its grade.
@@ -166,11 +197,23 @@ std::vector<std::string> keyed_lines(const Channel& channel) {
     return lines;
 }
 
+/// The user that builds and runs the code under test, when the grader runs as root
+/// (--run-as UID:GID); unset, the children run as the grader.
+struct Identity {
+    bool set = false;
+    uid_t uid = 0;
+    gid_t gid = 0;
+    fs::path home; ///< the folder its processes start in (prepare_home)
+};
+
+using Milliseconds = std::chrono::milliseconds;
+
 /// Runs `argv` with standard output and error going to `output`, in a process group of
-/// its own that is killed whole after `seconds`; with `channel`, the process gets its
-/// key and gives back its lines through two pipes (see Channel).
-Ended run(const std::vector<std::string>& argv, const fs::path& output, int seconds,
-          Channel* channel = nullptr) {
+/// its own that is killed whole after `limit`, as the user `as` when set; with
+/// `channel`, the process gets its key and gives back its lines through two pipes (see
+/// Channel).
+Ended run(const std::vector<std::string>& argv, const fs::path& output,
+          Milliseconds limit, const Identity& as, Channel* channel = nullptr) {
     int key_pipe[2] = {-1, -1}, report_pipe[2] = {-1, -1};
     if (channel != nullptr && (::pipe(key_pipe) != 0 || ::pipe(report_pipe) != 0)) {
         throw GradeError(std::string("cannot make a pipe: ") + std::strerror(errno));
@@ -193,6 +236,14 @@ Ended run(const std::vector<std::string>& argv, const fs::path& output, int seco
             const std::string fds =
                 std::to_string(key_pipe[0]) + "," + std::to_string(report_pipe[1]);
             ::setenv("EXACTPIXELS_GRADE_CHANNEL", fds.c_str(), 1);
+        }
+        // The output file and the pipes are open: now give up root for good.
+        if (as.set && ((!as.home.empty() && ::chdir(as.home.c_str()) != 0) ||
+                       ::setgroups(0, nullptr) != 0 || ::setgid(as.gid) != 0 ||
+                       ::setuid(as.uid) != 0)) {
+            std::fprintf(stderr, "cannot become user %d: %s\n", static_cast<int>(as.uid),
+                         std::strerror(errno));
+            ::_exit(126);
         }
         std::vector<char*> args;
         for (const auto& arg : argv) {
@@ -224,8 +275,7 @@ Ended run(const std::vector<std::string>& argv, const fs::path& output, int seco
             channel->text.append(buffer, static_cast<std::size_t>(got));
         }
     };
-    const auto deadline =
-        std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+    const auto deadline = std::chrono::steady_clock::now() + limit;
     Ended ended;
     int status = 0;
     for (;;) {
@@ -312,18 +362,23 @@ struct Case {
     int points = 0;
     std::string exercise = "-";
     std::string name;
+    /// Gradescope's visibility: "visible", or for a hidden test (tests/hidden/)
+    /// "after_published" unless its description says otherwise.
+    std::string visibility = "visible";
     bool passed = false;
+    double seconds = 0; ///< how long it ran
     std::vector<std::string> reasons;
 };
 
-/// "TEST RUN|SKIP POINTS EXERCISE NAME" lines, from `--list-test-cases
+/// "TEST RUN|SKIP POINTS EXERCISE VISIBILITY NAME" lines, from `--list-test-cases
 /// --reporters=grade`.
 std::vector<Case> list_cases(const fs::path& program, const fs::path& scratch,
-                             int seconds) {
+                             const Identity& as) {
     Channel channel{fresh_key(), {}};
     const Ended ended =
         run({program.string(), "--list-test-cases", "--no-skip", "--reporters=grade"},
-            scratch / "list-output.txt", seconds, &channel);
+            scratch / "list-output.txt", std::chrono::seconds(test_time_limit_seconds),
+            as, &channel);
     if (ended.timed_out || ended.signal != 0 || ended.exit_code != 0) {
         throw GradeError(program.string() + " could not list its test cases" +
                          (ended.timed_out ? " (it timed out)" : "") + "; its output:\n" +
@@ -334,7 +389,7 @@ std::vector<Case> list_cases(const fs::path& program, const fs::path& scratch,
         std::istringstream in(line);
         std::string word, mode;
         Case test;
-        in >> word >> mode >> test.points >> test.exercise;
+        in >> word >> mode >> test.points >> test.exercise >> test.visibility;
         in.get();
         std::getline(in, test.name);
         if (word != "TEST" || (mode != "RUN" && mode != "SKIP") || in.bad()) {
@@ -346,9 +401,11 @@ std::vector<Case> list_cases(const fs::path& program, const fs::path& scratch,
     return cases;
 }
 
-/// Runs test case number `index` (1-based, in listing order) in a process of its own.
+/// Runs test case number `index` (1-based, in listing order) in a process of its own,
+/// stopped after `limit` with `timeout_reason` as the reason.
 void run_case(const fs::path& program, std::size_t index, Case& test,
-              const fs::path& scratch, int seconds) {
+              const fs::path& scratch, Milliseconds limit,
+              const std::string& timeout_reason, const Identity& as) {
     const fs::path output = scratch / "case-output.txt";
     const std::string n = std::to_string(index);
     // Without --no-exitcode: a test case that fails makes the program exit non-zero, so
@@ -356,7 +413,7 @@ void run_case(const fs::path& program, std::size_t index, Case& test,
     Channel channel{fresh_key(), {}};
     const Ended ended = run({program.string(), "--reporters=grade", "--no-skip",
                              "--first=" + n, "--last=" + n},
-                            output, seconds, &channel);
+                            output, limit, as, &channel);
     // The reporter's line for this test case and the reasons below it.
     bool found = false, reported_pass = false;
     int results = 0;
@@ -388,10 +445,7 @@ void run_case(const fs::path& program, std::size_t index, Case& test,
     }
     test.passed = false;
     if (ended.timed_out) {
-        test.reasons.push_back("timed out: still running after " +
-                               std::to_string(seconds) +
-                               " s, the time limit of one test case, so it was stopped "
-                               "(an endless loop?)");
+        test.reasons.push_back(timeout_reason);
     } else if (ended.signal != 0) {
         test.reasons.push_back("crashed: the test program died of " +
                                signal_name(ended.signal));
@@ -763,6 +817,9 @@ std::vector<Exercise> read_exercises(const fs::path& file) {
 Report report(const std::vector<Case>& cases, const std::string& summary_note,
               const std::vector<Exercise>& exercises = {}) {
     int earned = 0, declared = 0, passed = 0, counted = 0;
+    // The same sums over the visible test cases only, for the summary students see
+    // before the hidden test cases are published.
+    int shown_earned = 0, shown_declared = 0, hidden = 0;
     std::string lines, tests;
     for (const auto& exercise : exercises) {
         int got = 0, of = 0;
@@ -788,6 +845,12 @@ Report report(const std::vector<Case>& cases, const std::string& summary_note,
         declared += test.points;
         passed += test.passed ? 1 : 0;
         ++counted;
+        if (test.visibility == "visible") {
+            shown_earned += score;
+            shown_declared += test.points;
+        } else {
+            ++hidden;
+        }
         lines += std::string(test.passed ? "PASS " : "FAIL ") + std::to_string(score) +
                  "/" + std::to_string(test.points) + " " + test.exercise + " " +
                  test.name + "\n";
@@ -807,19 +870,30 @@ Report report(const std::vector<Case>& cases, const std::string& summary_note,
                  ", \"max_score\": " + std::to_string(test.points) + ", \"status\": \"" +
                  (test.passed ? "passed" : "failed") +
                  "\", \"output\": " + json_string(join(test.reasons)) + ", \"tags\": [" +
-                 tags + "]}";
+                 tags + "], \"visibility\": " + json_string(test.visibility) + "}";
     }
     const std::string total =
         "TOTAL " + std::to_string(earned) + "/" + std::to_string(declared) + " points; " +
         std::to_string(passed) + "/" + std::to_string(counted) + " test cases passed";
     lines += total + "\n";
+    // With hidden test cases, the summary counts the visible ones, and the grader's
+    // printed lines (which name every test case) are hidden from students.
+    const std::string shown =
+        hidden == 0 ? total
+                    : "TOTAL " + std::to_string(shown_earned) + "/" +
+                          std::to_string(shown_declared) +
+                          " points of the visible test cases; " + std::to_string(hidden) +
+                          " more test case" + (hidden == 1 ? " is" : "s are") +
+                          " shown when the grades are published";
     const std::string output =
-        kit_stamp + "\n" + (summary_note.empty() ? total : summary_note + "\n" + total);
+        kit_stamp + "\n" + (summary_note.empty() ? shown : summary_note + "\n" + shown);
     Report result;
     result.lines = lines;
-    result.json = "{\n  \"score\": " + std::to_string(earned) +
-                  ",\n  \"output\": " + json_string(output) + ",\n  \"tests\": [\n" +
-                  tests + (tests.empty() ? "" : "\n") + "  ]\n}\n";
+    result.json =
+        "{\n  \"score\": " + std::to_string(earned) +
+        ",\n  \"output\": " + json_string(output) +
+        ",\n  \"stdout_visibility\": " + json_string(hidden == 0 ? "visible" : "hidden") +
+        ",\n  \"tests\": [\n" + tests + (tests.empty() ? "" : "\n") + "  ]\n}\n";
     return result;
 }
 
@@ -828,7 +902,8 @@ struct Options {
     std::string target;
     int time_limit = test_time_limit_seconds;
     int total_points = 0;
-    fs::path exercises;
+    fs::path exercises, time_limits, measure, hidden_tests;
+    Identity run_as;
 };
 
 int to_int(const std::string& flag, const std::string& value) {
@@ -873,15 +948,31 @@ Options parse(int argc, char** argv) {
             options.exercises = value;
         } else if (flag == "--total-points") {
             options.total_points = to_int(flag, value);
+        } else if (flag == "--time-limits") {
+            options.time_limits = value;
+        } else if (flag == "--measure") {
+            options.measure = value;
+        } else if (flag == "--hidden-tests") {
+            options.hidden_tests = value;
+        } else if (flag == "--run-as") {
+            const auto colon = value.find(':');
+            if (colon == std::string::npos) {
+                throw GradeError("--run-as wants UID:GID, got '" + value + "'");
+            }
+            options.run_as.set = true;
+            options.run_as.uid = static_cast<uid_t>(to_int(flag, value.substr(0, colon)));
+            options.run_as.gid =
+                static_cast<gid_t>(to_int(flag, value.substr(colon + 1)));
         } else {
             throw GradeError("unknown option " + flag +
                              " (see the top of grade_runner.cpp)");
         }
     }
-    if (options.tests.empty() || options.grade_file.empty()) {
-        throw GradeError("usage: grade-runner --tests PROGRAM --grade-file FILE "
-                         "[--results-json FILE] [--time-limit SECONDS] [--build-dir DIR "
-                         "--target NAME] [--total-points N] [--source-dir DIR]");
+    if (options.tests.empty() ||
+        (options.grade_file.empty() && options.measure.empty())) {
+        throw GradeError(
+            "usage: grade-runner --tests PROGRAM (--grade-file FILE | --measure "
+            "FILE) (see the top of grade_runner.cpp for the other options)");
     }
     if (options.time_limit < 1) {
         throw GradeError("--time-limit wants at least 1 second");
@@ -933,23 +1024,169 @@ void write_report(const Options& options, const Report& grade) {
     std::cout << grade.lines << std::flush;
 }
 
-int grade(const Options& options) {
-    const fs::path scratch =
-        fs::temp_directory_path() / ("exactpixels-grade-" + std::to_string(::getpid()));
-    fs::create_directories(scratch);
-    struct Cleanup {
-        fs::path path;
-        ~Cleanup() {
-            std::error_code ignored;
-            fs::remove_all(path, ignored);
+/// The time limits of time_limits.txt (written by --measure): per test case, in
+/// seconds, and a budget for all test cases together.
+struct TimeLimits {
+    std::map<std::string, int> per_case;
+    int budget = default_budget_seconds;
+};
+
+/// Reads "budget SECONDS" and "LIMIT MEASURED NAME" lines ('#' starts a comment line);
+/// no file means no per-case limits and the default budget.
+TimeLimits read_time_limits(const fs::path& file) {
+    TimeLimits limits;
+    if (file.empty() || !fs::exists(file)) {
+        return limits;
+    }
+    const auto lines = lines_of(read_text(file));
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+        if (lines[i].empty() || lines[i][0] == '#') {
+            continue;
         }
-    } cleanup{scratch};
+        std::istringstream in(lines[i]);
+        std::string first, second, name;
+        in >> first >> second;
+        in.get();
+        std::getline(in, name);
+        const bool budget = first == "budget";
+        const std::string where = file.string() + ":" + std::to_string(i + 1);
+        if (second.empty() || (budget ? !name.empty() : name.empty())) {
+            throw GradeError(where +
+                             ": not 'budget SECONDS' or 'LIMIT MEASURED NAME': '" +
+                             lines[i] + "'");
+        }
+        const int seconds = to_int(where, budget ? second : first);
+        if (seconds < 1) {
+            throw GradeError(where +
+                             ": a time limit of at least 1 second is wanted, got '" +
+                             lines[i] + "'");
+        }
+        if (budget) {
+            limits.budget = seconds;
+        } else {
+            limits.per_case[name] = seconds;
+        }
+    }
+    return limits;
+}
+
+/// This process's scratch folder, removed when it ends; only the grader can enter it.
+struct Scratch {
+    fs::path path =
+        fs::temp_directory_path() / ("exactpixels-grade-" + std::to_string(::getpid()));
+    Scratch() {
+        fs::create_directories(path);
+        fs::permissions(path, fs::perms::owner_all);
+    }
+    ~Scratch() {
+        std::error_code ignored;
+        fs::remove_all(path, ignored);
+    }
+};
+
+/// After the build, when the code under test runs as another user: the kit and the
+/// build become root's and read-only to that user (a test case cannot change what a
+/// later one runs or reads, such as the test program or the command-line program),
+/// and the test program can be run but not read.
+void lock_down(const Options& options) {
+    for (const auto& top : {options.source_dir, options.build_dir}) {
+        if (top.empty()) {
+            continue;
+        }
+        std::vector<fs::path> paths{top};
+        for (const auto& entry : fs::recursive_directory_iterator(top)) {
+            paths.push_back(entry.path());
+        }
+        for (const auto& path : paths) {
+            struct stat info {};
+            if (::lstat(path.c_str(), &info) != 0 || ::lchown(path.c_str(), 0, 0) != 0) {
+                throw GradeError("cannot make " + path.string() +
+                                 " root's: " + std::strerror(errno));
+            }
+            // No set-user-ID bit survives: a file the user made must not run as root.
+            if (!S_ISLNK(info.st_mode)) {
+                ::chmod(path.c_str(), info.st_mode & 0755);
+            }
+        }
+    }
+    ::chmod(options.tests.c_str(), 0711);
+}
+
+/// The folder the code under test runs in (its home and TMPDIR too): its own, empty.
+void prepare_home(const fs::path& home, const Identity& as) {
+    fs::create_directories(home);
+    if (as.set && ::chown(home.c_str(), as.uid, as.gid) != 0) {
+        throw GradeError("cannot give " + home.string() +
+                         " to the grading user: " + std::strerror(errno));
+    }
+    ::setenv("HOME", home.c_str(), 1);
+    ::setenv("TMPDIR", home.c_str(), 1);
+}
+
+/// Runs every test case of the solution once and writes its time limits (the rule at
+/// limit_multiple above) to options.measure.
+int measure(const Options& options) {
+    const Scratch scratch;
+    auto cases = list_cases(options.tests, scratch.path, options.run_as);
+    std::string lines;
+    double total = 0;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        auto& test = cases[i];
+        if (test.skip) {
+            continue;
+        }
+        const auto started = std::chrono::steady_clock::now();
+        run_case(options.tests, i + 1, test, scratch.path,
+                 std::chrono::seconds(test_time_limit_seconds),
+                 "still running after " + std::to_string(test_time_limit_seconds) + " s",
+                 options.run_as);
+        const std::chrono::duration<double> took =
+            std::chrono::steady_clock::now() - started;
+        if (!test.passed) {
+            throw GradeError("the solution fails test case \"" + test.name +
+                             "\", so its time cannot be measured: " + join(test.reasons));
+        }
+        total += took.count();
+        const int limit = static_cast<int>(
+            std::ceil(limit_multiple * took.count() + limit_floor_seconds));
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%.3f", took.count());
+        lines += std::to_string(limit) + " " + seconds + " " + test.name + "\n";
+    }
+    const int budget =
+        static_cast<int>(std::ceil(budget_multiple * total + budget_floor_seconds));
+    write_text(
+        options.measure,
+        "# Time limits in seconds, measured on the book's solution by grade-runner "
+        "--measure:\n# a test case's limit is " +
+            std::to_string(limit_multiple) + " times the solution's time plus " +
+            std::to_string(limit_floor_seconds) + " s; all test cases together get " +
+            std::to_string(budget_multiple) + " times the solution's total plus " +
+            std::to_string(budget_floor_seconds) +
+            " s (rounded up).\n# LIMIT MEASURED NAME\nbudget " + std::to_string(budget) +
+            "\n" + lines);
+    std::cout << "grade-runner: wrote " << options.measure.string() << ": "
+              << cases.size() << " test cases, " << total << " s in all, budget "
+              << budget << " s\n";
+    return 0;
+}
+
+int grade(Options options) {
+    const Scratch scratch_folder;
+    const fs::path& scratch = scratch_folder.path;
+    const TimeLimits limits = read_time_limits(options.time_limits);
 
     std::cout << kit_stamp << "\n" << std::flush;
     // An earlier grade must not stand for this one if this one cannot be written.
     fs::remove(options.grade_file);
     if (!options.results_json.empty()) {
         fs::remove(options.results_json);
+    }
+    if (options.run_as.set) {
+        options.run_as.home = scratch / "home";
+        prepare_home(options.run_as.home, options.run_as);
+        fs::permissions(scratch, fs::perms::owner_all | fs::perms::group_exec |
+                                     fs::perms::others_exec);
     }
     // Of a submission, only the text of its exercise regions: the rest is the kit's.
     Taken taken;
@@ -961,9 +1198,11 @@ int grade(const Options& options) {
     // A region whose text does not compile gets its stub back, so that it costs its own
     // exercise only; when the errors point into no taken region, every taken region does.
     while (!options.build_dir.empty()) {
-        const Ended built = run({EXACTPIXELS_GRADE_CMAKE, "--build",
-                                 options.build_dir.string(), "--target", options.target},
-                                scratch / "build.txt", build_time_limit_seconds);
+        const Ended built =
+            run({EXACTPIXELS_GRADE_CMAKE, "--build", options.build_dir.string(),
+                 "--target", options.target},
+                scratch / "build.txt", std::chrono::seconds(build_time_limit_seconds),
+                options.run_as);
         const bool failed = built.timed_out || built.signal != 0 || built.exit_code != 0;
         if (failed && !built.timed_out && built.signal == 0 && !taken.regions.empty()) {
             const std::string log = read_text(scratch / "build.txt");
@@ -1003,17 +1242,45 @@ int grade(const Options& options) {
         }
         break;
     }
-    auto cases = list_cases(options.tests, scratch, options.time_limit);
+    // The hidden tests are compiled in; their text is not left for the code under test.
+    if (!options.hidden_tests.empty()) {
+        fs::remove_all(options.hidden_tests);
+    }
+    if (options.run_as.set) {
+        lock_down(options);
+    }
+    auto cases = list_cases(options.tests, scratch, options.run_as);
     if (cases.empty()) {
         throw GradeError(options.tests.string() + " lists no test cases");
     }
     // Each test case's line as soon as it ended, with its time, so that a slow or hung
-    // case shows which; the whole grade follows at the end.
+    // case shows which; the whole grade follows at the end. Each test case stops at its
+    // own limit, and all together at the budget: past it, the rest are not run.
+    const std::string budget = std::to_string(limits.budget) + " s";
+    const auto budget_end =
+        std::chrono::steady_clock::now() + std::chrono::seconds(limits.budget);
     for (std::size_t i = 0; i < cases.size(); ++i) {
         auto& test = cases[i];
         const auto started = std::chrono::steady_clock::now();
-        if (!test.skip) {
-            run_case(options.tests, i + 1, test, scratch, options.time_limit);
+        const auto left = std::chrono::duration_cast<Milliseconds>(budget_end - started);
+        const auto own = limits.per_case.find(test.name);
+        const int limit = own != limits.per_case.end() ? own->second : options.time_limit;
+        const bool not_run = !test.skip && left.count() <= 0;
+        if (not_run) {
+            test.reasons.push_back("not run: the " + budget +
+                                   " that all test cases may take together were used up "
+                                   "by the test cases before it");
+        } else if (!test.skip && left < std::chrono::seconds(limit)) {
+            run_case(options.tests, i + 1, test, scratch, left,
+                     "stopped: the " + budget +
+                         " that all test cases may take together ran out while it ran",
+                     options.run_as);
+        } else if (!test.skip) {
+            const std::string seconds = std::to_string(limit) + " s";
+            run_case(options.tests, i + 1, test, scratch, std::chrono::seconds(limit),
+                     "time limit " + seconds + " exceeded: still running after " +
+                         seconds + ", so it was stopped (an endless loop?)",
+                     options.run_as);
         }
         const std::chrono::duration<double> took =
             std::chrono::steady_clock::now() - started;
@@ -1021,6 +1288,7 @@ int grade(const Options& options) {
         std::snprintf(seconds, sizeof seconds, "%.2f", took.count());
         std::cout << "[" << i + 1 << "/" << cases.size() << "] "
                   << (test.skip     ? "SKIP"
+                      : not_run     ? "NOT RUN"
                       : test.passed ? "PASS"
                                     : "FAIL")
                   << ' ' << (test.passed ? test.points : 0) << '/' << test.points << ' '
@@ -1040,7 +1308,8 @@ int main(int argc, char** argv) {
     // first) must not take the grader with it: the key's write then fails with EPIPE.
     std::signal(SIGPIPE, SIG_IGN);
     try {
-        return grade(parse(argc, argv));
+        const Options options = parse(argc, argv);
+        return options.measure.empty() ? grade(options) : measure(options);
     } catch (const std::exception& error) {
         std::cerr << "grade-runner: " << error.what() << "\n";
         return 2;
