@@ -9,8 +9,8 @@
 // Pixels print as rgba(R, G, B, A); frames as their size, their most common colours with
 // counts and a hash of every pixel (two frames that print alike differ in the hash);
 // glm vectors as (x, y, ...); containers as [a, b, ...] (the first 12 elements and the
-// count); pairs as (a, b); optionals as their value or nullopt; 128-bit integers in
-// decimal; a file stream as whether it is open and good. Only the base layer's types are
+// count); pairs as (a, b); optionals as their value or nullopt; a file
+// stream as whether it is open and good. Only the base layer's types are
 // named here (every kit has it); a kit with the texture layer prints mappers too.
 #pragma once
 
