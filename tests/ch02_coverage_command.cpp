@@ -220,9 +220,13 @@ exactpixels::testing::CommandResult cover_fixture(const std::string& name,
 
 TEST_CASE("coverage: a number has at most one sign, in the documented form") {
     // "+-0.5" was read as -0.5: the sign '+' was dropped and from_chars took the '-'.
-    for (const auto& [name, word] : {std::pair{"two_signs_plus_minus.txt", "+-0.5"},
-                                     std::pair{"two_signs_minus_plus.txt", "-+1"},
-                                     std::pair{"two_signs_plus_plus.txt", "++0"}}) {
+    for (const auto& fixture : {std::pair{"two_signs_plus_minus.txt", "+-0.5"},
+                                std::pair{"two_signs_minus_plus.txt", "-+1"},
+                                std::pair{"two_signs_plus_plus.txt", "++0"}}) {
+        // Named copies: CAPTURE takes them into a lambda (Clang 14 cannot capture
+        // structured bindings).
+        const char* const name = fixture.first;
+        const char* const word = fixture.second;
         CAPTURE(name);
         const auto result = cover_fixture(name);
         CHECK(result.exit_code == 2);

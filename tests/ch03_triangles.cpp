@@ -194,7 +194,7 @@ TEST_CASE("with constant w every mapper picks the exact texels, pixel for pixel"
                      {TexelRounding{}, TexelRounding{(1 << 15) - 1, (1 << 15) - 1}}) {
                     TexelMap map(64, 48);
                     map_textured_triangle(map, tri,
-                                          {kind, 8, precision, rounding, Wrap::repeat});
+                                          {{kind, 8}, precision, rounding, Wrap::repeat});
                     int pixels = 0;
                     for (int y = 0; y < 48; ++y) {
                         for (int x = 0; x < 64; ++x) {
@@ -279,9 +279,13 @@ TEST_CASE("the scenes' affine mapper errs by its end errors plus the exact-ends 
     // mapper's own stepping. Spans whose error exceeds the exact-ends bound alone are
     // counted: they are why the end terms are there.
     constexpr double tolerance = 1e-9;
-    for (const auto& [name, scene] :
+    for (const auto& named_scene :
          {std::pair{std::string("floor"), floor_scene(320, 240)},
           std::pair{std::string("wall"), wall_scene(320, 240)}}) {
+        // Named references, not structured bindings: INFO below takes `name` into a
+        // lambda, which Clang 14 cannot do with a binding.
+        const std::string& name = named_scene.first;
+        const auto& scene = named_scene.second;
         int spans = 0, beyond_exact_ends = 0;
         double worst_excess = 0; // the largest error beyond the exact-ends bound
         double closest = 0;      // the largest share of its bound a span reaches
@@ -404,8 +408,9 @@ TEST_CASE("ch03-example: a missing texture fails naming it and writes no figure"
     REQUIRE_MESSAGE(fs::exists(example), "build the target ch03-example first");
     const auto folder = scratch_folder("example");
     const fs::path missing = folder / "no-such-texture.png";
-    const auto failed = testing::run_command("'" + example + "' '" + folder.string() +
-                                             "' '" + missing.string() + "'");
+    const auto failed = testing::run_command(testing::program_command(example) + " '" +
+                                             folder.string() + "' '" + missing.string() +
+                                             "'");
     CHECK(failed.exit_code != 0);
     CHECK(failed.err.find(missing.string()) != std::string::npos);
     CHECK(fs::is_empty(folder));

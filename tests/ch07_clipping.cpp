@@ -158,7 +158,11 @@ TEST_CASE("at every plane, shared edges are cut at one point: no pixel twice, no
         {"the whole volume: near 1, far 3, 90 <= x <= 200, 140 <= y <= 210",
          {near_plane(1.0), {{0.0, 0.0, -1.0}, 3.0}, x_at_least_90, x_at_most_200,
           y_at_least_140, y_at_most_210}}};
-    for (const auto& [name, list] : cases) {
+    for (const auto& entry : cases) {
+        // Named copies, not structured bindings: INFO captures them in a lambda, which
+        // Clang accepts only from version 16.
+        const char* const name = entry.first;
+        const std::vector<ViewPlane>& list = entry.second;
         INFO(name);
         // Every plane here but near keeps the mesh in front of the eye; near needs
         // itself, the others clip at z >= 0.3 first (a no-op: the floor starts there).

@@ -195,8 +195,11 @@ TEST_CASE("a point light falls off as its closed form at chosen pixels") {
         "[[light]]\ntype = \"point\"\nposition = [0.25, -0.1, -0.5]\nintensity = 0.1",
         "");
     const RenderResult r = render_scene(scene);
-    for (const auto& [i, j] : {std::pair{40, 35}, std::pair{32, 32}, std::pair{10, 20},
-                               std::pair{5, 60}, std::pair{63, 0}}) {
+    for (const auto& pixel : {std::pair{40, 35}, std::pair{32, 32}, std::pair{10, 20},
+                              std::pair{5, 60}, std::pair{63, 0}}) {
+        // Named copies: INFO captures them in a lambda (Clang 14 cannot capture
+        // structured bindings).
+        const int i = pixel.first, j = pixel.second;
         const glm::dvec3 p{(i + 0.5 - 32) / 32, (32 - j - 0.5) / 32, 0.0};
         const double d = glm::length(light - p);
         const double e = intensity * (-light.z) / (d * d * d); // I cos(theta) / d^2

@@ -303,7 +303,11 @@ TEST_CASE("a model triangle the scale takes beyond doubles names its face's line
         {"scale = [1, 1e-320, 1]",
          "takes the normal of triangle 0 (the face at " + face + " beyond the doubles"},
     };
-    for (const auto& [scale, reason] : cases) {
+    for (const auto& [scale_, reason_] : cases) {
+        // References, not structured bindings: a lambda (INFO's) captures them, which
+        // Clang 14 cannot do with a binding.
+        const auto& scale = scale_;
+        const auto& reason = reason_;
         INFO(scale);
         try {
             (void)parse_scene("[[mesh]]\nfile = \"scaled-face.obj\"\n" + scale + "\n",
@@ -365,7 +369,11 @@ TEST_CASE("the committed models are what the generator makes, byte for byte") {
         };
         CHECK(read(model.name + ".obj") == model.obj);
         CHECK(read(model.name + ".mtl") == model.mtl);
-        for (const auto& [file, image] : model.textures) {
+        for (const auto& [file_, image_] : model.textures) {
+            // References, not structured bindings: a lambda (INFO's) captures them, which
+            // Clang 14 cannot do with a binding.
+            const auto& file = file_;
+            const auto& image = image_;
             INFO(file);
             CHECK(read_png(folder / file) == image); // the pixels (the encoder may vary)
         }

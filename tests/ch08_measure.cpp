@@ -199,9 +199,13 @@ TEST_CASE("jittered sampling converges on the exact reference within the filters
                 distance[n] = std::max(distance[n], std::abs(sampled[n][name] - error));
             }
         }
-        for (const auto& [name, error] : exact) {
+        for (const auto& [name_binding, error] : exact) {
+            // Named copies for CHECK_MESSAGE, whose message is a lambda (Clang 14 cannot
+            // capture structured bindings).
+            const std::string& name = name_binding;
             moved = std::max(moved, std::abs(sampled[32][name] - sampled[16][name]));
-            for (const auto& [other, other_error] : exact) {
+            for (const auto& [other_binding, other_error] : exact) {
+                const std::string& other = other_binding;
                 if (error < other_error) { // the same order against the estimate
                     CHECK_MESSAGE(sampled[32][name] < sampled[32][other],
                                   scene.name << ": " << name << " and " << other);
@@ -336,7 +340,8 @@ TEST_CASE("the elliptical weighted average is the closest filter to the referenc
     // it is closer to the reference than every other filter, anisotropic-16 included.
     for (const AccuracyScene& scene : {horizon_floor_scene(), random_field_scene()}) {
         const std::map<std::string, double> e = errors_on(scene);
-        for (const auto& [name, error] : e) {
+        for (const auto& [name_binding, error] : e) {
+            const std::string& name = name_binding; // CHECK_MESSAGE captures it
             if (name != "ewa") {
                 CHECK_MESSAGE(e.at("ewa") < error,
                               scene.name << ": ewa against " << name);

@@ -85,8 +85,9 @@ TEST_CASE("odd sizes: each level keeps the mean and stays within its box") {
     // weights of a row add up to the whole row, so the mean of every level is the mean
     // of level 0, up to rounding: the stated bound is 1e-12 of full light. Each texel
     // lies between the smallest and largest texel its box touches.
-    for (auto [w, h] :
+    for (const std::array<int, 2> size :
          {std::array{13, 7}, std::array{5, 5}, std::array{12, 1}, std::array{3, 17}}) {
+        const int w = size[0], h = size[1]; // named copies: CAPTURE takes them (Clang 14)
         CAPTURE(w);
         CAPTURE(h);
         const MipChain chain = build_mip_chain(noise_texture(w, h, 11));

@@ -827,9 +827,13 @@ TEST_CASE("textured runs draw the exact mapper's texels under perspective on eve
     for (const Set& set : sets) {
         INFO(std::string(set.name));
         const auto tris = textured(set.triangles, seed++);
-        for (const auto& [texture, wrap] :
+        for (const auto& [texture_, wrap_] :
              {std::pair{&square, Wrap::repeat}, std::pair{&odd, Wrap::repeat},
               std::pair{&odd, Wrap::clamp}}) {
+            // References, not structured bindings: a lambda (INFO's) captures them, which
+            // Clang 14 cannot do with a binding.
+            const auto& texture = texture_;
+            const auto& wrap = wrap_;
             INFO(texture->width() << " x " << texture->height() << " texels, "
                                   << (wrap == Wrap::repeat ? "repeat" : "clamp"));
             const auto reference =

@@ -129,8 +129,16 @@ TEST_CASE("a kept tiled renderer draws the teaching path's picture with 1 to 7 t
     for (const int threads : {1, 2, 3, 7}) {
         TiledRenderer renderer(threads);
         CHECK(renderer.threads() == threads);
-        for (const auto& [width, height] : {std::pair{320, 240}, std::pair{130, 70}}) {
-            for (const auto& [name, tris] : sets) {
+        for (const auto& [width_, height_] : {std::pair{320, 240}, std::pair{130, 70}}) {
+            // References, not structured bindings: a lambda (INFO's) captures them, which
+            // Clang 14 cannot do with a binding.
+            const auto& width = width_;
+            const auto& height = height_;
+            for (const auto& [name_, tris_] : sets) {
+                // References, not structured bindings: a lambda (INFO's) captures
+                // them, which Clang 14 cannot do with a binding.
+                const auto& name = name_;
+                const auto& tris = tris_;
                 for (const bool with_depth : {false, true}) {
                     INFO(threads << " threads, " << std::string(name) << ", " << width
                                  << " x " << height << ", depth test: " << with_depth);
