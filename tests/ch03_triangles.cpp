@@ -195,7 +195,7 @@ TEST_CASE("with constant w every mapper picks the exact texels, pixel for pixel"
                      {TexelRounding{}, TexelRounding{(1 << 15) - 1, (1 << 15) - 1}}) {
                     TexelMap map(64, 48);
                     map_textured_triangle(map, tri,
-                                          {kind, 8, precision, rounding, Wrap::repeat});
+                                          {{kind, 8}, precision, rounding, Wrap::repeat});
                     int pixels = 0;
                     for (int y = 0; y < 48; ++y) {
                         for (int x = 0; x < 64; ++x) {
@@ -407,8 +407,9 @@ TEST_CASE("ch03-example: a missing texture fails naming it and writes no figure"
     REQUIRE_MESSAGE(fs::exists(example), "build the target ch03-example first");
     const auto folder = scratch_folder("example");
     const fs::path missing = folder / "no-such-texture.png";
-    const auto failed = testing::run_command("'" + example + "' '" + folder.string() +
-                                             "' '" + missing.string() + "'");
+    const auto failed = testing::run_command(testing::program_command(example) + " '" +
+                                             folder.string() + "' '" + missing.string() +
+                                             "'");
     CHECK(failed.exit_code != 0);
     CHECK(failed.err.find(missing.string()) != std::string::npos);
     CHECK(fs::is_empty(folder));

@@ -264,7 +264,7 @@ TEST_CASE("a triangle that snaps to zero area draws nothing and makes no NaN") {
                               {{{v[0], 1.0, {0.0, 0.0}},
                                 {v[1], 5.0, {64.0, 0.0}},
                                 {v[2], 2.0, {0.0, 64.0}}}},
-                              {kind, 16, Precision::fixed, {}, Wrap::repeat});
+                              {{kind, 16}, Precision::fixed, {}, Wrap::repeat});
     }
     CHECK(std::count(map.covered.begin(), map.covered.end(), true) == 0);
 }

@@ -215,7 +215,7 @@ TEST_CASE("edge-on: 1/w falls by thousands along a row; double and 16.16 hold") 
         for (int k = 0; k < 3; ++k) {
             TexelMap map(320, 64);
             map_textured_triangle(
-                map, t, {MapperKind::exact, 16, precisions[k], {}, Wrap::repeat});
+                map, t, {{MapperKind::exact, 16}, precisions[k], {}, Wrap::repeat});
             for (int y = 0; y < 64; ++y) {
                 std::optional<Rational> q_lo, q_hi;
                 for (int x = 0; x < 320; ++x) {

@@ -61,7 +61,11 @@ TEST_CASE("the referee draws every shipped scene, our ID pass being the renderer
     }
     CHECK(all.size() == referee_scene_names().size());
     CHECK(all.size() >= 10);
-    for (const auto& [name, c] : all) {
+    for (const auto& [name_, c_] : all) {
+        // References, not structured bindings: a lambda (INFO's) captures them, which
+        // Clang 14 cannot do with a binding.
+        const auto& name = name_;
+        const auto& c = c_;
         INFO(name);
         CHECK(c.triangles > 0);
         CHECK(c.covered > 0);
@@ -74,7 +78,11 @@ TEST_CASE("the referee draws every shipped scene, our ID pass being the renderer
 
 TEST_CASE("llvmpipe covers the pixels the renderer covers on every shipped scene") {
     std::string skip;
-    for (const auto& [name, c] : comparisons(skip)) {
+    for (const auto& [name_, c_] : comparisons(skip)) {
+        // References, not structured bindings: a lambda (INFO's) captures them, which
+        // Clang 14 cannot do with a binding.
+        const auto& name = name_;
+        const auto& c = c_;
         INFO(name << ": differing pixels" << named(c.coverage_differences));
         // Where llvmpipe differs, ours is the exact answer (integer edge functions on the
         // snapped corners) at every such pixel.
@@ -85,7 +93,11 @@ TEST_CASE("llvmpipe covers the pixels the renderer covers on every shipped scene
 
 TEST_CASE("llvmpipe's depth test picks the renderer's triangle except at near ties") {
     std::string skip;
-    for (const auto& [name, c] : comparisons(skip)) {
+    for (const auto& [name_, c_] : comparisons(skip)) {
+        // References, not structured bindings: a lambda (INFO's) captures them, which
+        // Clang 14 cannot do with a binding.
+        const auto& name = name_;
+        const auto& c = c_;
         INFO(name << ": " << c.depth_differences << " pixels" << named(c.depth_pixels)
                   << ", worst gap " << c.worst_depth_gap << " of the depth range");
         // Where llvmpipe picks another triangle, ours is DepthBuffer's rule on the two
@@ -98,7 +110,11 @@ TEST_CASE("llvmpipe's depth test picks the renderer's triangle except at near ti
 
 TEST_CASE("llvmpipe's colours are the renderer's within the derived tolerance") {
     std::string skip;
-    for (const auto& [name, c] : comparisons(skip)) {
+    for (const auto& [name_, c_] : comparisons(skip)) {
+        // References, not structured bindings: a lambda (INFO's) captures them, which
+        // Clang 14 cannot do with a binding.
+        const auto& name = name_;
+        const auto& c = c_;
         INFO(name << ": tolerance " << c.tolerance << ", worst " << c.worst_colour
                   << ", beyond " << c.colour_over << " (on texel edges " << c.texel_edge
                   << "), worst off edges " << c.worst_off_edge << "; lit per pixel "
@@ -124,7 +140,11 @@ TEST_CASE("llvmpipe's colours are the renderer's within the derived tolerance") 
 TEST_CASE("llvmpipe lights per pixel as the renderer does, within one level") {
     std::string skip;
     int lit_scenes = 0;
-    for (const auto& [name, c] : comparisons(skip)) {
+    for (const auto& [name_, c_] : comparisons(skip)) {
+        // References, not structured bindings: a lambda (INFO's) captures them, which
+        // Clang 14 cannot do with a binding.
+        const auto& name = name_;
+        const auto& c = c_;
         if (c.phong_meshes == 0) {
             continue;
         }
@@ -145,7 +165,11 @@ TEST_CASE("a fault planted in llvmpipe's per-pixel lighting goes beyond the tole
     // The comparison can fail: light the codes without the sRGB decode, or raise the
     // Blinn-Phong exponent by 8, on GL's side only, and the lit pixels part.
     std::string skip;
-    for (const auto& [name, c] : comparisons(skip)) {
+    for (const auto& [name_, c_] : comparisons(skip)) {
+        // References, not structured bindings: a lambda (INFO's) captures them, which
+        // Clang 14 cannot do with a binding.
+        const auto& name = name_;
+        const auto& c = c_;
         if (c.phong_meshes == 0) {
             continue;
         }

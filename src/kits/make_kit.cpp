@@ -1054,8 +1054,10 @@ void make_kit(const Options& options) {
     }
     // A chapter-NN region outside the kit's files could not be stubbed: refuse.
     for (const auto& [id, region] : regions) {
-        const bool in_kit = std::any_of(stubbed.begin(), stubbed.end(),
-                                        [&](const Region& r) { return r.id == id; });
+        // The lambda captures a copy: Clang 14 cannot capture a structured binding.
+        const bool in_kit =
+            std::any_of(stubbed.begin(), stubbed.end(),
+                        [&id = id](const Region& r) { return r.id == id; });
         if (region.chapter() == chapter && !in_kit) {
             throw KitError(where(region.file, region.line) + ": exercise " + id +
                            " lies in a file the kit does not contain");

@@ -3,11 +3,11 @@
 #   cmake -DTESTS=<test_ch05> -DWORK=<folder> -P this file
 # After a passing run FILE holds one "NAME VALUE" line per fact; a FILE that cannot be
 # written is an error naming it (exit code 2), and a run that only lists the tests
-# writes nothing.
+# writes nothing. EMULATOR (a list, optional) runs the program in a cross build.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(selection "--test-case=the grazing floor spans*")
-execute_process(COMMAND ${TESTS} ${selection} --facts=${WORK}/facts.txt
+execute_process(COMMAND ${EMULATOR} ${TESTS} ${selection} --facts=${WORK}/facts.txt
                 RESULT_VARIABLE status OUTPUT_QUIET ERROR_QUIET)
 if(NOT status EQUAL 0 OR NOT EXISTS ${WORK}/facts.txt)
   message(FATAL_ERROR "${TESTS} wrote no facts after a passing run (${status})")
@@ -30,7 +30,7 @@ foreach(line IN LISTS lines)
     message(FATAL_ERROR "high ratio ${value} is not the tested one")
   endif()
 endforeach()
-execute_process(COMMAND ${TESTS} ${selection} --facts=${WORK}/missing/facts.txt
+execute_process(COMMAND ${EMULATOR} ${TESTS} ${selection} --facts=${WORK}/missing/facts.txt
                 RESULT_VARIABLE status OUTPUT_QUIET ERROR_VARIABLE message)
 if(NOT status EQUAL 2)
   message(FATAL_ERROR "an unwritable facts file exited ${status}, not 2")
@@ -41,7 +41,7 @@ endif()
 if(EXISTS ${WORK}/missing)
   message(FATAL_ERROR "${TESTS} created ${WORK}/missing")
 endif()
-execute_process(COMMAND ${TESTS} --list-test-cases --facts=${WORK}/listed.txt
+execute_process(COMMAND ${EMULATOR} ${TESTS} --list-test-cases --facts=${WORK}/listed.txt
                 RESULT_VARIABLE status OUTPUT_QUIET ERROR_QUIET)
 if(EXISTS ${WORK}/listed.txt)
   message(FATAL_ERROR "listing the tests wrote a facts file")

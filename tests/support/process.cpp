@@ -35,8 +35,19 @@ CommandResult run_command(const std::string& command, const std::string& input) 
     return result;
 }
 
+// A cross build's emulator (CMAKE_CROSSCOMPILING_EMULATOR, words separated by spaces);
+// empty in a native build and in an assignment kit.
+#ifndef EXACTPIXELS_EMULATOR
+#define EXACTPIXELS_EMULATOR ""
+#endif
+
+std::string program_command(const std::string& path) {
+    const std::string emulator = EXACTPIXELS_EMULATOR;
+    return (emulator.empty() ? "" : emulator + " ") + "'" + path + "'";
+}
+
 std::string cli_path() {
-    return std::string("'") + EXACTPIXELS_CLI + "'";
+    return program_command(EXACTPIXELS_CLI);
 }
 
 } // namespace exactpixels::testing

@@ -15,7 +15,11 @@ struct CommandResult {
 /// Runs `command` through /bin/sh with `input` on its standard input.
 CommandResult run_command(const std::string& command, const std::string& input = "");
 
-/// The path of build/bin/exactpixels, quoted for the shell.
+/// The command that runs the program at `path`, quoted for the shell: the path itself,
+/// or, in a cross build (the arm64 preset), the path after the emulator that runs it.
+std::string program_command(const std::string& path);
+
+/// The command that runs build/bin/exactpixels, quoted for the shell (program_command).
 std::string cli_path();
 
 } // namespace exactpixels::testing

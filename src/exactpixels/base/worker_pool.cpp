@@ -41,7 +41,7 @@ WorkerPool::WorkerPool(int threads) {
     errors_.resize(static_cast<std::size_t>(threads));
     try {
         for (int t = 1; t < threads; ++t) {
-            workers_.emplace_back([this, t](std::stop_token stop) { work(t, stop); });
+            workers_.emplace_back([this, t] { work(t); });
         }
     } catch (...) { // could not start a thread: stop the ones that run, then report
         stop();
@@ -54,20 +54,21 @@ WorkerPool::~WorkerPool() {
 }
 
 void WorkerPool::stop() {
-    for (std::jthread& w : workers_) {
-        w.request_stop();
-    }
+    stopping_.store(true, std::memory_order_relaxed);
     generation_.fetch_add(1, std::memory_order_release); // wakes every worker: stop
     generation_.notify_all();
-    workers_.clear(); // joins
+    for (std::thread& w : workers_) {
+        w.join();
+    }
+    workers_.clear();
 }
 
-void WorkerPool::work(int index, const std::stop_token& stop) {
+void WorkerPool::work(int index) {
     std::uint64_t seen = 0;
     for (;;) {
         await_change(generation_, seen); // until a new run
         seen = generation_.load(std::memory_order_acquire);
-        if (stop.stop_requested()) {
+        if (stopping_.load(std::memory_order_relaxed)) {
             return;
         }
         try {

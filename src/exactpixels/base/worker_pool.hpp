@@ -8,7 +8,7 @@
 //                                             // worker; returns when both are done
 //
 // size() threads take part in every run: the calling thread is thread 0, the pool's own
-// std::jthreads are 1 .. size() - 1 (a pool of one starts no thread). run() returns
+// std::threads are 1 .. size() - 1 (a pool of one starts no thread). run() returns
 // once every thread has finished f; if some threads threw, the exception of the lowest
 // thread index is rethrown on the caller (the others are dropped), after all have
 // finished. One run at a time: run() is not reentrant and must be called from one
@@ -48,14 +48,18 @@ class WorkerPool {
   private:
     /// Asks every worker to stop, wakes them and joins them.
     void stop();
-    /// A worker's loop: sleep until a run starts, run job_, report, again.
-    void work(int index, const std::stop_token& stop);
+    /// A worker's loop: sleep until a run starts, run job_, report, again, until
+    /// stopping_ is set.
+    void work(int index);
 
     const std::function<void(int)>* job_ = nullptr; ///< the running job
     std::atomic<std::uint64_t> generation_{0}; ///< bumped to start a run (or to stop)
     std::atomic<int> busy_{0};                 ///< workers still in the current job
+    std::atomic<bool> stopping_{false};        ///< set once, by stop()
     std::vector<std::exception_ptr> errors_;   ///< per thread, for the current run
-    std::vector<std::jthread> workers_;        ///< threads 1 .. size() - 1
+    /// Threads 1 .. size() - 1. std::thread and a flag of our own rather than
+    /// std::jthread and its stop token, which LLVM's libc++ 14 lacks.
+    std::vector<std::thread> workers_;
 };
 
 } // namespace exactpixels

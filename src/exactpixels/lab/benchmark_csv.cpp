@@ -1,10 +1,10 @@
 #include "exactpixels/lab/benchmark_csv.hpp"
 
+#include "exactpixels/base/decimal_from_chars.hpp"
 #include "exactpixels/base/error.hpp"
 
 #include <fmt/format.h>
 
-#include <charconv>
 #include <fstream>
 #include <vector>
 
@@ -83,7 +83,7 @@ BenchmarkRuns read_benchmark_csv(const std::filesystem::path& path) {
         for (std::size_t k = 1; k < cells.size(); ++k) {
             double v = 0;
             const char* end = cells[k].data() + cells[k].size();
-            const auto [ptr, status] = std::from_chars(cells[k].data(), end, v);
+            const auto [ptr, status] = decimal_from_chars(cells[k].data(), end, v);
             if (status == std::errc() && ptr == end && !cells[k].empty()) {
                 run[header[k]] = v; // text cells (time_unit, label) are left out
             }

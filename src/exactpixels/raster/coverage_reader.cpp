@@ -1,12 +1,12 @@
 #include "exactpixels/raster/coverage_reader.hpp"
 
+#include "exactpixels/base/decimal_from_chars.hpp"
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/raster/fill_work.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <string_view>
 
@@ -43,7 +43,7 @@ double parse_number(std::string_view word, int line) {
     const std::string_view digits = has_sign ? word.substr(1) : word;
     double value = 0.0;
     const char* last = digits.data() + digits.size();
-    const auto [end, status] = std::from_chars(digits.data(), last, value);
+    const auto [end, status] = decimal_from_chars(digits.data(), last, value);
     if (digits.empty() || digits[0] == '-' || status == std::errc::invalid_argument ||
         end != last) {
         throw Error(fmt::format("line {}: expected a number, found '{}'", line, word));

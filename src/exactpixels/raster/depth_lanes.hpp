@@ -41,6 +41,9 @@ struct Portable {
     float row;  ///< the row's part of z: z0 + float(y) dzdy, rounded as in at(x, y)
     float dzdx; ///< change of z per pixel to the right
     int x;      ///< the column of the first of the four pixels
+    /// The four pixels from column x of a row (a constructor, so that Lanes(row, dzdx, x)
+    /// compiles where parenthesized aggregate initialization does not: Clang before 16).
+    Portable(float row_z, float dz_dx, int first) : row(row_z), dzdx(dz_dx), x(first) {}
     /// The next four pixels to the right.
     void next() { x += 4; }
     /// Tests the pixels x + i (i = 0 .. 3) whose bit i of `keep` is set: z = row +

@@ -1,5 +1,6 @@
 #include "exactpixels/scene/obj_model.hpp"
 
+#include "exactpixels/base/decimal_from_chars.hpp"
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/input_file.hpp"
 #include "exactpixels/scene/mesh_transform.hpp"
@@ -97,7 +98,7 @@ double read_number(const Place& at, std::string_view word, double limit) {
     }
     double value = 0.0;
     const auto [end, error] =
-        std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        decimal_from_chars(digits.data(), digits.data() + digits.size(), value);
     const bool whole = end == digits.data() + digits.size();
     if (error == std::errc::result_out_of_range && whole) {
         at.fail(fmt::format("{} is out of range (beyond a double, or so close to 0 that "
