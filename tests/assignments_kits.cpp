@@ -526,7 +526,7 @@ TEST_CASE(
         readme.find("| `ch07-answer` | `src/exactpixels/answer.hpp:10` | 3 | [implement, "
                     "2 marks] | six times seven. |") != std::string::npos);
     CHECK(
-        readme.find("| `ch07-triangle` | `src/exactpixels/answer.cpp:7` | 2 | - | add 1, "
+        readme.find("| `ch07-triangle` | `src/exactpixels/answer.cpp:9` | 2 | - | add 1, "
                     "2, ..., n. |") != std::string::npos);
     CHECK(readme.find("- `ch07-triangle`: \"triangle numbers\"") != std::string::npos);
     CHECK(readme.find("1. **[implement, 2 marks]** Implement `answer` (\"the answer is "

@@ -10,7 +10,9 @@
 # write it another way.
 cmake_minimum_required(VERSION 3.25)
 set(commands # every command here is in CMake 3.0 unless noted
-  add_compile_options add_custom_target add_dependencies add_executable add_library add_subdirectory add_test
+  add_compile_options add_custom_target add_dependencies add_executable add_library
+  add_subdirectory add_test
+  check_cxx_source_compiles # the module CheckCXXSourceCompiles
   cmake_minimum_required continue # 3.2
   else elseif endforeach endfunction endif endmacro endwhile enable_testing file
   find_package find_path foreach function if include list macro message option
@@ -27,6 +29,7 @@ set(keywords
   POP_FRONT         # list(), 3.15
   IMPORTED_TARGET   # pkg_check_modules, 3.6
   USES_TERMINAL     # add_custom_target, 3.2
+  GENERATE OUTPUT CONTENT # file(GENERATE ... CONTENT), 3.2
   # values and CMake's variables
   CXX ON OFF
   CMAKE_BUILD_TYPE CMAKE_CONFIGURATION_TYPES CMAKE_CXX_EXTENSIONS CMAKE_CXX_STANDARD
@@ -40,7 +43,7 @@ set(keywords
   EXACTPIXELS_CLI EXACTPIXELS_GRADE_CMAKE EXACTPIXELS_HAS_ EXACTPIXELS_KIT_STAMP
   EXACTPIXELS_LAYERS EXACTPIXELS_SCENES_DIR EXACTPIXELS_SOURCE_DIR EXACTPIXELS_VERSION
   EXACTPIXELS_WERROR EXAMPLE_SOURCES GLM_FORCE_CXX17 SUPPORT_SOURCES TEST_SOURCES
-  STB_INCLUDE_DIR)
+  STB_INCLUDE_DIR EXACTPIXELS_LIBCXX TINYOBJLOADER_USE_DOUBLE)
 set(generator_expressions BOOL TARGET_FILE)
 
 file(REMOVE_RECURSE ${WORK})
