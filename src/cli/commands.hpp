@@ -17,8 +17,10 @@ namespace exactpixels::cli {
 inline constexpr int exit_bad_input = 2;
 
 /// The most characters of one word a message shows; a longer word (a 50 MB token on
-/// the command line or in the input) is cut to this many and an ellipsis.
-inline constexpr std::size_t max_word_chars = 80;
+/// the command line or in the input) is cut to this many and an ellipsis. A file's path
+/// is one word, and a message must name its file whole: 4096 is Linux's PATH_MAX, the
+/// longest path a system call accepts (macOS's is 1024), so no real path is cut.
+inline constexpr std::size_t max_word_chars = 4096;
 
 /// `message` as one line: line breaks become spaces, and every word longer than
 /// max_word_chars is cut to that many characters followed by "...".
