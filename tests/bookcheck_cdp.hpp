@@ -66,6 +66,20 @@ public:
     PageVisit open(const std::string& url, const std::string& script,
                    const std::filesystem::path& screenshot = {});
 
+    /// Evaluates `script` (a JavaScript expression; a promise is awaited) in the page
+    /// open now and returns its value as JSON; throws if it throws.
+    Json evaluate(const std::string& script);
+
+    /// Sends the DevTools command `method` with `params` (a JSON object) to the page open
+    /// now, e.g. Input.dispatchMouseEvent, and returns its result.
+    Json command(const std::string& method, const std::string& params);
+
+    /// Saves the element `selector` of the page open now, scrolled into view, as PNG.
+    void screenshot(const std::string& selector, const std::filesystem::path& png);
+
+    /// Console errors, uncaught exceptions and failed loads since the last open().
+    std::vector<std::string> console();
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
