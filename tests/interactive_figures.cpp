@@ -19,6 +19,8 @@
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/raster/edge_function.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
+#include "exactpixels/raster/gradients.hpp"
+#include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/texture/rounding.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
 
@@ -314,6 +316,48 @@ void check_fill_rule(Browser& browser, Page& page) {
     (void)browser;
 }
 
+void check_scanline(Page& page) {
+    const std::string f = "ch01-scanline";
+    const auto check = [&](std::array<Point2, 3> v, const char* what) {
+        INFO(what);
+        const Json s = page.state(f);
+        for (int i = 0; i < 3; ++i) {
+            CHECK(s["vertices"].array.at(i).array.at(0).number == v[i].x);
+            CHECK(s["vertices"].array.at(i).array.at(1).number == v[i].y);
+        }
+        // The spans chapter 1's rasterizer walks, and both gradients, exactly.
+        std::vector<std::vector<int>> spans;
+        int covered = 0;
+        scanline_spans(v, Viewport{12, 9}, [&](Span sp) {
+            spans.push_back({sp.y, sp.x_begin, sp.x_end});
+            covered += sp.x_end - sp.x_begin;
+        });
+        std::vector<std::vector<int>> shown;
+        for (const Json& sp : s["spans"].array) {
+            shown.push_back(ints_of(sp));
+        }
+        CHECK(shown == spans);
+        CHECK(static_cast<int>(s["covered"].number) == covered);
+        const std::array<double, 3> c = {0.0, 1.0, 0.5};
+        const Gradient<double> closed = gradient_closed_form<double>(v, c);
+        const Gradient<double> split = gradient_split_edge<double>(v, c);
+        CHECK(s["closedForm"].array.at(0).number == closed.dx);
+        CHECK(s["closedForm"].array.at(1).number == closed.dy);
+        CHECK(s["splitEdge"].array.at(0).number == split.dx);
+        CHECK(s["splitEdge"].array.at(1).number == split.dy);
+        const std::string line = page.line(f);
+        CHECK_MESSAGE(line.find(std::to_string(spans.size()) + " spans, " +
+                                std::to_string(covered) + " pixels covered") !=
+                          std::string::npos,
+                      line);
+    };
+    check({Point2{4.25, 0.625}, {11.25, 3.875}, {1.375, 8.25}}, "as loaded");
+    page.drag(f, 0, 1.0 * cell, 0.5 * cell);
+    check({Point2{5.25, 1.125}, {11.25, 3.875}, {1.375, 8.25}}, "v0 dragged by (1, 1/2)");
+    page.key(f, 2, "ArrowLeft", 37, 3);
+    check({Point2{5.25, 1.125}, {11.25, 3.875}, {1.0, 8.25}}, "v2 left by 3/8 with the keys");
+}
+
 void check_edge_centres(Page& page) {
     const std::string f = "ch00-edge-centres";
     const auto check = [&](std::array<int, 2> a, std::array<int, 2> b, const char* what) {
@@ -449,7 +493,9 @@ TEST_CASE("every live figure loads from file://, and a drag or a key gives the l
             // As loaded, for a person to look at beside the page's other screenshots.
             browser.screenshot("#live-" + name.str(),
                                book / "screenshots" / ("live-" + name.str() + ".png"));
-            if (name.str() == "ch02-fill-rule") {
+            if (name.str() == "ch01-scanline") {
+                check_scanline(page);
+            } else if (name.str() == "ch02-fill-rule") {
                 check_fill_rule(browser, page);
             } else if (name.str() == "ch00-edge-centres") {
                 check_edge_centres(page);
@@ -475,6 +521,6 @@ TEST_CASE("every live figure loads from file://, and a drag or a key gives the l
         browser.command("Emulation.setEmulatedMedia", R"({"media":""})");
     }
     std::sort(seen.begin(), seen.end());
-    CHECK(seen == std::vector<std::string>{"ch00-edge-centres", "ch02-fill-rule",
+    CHECK(seen == std::vector<std::string>{"ch00-edge-centres", "ch01-scanline", "ch02-fill-rule",
                                            "ch03-span-mappers", "ch04-texel-rule"});
 }

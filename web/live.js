@@ -142,6 +142,49 @@
   const fmt = (v) => String(v);
   const point = (p) => `(${fmt(p.x)}, ${fmt(p.y)})`;
 
+  // Chapter 1: the scanline walk and the gradient of c = 0, 1, 1/2 at the vertices.
+  function scanline(figure, m) {
+    const W = 12, H = 9;
+    const v = [{ x: 4.25, y: 0.625 }, { x: 11.25, y: 3.875 }, { x: 1.375, y: 8.25 }];
+    const svg = newSvg(figure, W, H, 0.4);
+    const cellLayer = el("g", {}, svg);
+    grid(svg, W, H);
+    const outline = el("polygon", { class: "live-triangle" }, svg);
+    const arrows = el("g", {}, svg);
+    const n = (x) => Number(x.toPrecision(6));
+    function update() {
+      const covered = m.ep_scanline(v[0].x, v[0].y, v[1].x, v[1].y, v[2].x, v[2].y, W, H);
+      if (covered < 0) return false;
+      const cells = m.cells(2 * H);
+      const g = new Float64Array(m.memory.buffer, m.ep_values(), 4);
+      cellLayer.replaceChildren();
+      const spans = [];
+      for (let y = 0; y < H; ++y) {
+        const x0 = cells[2 * y], x1 = cells[2 * y + 1];
+        if (x0 < 0) continue;
+        spans.push([y, x0, x1]);
+        el("rect", { x: x0 * CELL, y: y * CELL, width: (x1 - x0) * CELL, height: CELL,
+                     class: "live-covered" }, cellLayer);
+      }
+      outline.setAttribute("points", v.map((p) => `${p.x * CELL},${p.y * CELL}`).join(" "));
+      // The gradient, drawn from the centroid: 30 px of the figure per unit of c per px.
+      arrows.replaceChildren();
+      const cx = (v[0].x + v[1].x + v[2].x) / 3, cy = (v[0].y + v[1].y + v[2].y) / 3;
+      el("line", { x1: cx * CELL, y1: cy * CELL, x2: (cx + 30 * g[0]) * CELL,
+                   y2: (cy + 30 * g[1]) * CELL, class: "live-edge live-gradient" }, arrows);
+      const gradient = { closedForm: [g[0], g[1]], splitEdge: [g[2], g[3]] };
+      show(figure, { vertices: v.map((p) => [p.x, p.y]), covered, spans, ...gradient },
+           `v0 ${point(v[0])} (c = 0), v1 ${point(v[1])} (c = 1), v2 ${point(v[2])} ` +
+           `(c = 1/2): ${spans.length} spans, ${covered} pixels covered; gradient ` +
+           `(dc/dx, dc/dy) closed form (${n(g[0])}, ${n(g[1])}), split edge ` +
+           `(${n(g[2])}, ${n(g[3])}).`);
+      return true;
+    }
+    const bounds = { x0: 0, y0: 0, x1: W, y1: H, bigStep: 1 };
+    v.forEach((p, i) => handle(svg, `vertex v${i}`, p, 1 / 8, bounds, update));
+    update();
+  }
+
   // Chapter 2: the fill rule on a triangle whose vertices snap to the sub-pixel grid.
   function fillRule(figure, m) {
     const W = 8, H = 7;
@@ -339,7 +382,7 @@
     update();
   }
 
-  const figures = { "ch00-edge-centres": edgeCentres, "ch02-fill-rule": fillRule,
+  const figures = { "ch00-edge-centres": edgeCentres, "ch01-scanline": scanline, "ch02-fill-rule": fillRule,
                     "ch03-span-mappers": spanMappers,
                     "ch04-texel-rule": texelRule };
 

@@ -12,6 +12,8 @@
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/raster/edge_function.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
+#include "exactpixels/raster/gradients.hpp"
+#include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/texture/rounding.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
 
@@ -88,6 +90,45 @@ EXPORT("ep_span_mappers") int ep_span_mappers(double ratio) {
         cells[m] = other;
     }
     return 0;
+}
+
+/// Chapter 1, the scanline walk and the gradient: the triangle (x0, y0), (x1, y1),
+/// (x2, y2) in pixels (double, not snapped: chapter 1's form) with the value c = 0, 1,
+/// 1/2 at its vertices. Its spans by scanline_spans fill cells 2y and 2y + 1 with the
+/// row's first and one-past-last column (-1, -1 for a row without pixels), for the rows
+/// 0 to height - 1; values[0], values[1] are the closed-form gradient (dc/dx, dc/dy),
+/// values[2], values[3] the split-edge one (gradient_closed_form, gradient_split_edge).
+/// Returns the number of covered pixels, or -1 for inputs outside the figure.
+EXPORT("ep_scanline")
+int ep_scanline(double x0, double y0, double x1, double y1, double x2, double y2,
+                int width, int height) {
+    if (!fits(width, height)) {
+        return -1;
+    }
+    for (const double v : {x0, x1, x2}) {
+        if (!in_figure(v, width)) return -1;
+    }
+    for (const double v : {y0, y1, y2}) {
+        if (!in_figure(v, height)) return -1;
+    }
+    const std::array<Point2, 3> v = {Point2{x0, y0}, Point2{x1, y1}, Point2{x2, y2}};
+    for (int y = 0; y < height; ++y) {
+        cells[2 * y] = cells[2 * y + 1] = -1;
+    }
+    int covered = 0;
+    scanline_spans(v, Viewport{width, height}, [&](Span s) {
+        cells[2 * s.y] = s.x_begin;
+        cells[2 * s.y + 1] = s.x_end;
+        covered += s.x_end - s.x_begin;
+    });
+    const std::array<double, 3> c = {0.0, 1.0, 0.5};
+    const Gradient<double> closed = gradient_closed_form<double>(v, c);
+    const Gradient<double> split = gradient_split_edge<double>(v, c);
+    values[0] = closed.dx;
+    values[1] = closed.dy;
+    values[2] = split.dx;
+    values[3] = split.dy;
+    return covered;
 }
 
 /// Chapter 2, the fill rule: the triangle (x0, y0), (x1, y1), (x2, y2), snapped to
