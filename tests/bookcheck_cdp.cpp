@@ -338,7 +338,7 @@ struct Browser::Impl {
             "--disable-extensions",
             "--disable-default-apps",
             "--disable-features=Translate,OptimizationHints,MediaRouter",
-            "--host-resolver-rules=MAP * ~NOTFOUND",
+            "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1",
             "--proxy-server=127.0.0.1:9",
             "--hide-scrollbars",
             "--force-device-scale-factor=1",

@@ -7,7 +7,8 @@
 //   page.console  // every console error, uncaught exception and failed load
 //
 // Chromium runs with a fresh profile (the folder is created empty and removed afterwards)
-// and no network: background services are off and every host name resolves to nothing.
+// and no network: background services are off and every host name resolves to nothing
+// (only 127.0.0.1 is reachable, for a web server on this machine).
 // The protocol runs over two pipes (--remote-debugging-pipe: commands on fd 3, answers
 // on fd 4, each message a JSON text ended by a NUL byte), so no port is opened.
 // The program is `chromium` on PATH, or $EXACTPIXELS_CHROMIUM.

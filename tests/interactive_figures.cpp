@@ -9,7 +9,10 @@
 // texels. The positions are checked too (the drag must have moved the vertex to where
 // the test put the mouse), so a figure that shows a stale answer, or one computed by
 // anything but the library's rules, fails. Any console error or uncaught exception
-// fails; in print media the live figures are hidden and the static figures shown.
+// fails; in print media and without JavaScript the live figures are hidden and the
+// static figures shown. With
+// EXACTPIXELS_BOOK_URL set (a web server serving build/book/, URL ending in /) the same
+// checks run on the served pages.
 //
 // Label `interactive` (and `bookcheck`: it needs the built book, so it runs in the book
 // workflow after `cmake --build --preset book`). Each figure as loaded is saved in
@@ -32,6 +35,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstdlib>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -470,8 +474,13 @@ TEST_CASE("every live figure loads from file://, and a drag or a key gives the l
             continue;
         }
         INFO(path.filename().string());
-        const auto visit = browser.open("file://" + fs::canonical(path).string(), wait_ready);
-        REQUIRE(visit.error.empty());
+        // From file://, or from the web server at $EXACTPIXELS_BOOK_URL when it is set
+        // (e.g. http://127.0.0.1:8000/ serving build/book/).
+        const char* server = std::getenv("EXACTPIXELS_BOOK_URL");
+        const std::string url = server ? std::string(server) + path.filename().string()
+                                       : "file://" + fs::canonical(path).string();
+        const auto visit = browser.open(url, wait_ready);
+        REQUIRE_MESSAGE(visit.error.empty(), url << ": " << visit.error);
         const Json& r = visit.result;
         REQUIRE(!r["figures"].array.empty());
         MESSAGE(path.filename().string() << ": live figures ready " << r["readyMs"].number
@@ -508,6 +517,9 @@ TEST_CASE("every live figure loads from file://, and a drag or a key gives the l
             }
         }
         for (const auto& line : browser.console()) {
+            if (server && line.find("/favicon.ico") != std::string::npos) {
+                continue; // the browser asks a server for one; the book has none
+            }
             FAIL_CHECK(line);
         }
         // On paper the static figures stand and the live ones are not printed.
@@ -519,6 +531,15 @@ TEST_CASE("every live figure loads from file://, and a drag or a key gives the l
             "(i) => getComputedStyle(i.closest('figure')).display !== 'none')");
         CHECK(printed.boolean);
         browser.command("Emulation.setEmulatedMedia", R"({"media":""})");
+        // Without JavaScript the live figures stay hidden and the static ones stand.
+        browser.command("Emulation.setScriptExecutionDisabled", R"({"value":true})");
+        const auto plain = browser.open(
+            url, "({hidden: [...document.querySelectorAll('figure[data-live]')].every("
+                 "(f) => f.dataset.live === 'loading' && getComputedStyle(f).display === "
+                 "'none'), images: document.querySelectorAll('figure img').length})");
+        browser.command("Emulation.setScriptExecutionDisabled", R"({"value":false})");
+        CHECK(plain.result["hidden"].boolean);
+        CHECK(plain.result["images"].number > 0);
     }
     std::sort(seen.begin(), seen.end());
     CHECK(seen == std::vector<std::string>{"ch00-edge-centres", "ch01-scanline", "ch02-fill-rule",
