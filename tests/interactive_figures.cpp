@@ -285,15 +285,20 @@ const char* wait_ready = R"js(new Promise((resolve) => {
   poll();
 }))js";
 
+// The triangle a figure shows is exactly where the test's moves put it.
+void check_vertices(const Json& state, const std::array<Point2, 3>& expected) {
+    for (int i = 0; i < 3; ++i) {
+        CHECK(state["vertices"].array.at(i).array.at(0).number == expected[i].x);
+        CHECK(state["vertices"].array.at(i).array.at(1).number == expected[i].y);
+    }
+}
+
 void check_fill_rule(Browser& browser, Page& page) {
     const std::string f = "ch02-fill-rule";
     const auto check = [&](std::array<Point2, 3> expected, const char* what) {
         INFO(what);
         const Json s = page.state(f);
-        for (int i = 0; i < 3; ++i) {
-            CHECK(s["vertices"].array.at(i).array.at(0).number == expected[i].x);
-            CHECK(s["vertices"].array.at(i).array.at(1).number == expected[i].y);
-        }
+        check_vertices(s, expected);
         const Coverage native = native_coverage(expected);
         CHECK(pixels_of(s["pixels"]) == native.pixels);
         CHECK(static_cast<std::size_t>(s["covered"].number) == native.pixels.size());
@@ -325,10 +330,7 @@ void check_scanline(Page& page) {
     const auto check = [&](std::array<Point2, 3> v, const char* what) {
         INFO(what);
         const Json s = page.state(f);
-        for (int i = 0; i < 3; ++i) {
-            CHECK(s["vertices"].array.at(i).array.at(0).number == v[i].x);
-            CHECK(s["vertices"].array.at(i).array.at(1).number == v[i].y);
-        }
+        check_vertices(s, v);
         // The spans chapter 1's rasterizer walks, and both gradients, exactly.
         std::vector<std::vector<int>> spans;
         int covered = 0;

@@ -114,6 +114,12 @@
     return node;
   }
 
+  // Handles for a triangle's vertices in a W x H grid: steps of 1/8 px, Shift for 1 px.
+  function vertexHandles(svg, v, W, H, update) {
+    const bounds = { x0: 0, y0: 0, x1: W, y1: H, bigStep: 1 };
+    v.forEach((p, i) => handle(svg, `vertex v${i}`, p, 1 / 8, bounds, update));
+  }
+
   function grid(svg, width, height) {
     const g = el("g", { class: "live-grid" }, svg);
     for (let x = 0; x <= width; ++x) {
@@ -180,8 +186,7 @@
            `(${n(g[2])}, ${n(g[3])}).`);
       return true;
     }
-    const bounds = { x0: 0, y0: 0, x1: W, y1: H, bigStep: 1 };
-    v.forEach((p, i) => handle(svg, `vertex v${i}`, p, 1 / 8, bounds, update));
+    vertexHandles(svg, v, W, H, update);
     update();
   }
 
@@ -234,8 +239,7 @@
            `(to a bottom or right edge). ${edges.join("; ")}.`);
       return true;
     }
-    const bounds = { x0: 0, y0: 0, x1: W, y1: H, bigStep: 1 };
-    v.forEach((p, i) => handle(svg, `vertex v${i}`, p, 1 / 8, bounds, update));
+    vertexHandles(svg, v, W, H, update);
     update();
   }
 

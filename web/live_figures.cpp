@@ -44,6 +44,13 @@ bool fits(int width, int height) {
     return width > 0 && height > 0 && width <= max_side && height <= max_side;
 }
 
+// A triangle's corners (pixels) within a width x height figure, give or take a pixel.
+bool triangle_fits(std::array<double, 3> x, std::array<double, 3> y, int width, int height) {
+    return fits(width, height) &&
+           std::all_of(x.begin(), x.end(), [&](double v) { return in_figure(v, width); }) &&
+           std::all_of(y.begin(), y.end(), [&](double v) { return in_figure(v, height); });
+}
+
 } // namespace
 
 /// Where the figures' answers are written: max_side * max_side 32-bit cells.
@@ -102,14 +109,8 @@ EXPORT("ep_span_mappers") int ep_span_mappers(double ratio) {
 EXPORT("ep_scanline")
 int ep_scanline(double x0, double y0, double x1, double y1, double x2, double y2,
                 int width, int height) {
-    if (!fits(width, height)) {
+    if (!triangle_fits({x0, x1, x2}, {y0, y1, y2}, width, height)) {
         return -1;
-    }
-    for (const double v : {x0, x1, x2}) {
-        if (!in_figure(v, width)) return -1;
-    }
-    for (const double v : {y0, y1, y2}) {
-        if (!in_figure(v, height)) return -1;
     }
     const std::array<Point2, 3> v = {Point2{x0, y0}, Point2{x1, y1}, Point2{x2, y2}};
     for (int y = 0; y < height; ++y) {
@@ -144,14 +145,8 @@ int ep_scanline(double x0, double y0, double x1, double y1, double x2, double y2
 EXPORT("ep_fill_rule")
 int ep_fill_rule(double x0, double y0, double x1, double y1, double x2, double y2,
                  int width, int height) {
-    if (!fits(width, height)) {
+    if (!triangle_fits({x0, x1, x2}, {y0, y1, y2}, width, height)) {
         return -1;
-    }
-    for (const double v : {x0, x1, x2}) {
-        if (!in_figure(v, width)) return -1;
-    }
-    for (const double v : {y0, y1, y2}) {
-        if (!in_figure(v, height)) return -1;
     }
     const std::array<FixedPoint2, 3> v = {snap_to_subpixel(Point2{x0, y0}),
                                           snap_to_subpixel(Point2{x1, y1}),
