@@ -1,6 +1,6 @@
 # render.cmake: renders the HTML book and the PDF book (run by the `book` target).
 # Inputs (-D): ROOT, BOOK_DIR, FIGURE_DIR, PANDOC, PDFLATEX, MAKEINDEX, RSVG_CONVERT, PAPER,
-# and EDITION, one of
+# LIVE_DIR (where web/'s WebAssembly build put exactpixels-live.js) and EDITION, one of
 #   public   the public book (`book`): every listing whole, no worked solutions;
 #   course   the course edition (`book-course`): every exercise region in a listing shown
 #            as its stub, as the students' kits have it; no worked solutions;
@@ -67,6 +67,12 @@ if(NOT figure_parent STREQUAL BOOK_DIR)
   file(COPY ${figure_images} DESTINATION ${BOOK_DIR}/figures)
 endif()
 
+# The live figures' module (LIVE_DIR, the book's web/ build) and their script.
+file(REMOVE_RECURSE ${BOOK_DIR}/live)
+if(LIVE_DIR)
+  file(COPY ${LIVE_DIR}/exactpixels-live.js ${ROOT}/web/live.js DESTINATION ${BOOK_DIR}/live)
+endif()
+
 set(filter_env EP_ROOT=${ROOT} EP_FIGURES=${FIGURE_DIR} EP_ALL_CHAPTERS=${all_dirs}
     EP_OUT=${BOOK_DIR} EP_LATEX_FIGURES=${BOOK_DIR}/latex/figures)
 # Citations: after the book's filter, citeproc with the committed bibliography and style
@@ -98,8 +104,10 @@ if(edition_banner)
     "  \\put(0,0){\\raisebox{\\dimexpr-\\paperheight+12mm\\relax}[0pt][0pt]{%\n"
     "    \\makebox[\\paperwidth]{\\small\\sffamily\\bfseries ${latex_banner}}}}}\n")
 endif()
+# book/filters/live.lua first: the live figures (HTML only; dropped from the PDF).
 set(html_options --from=markdown --to=html5 --standalone --mathml
-    --template=${ROOT}/book/template.html --lua-filter=${ROOT}/book/filters/exactpixels.lua
+    --template=${ROOT}/book/template.html --lua-filter=${ROOT}/book/filters/live.lua
+    --lua-filter=${ROOT}/book/filters/exactpixels.lua
     ${citation_options} ${edition_html}
     --highlight-style=pygments --metadata-file=${ROOT}/book/metadata.yaml)
 
@@ -192,6 +200,7 @@ run_or_fail("LaTeX of the book"
   ${CMAKE_COMMAND} -E env ${filter_env} EP_TARGET=latex "EP_CHAPTERS=${all_dirs}"
   ${PANDOC} --from=markdown --to=latex --standalone --top-level-division=chapter
   --number-sections --toc --toc-depth=2 --highlight-style=pygments
+  --lua-filter=${ROOT}/book/filters/live.lua
   --lua-filter=${ROOT}/book/filters/exactpixels.lua ${citation_options}
   --metadata-file=${ROOT}/book/metadata.yaml "--metadata=date:${edition_line}"
   --include-in-header=${ROOT}/book/latex/header.tex

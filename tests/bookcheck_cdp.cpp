@@ -338,7 +338,7 @@ struct Browser::Impl {
             "--disable-extensions",
             "--disable-default-apps",
             "--disable-features=Translate,OptimizationHints,MediaRouter",
-            "--host-resolver-rules=MAP * ~NOTFOUND",
+            "--host-resolver-rules=MAP * ~NOTFOUND, EXCLUDE 127.0.0.1",
             "--proxy-server=127.0.0.1:9",
             "--hide-scrollbars",
             "--force-device-scale-factor=1",
@@ -581,15 +581,11 @@ PageVisit Browser::open(const std::string& url, const std::string& script,
     b.call(
         "Runtime.evaluate",
         R"cdp({"expression":"document.fonts.ready.then(() => true)","awaitPromise":true})cdp");
-    const Json evaluated =
-        b.call("Runtime.evaluate", "{\"expression\":" + json_quote(script) +
-                                       ",\"returnByValue\":true,\"awaitPromise\":true}");
-    if (evaluated.has("exceptionDetails")) {
-        const Json& details = evaluated["exceptionDetails"];
-        b.fail("the check script failed on " + url + ": " +
-               details["exception"]["description"].str() + details["text"].str());
+    try {
+        visit.result = evaluate(script);
+    } catch (const std::runtime_error& e) {
+        throw std::runtime_error(std::string(e.what()) + " (the check script, on " + url + ")");
     }
-    visit.result = evaluated["result"]["value"];
     if (!screenshot.empty()) {
         const Json shot = b.call("Page.captureScreenshot", R"({"format":"png"})");
         fs::create_directories(screenshot.parent_path());
@@ -597,6 +593,46 @@ PageVisit Browser::open(const std::string& url, const std::string& script,
     }
     visit.console = b.console;
     return visit;
+}
+
+Json Browser::evaluate(const std::string& script) {
+    Impl& b = *impl_;
+    const Json evaluated =
+        b.call("Runtime.evaluate", "{\"expression\":" + json_quote(script) +
+                                       ",\"returnByValue\":true,\"awaitPromise\":true}");
+    if (evaluated.has("exceptionDetails")) {
+        const Json& details = evaluated["exceptionDetails"];
+        b.fail("a script failed on the page: " + details["exception"]["description"].str() +
+               details["text"].str());
+    }
+    return evaluated["result"]["value"];
+}
+
+Json Browser::command(const std::string& method, const std::string& params) {
+    return impl_->call(method, params);
+}
+
+void Browser::screenshot(const std::string& selector, const fs::path& png) {
+    const Json box = evaluate("(() => { const e = document.querySelector(" +
+                              json_quote(selector) +
+                              "); e.scrollIntoView({block: 'center'});"
+                              " const b = e.getBoundingClientRect();"
+                              " return {x: b.left + scrollX, y: b.top + scrollY, w: b.width, h: b.height};"
+                              " })()");
+    const Json shot = command(
+        "Page.captureScreenshot",
+        R"({"format":"png","clip":{"scale":1,"x":)" + std::to_string(box["x"].number) +
+            R"(,"y":)" + std::to_string(box["y"].number) + R"(,"width":)" +
+            std::to_string(box["w"].number) + R"(,"height":)" +
+            std::to_string(box["h"].number) + "}}");
+    fs::create_directories(png.parent_path());
+    std::ofstream(png, std::ios::binary) << base64_decode(shot["data"].str());
+}
+
+std::vector<std::string> Browser::console() {
+    // Collect what has arrived by now: a round trip makes Chromium send pending events.
+    impl_->call("Runtime.evaluate", R"({"expression":"0"})");
+    return impl_->console;
 }
 
 } // namespace exactpixels::bookcheck

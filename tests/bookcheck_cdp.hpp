@@ -7,7 +7,8 @@
 //   page.console  // every console error, uncaught exception and failed load
 //
 // Chromium runs with a fresh profile (the folder is created empty and removed afterwards)
-// and no network: background services are off and every host name resolves to nothing.
+// and no network: background services are off and every host name resolves to nothing
+// (only 127.0.0.1 is reachable, for a web server on this machine).
 // The protocol runs over two pipes (--remote-debugging-pipe: commands on fd 3, answers
 // on fd 4, each message a JSON text ended by a NUL byte), so no port is opened.
 // The program is `chromium` on PATH, or $EXACTPIXELS_CHROMIUM.
@@ -65,6 +66,20 @@ public:
     /// `screenshot` is not empty, saves the first screen as PNG there.
     PageVisit open(const std::string& url, const std::string& script,
                    const std::filesystem::path& screenshot = {});
+
+    /// Evaluates `script` (a JavaScript expression; a promise is awaited) in the page
+    /// open now and returns its value as JSON; throws if it throws.
+    Json evaluate(const std::string& script);
+
+    /// Sends the DevTools command `method` with `params` (a JSON object) to the page open
+    /// now, e.g. Input.dispatchMouseEvent, and returns its result.
+    Json command(const std::string& method, const std::string& params);
+
+    /// Saves the element `selector` of the page open now, scrolled into view, as PNG.
+    void screenshot(const std::string& selector, const std::filesystem::path& png);
+
+    /// Console errors, uncaught exceptions and failed loads since the last open().
+    std::vector<std::string> console();
 
 private:
     struct Impl;
