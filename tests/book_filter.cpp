@@ -41,7 +41,15 @@ struct FixtureBook {
                               "        //< exercise ch07-demo\n"
                               "    }\n"
                               "//< answer\n"
-                              "int after;\n");
+                              "int after;\n"
+                              "//> twice-answer\n"
+                              "    int twice_answer() {\n"
+                              "        //> gives-away ch07-demo\n"
+                              "        return 2 * 42;\n"
+                              "        //| return 2 * answer();\n"
+                              "        //< gives-away ch07-demo\n"
+                              "    }\n"
+                              "//< twice-answer\n");
         write("tests/ch07_demo.cpp", "TEST_CASE(\"the answer is 42\") {}\n"
                                      "TEST_CASE(\n"
                                      "    \"a name too long for one line\" * points) {}\n"
@@ -121,6 +129,7 @@ TEST_CASE(
     FixtureBook book;
     book.write("chapters/07-demo/chapter.md",
                title + "```{.snippet file=\"src/demo.hpp\" name=\"answer\"}\n```\n\n"
+                       "```{.snippet file=\"src/demo.hpp\" name=\"twice-answer\"}\n```\n\n"
                        "## Notes\n\n::: summary\n- the answer\n:::\n\n## Exercises\n\n"
                        "1. []{.exercise kind=derive marks=1 difficulty=easy "
                        "objectives=\"1\"} Think.\n"
@@ -138,12 +147,20 @@ TEST_CASE(
     CHECK(text.find("return 0;") != std::string::npos);
     CHECK(text.find("// End of exercise 7.2 (ch07-demo).") != std::string::npos);
     CHECK(text.find("return 42;") == std::string::npos);
+    // A gives-away block (code outside the region that states its answer) is its stub.
+    CHECK(text.find("int twice_answer() {") != std::string::npos);
+    CHECK(text.find("// (Left out here: it would answer exercise 7.2.)\n"
+                    "    return 2 * answer();") != std::string::npos);
+    CHECK(text.find("2 * 42") == std::string::npos);
     // The same chapter in the public book: the solution, no stub.
     const auto public_book =
         book.run_filter("chapters/07-demo/chapter.md", "html", "EP_CHAPTERS=07-demo");
     REQUIRE(public_book.exit_code == 0);
     CHECK(without_tags(public_book.out).find("return 42;") != std::string::npos);
+    CHECK(without_tags(public_book.out).find("return 2 * 42;") != std::string::npos);
+    CHECK(without_tags(public_book.out).find("answer();") == std::string::npos);
     CHECK(without_tags(public_book.out).find("Exercise 7.2") == std::string::npos);
+    CHECK(without_tags(public_book.out).find("Left out") == std::string::npos);
 }
 
 TEST_CASE("a missing snippet region fails naming the chapter file, line and region") {

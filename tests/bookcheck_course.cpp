@@ -139,7 +139,9 @@ std::string code_of(const std::string& line) {
 
 /// Every solution line of every exercise region (`//> exercise ID: hint` to
 /// `//< exercise ID`, minus stub lines `//|`) in the code under src/, chapters/ and
-/// tests/, except a line whose code (comments aside) the source also holds outside every
+/// tests/, and every line of a gives-away block (`//> gives-away ID` to
+/// `//< gives-away ID`: code outside the region that states its answer, such as
+/// chapter 9's run_end, which divides out the same crossing), except a line whose code (comments aside) the source also holds outside every
 /// exercise region ("break;", "return choice;", a common loop head) or as a stub line:
 /// the students' kit holds that line anyway, and the course edition may print it in any
 /// other listing, or as the stub.
@@ -166,7 +168,10 @@ std::vector<SolutionLine> solution_lines() {
             const std::string t = trimmed(line);
             if (t.rfind("//> exercise ", 0) == 0) {
                 exercise = t.substr(13, t.find(':') - 13);
-            } else if (t.rfind("//< exercise ", 0) == 0) {
+            } else if (t.rfind("//> gives-away ", 0) == 0) {
+                exercise = trimmed(t.substr(15));
+            } else if (t.rfind("//< exercise ", 0) == 0 ||
+                       t.rfind("//< gives-away ", 0) == 0) {
                 exercise.clear();
             } else if (t.rfind("//|", 0) == 0) {
                 elsewhere.insert(code_of(t.substr(3)));
@@ -266,6 +271,9 @@ const GiveAway give_aways[] = {
     {"ch09-run-of-row", R"(k=\lceil-w/s\rceil)"},
     {"ch09-run-of-row", R"(\lfloorw/s\rfloor+1)"},
     {"ch09-run-of-row", "k>=ceil(-w/step)"},
+    // run_end (chapter 9) divides out the same crossing, once per triangle.
+    {"ch09-run-of-row", "end.k=ceil_div(-w,end.s)"},
+    {"ch09-run-of-row", "end.k=floor_div(w,end.s)+1"},
 };
 
 /// The give-aways found in `book`, each with the page it is on.
@@ -293,6 +301,9 @@ TEST_CASE("the course edition prints no solution line of any exercise region") {
     REQUIRE_MESSAGE(fs::exists(course / "index.html"),
                     "build the course edition first: cmake --build build --target "
                     "book-course");
+    // Its API reference is searched with its pages: without it the search would pass
+    // for want of pages to search.
+    REQUIRE(fs::exists(course / "api/index.html"));
     REQUIRE(solution_lines().size() > 0);
     for (const auto& line : printed_solutions(course)) {
         FAIL_CHECK(line.where << " (exercise " << line.exercise
@@ -313,6 +324,26 @@ TEST_CASE("the same search finds the exercises' solutions in the public book") {
     // The whole of exercise ch02-edge-bias, chapter 2's top-left rule, is one of them.
     CHECK(per_exercise["ch02-edge-bias"] == 1);
     CHECK(per_exercise.size() >= 10);
+}
+
+TEST_CASE("the search reads the API reference: the public book's prints solution lines") {
+    // The API reference's source pages print each header whole in the public book; the
+    // search must see them there, run_end's division included (a gives-away block of
+    // ch09-run-of-row, which the course edition's API reference once printed).
+    const fs::path api = fs::path(EXACTPIXELS_BINARY_DIR) / "book" / "api";
+    REQUIRE(fs::exists(api / "index.html"));
+    const auto printed = printed_solutions(api);
+    std::set<std::string> exercises;
+    for (const auto& line : printed) {
+        exercises.insert(line.exercise);
+    }
+    MESSAGE(printed.size() << " solution lines of " << exercises.size()
+                           << " exercises are printed in the public book's API reference");
+    CHECK(exercises.size() >= 10);
+    CHECK(std::any_of(printed.begin(), printed.end(), [](const SolutionLine& line) {
+        return line.exercise == "ch09-run-of-row" &&
+               line.code == "end.k = ceil_div(-w, end.s);";
+    }));
 }
 
 TEST_CASE("no text of the course edition gives an exercise's answer away") {

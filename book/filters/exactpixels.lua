@@ -484,8 +484,19 @@ local function extract_region(dir, file, name)
       exercise = { id = open:match("^exercise%s+([%w%-]+)"), indent = line:match("^%s*"),
                    hint = open:match(":%s*(.-)$") or "", stub = {} }
       hint_goes_on = true
-    elseif inside and close and exercise and close:match("^exercise%s") then
-      if course then
+    elseif inside and open and open:match("^gives%-away%s") then
+      -- Code outside a region that states its answer (book/AUTHORING.md): the course
+      -- edition shows its stub, as the kits before the exercise's chapter have it.
+      exercise = { id = open:match("^gives%-away%s+([%w%-]+)"), indent = line:match("^%s*"),
+                   stub = {}, gives_away = true }
+    elseif inside and close and exercise and
+        (close:match("^exercise%s") or close:match("^gives%-away%s")) then
+      if course and exercise.gives_away then
+        local number = exercise_numbers[exercise.id]
+        region[#region + 1] = exercise.indent .. "// (Left out here: it would answer exercise "
+          .. (number or exercise.id) .. ".)"
+        for _, l in ipairs(exercise.stub) do region[#region + 1] = l end
+      elseif course then
         for _, l in ipairs(exercise_stub(exercise.id, exercise.indent, exercise.hint,
                                          exercise.stub)) do
           region[#region + 1] = l

@@ -3,7 +3,7 @@
 // Usage:
 //   make-kit kit --source ROOT --template DIR --chapter NN --out DIR [--version V]
 //                [--commit C] [--time-limits FILE]
-//   make-kit restore --source ROOT --kit DIR
+//   make-kit restore --source ROOT --kit DIR [--later restore|stub]
 //   make-kit list --source ROOT
 //   make-kit check --source ROOT [--chapter NN]
 //   make-kit stub --source ROOT --file FILE
@@ -18,8 +18,13 @@
 //     // EXERCISE ch02-edge-bias: one-line hint
 //     ...stub...
 //     // END EXERCISE ch02-edge-bias
-// while every other chapter keeps its solution; every marker line (`//>`, `//<`, `//|`)
-// is removed. The template folder supplies the kit's CMakeLists.txt, README.md, its
+// while every earlier chapter keeps its solution. Every region of a later chapter, and
+// every gives-away block of one (`//> gives-away ID` ... `//< gives-away ID`: code
+// outside a region that states its answer), is its stub between `// LATER EXERCISE ID:`
+// and `// END LATER EXERCISE ID`, so that no kit holds an answer its students have not
+// been set yet; the grader never takes those from a submission. Only the later exercises
+// that `kit-keeps-later` (book/metadata.yaml) lists for chapter NN, because its own code
+// runs them, keep their solution. Every marker line (`//>`, `//<`, `//|`) is removed. The template folder supplies the kit's CMakeLists.txt, README.md, its
 // grader (grade_runner.cpp) and Gradescope's two scripts, setup.sh and run_autograder
 // (NAME.in with @CHAPTER@-style placeholders, or NAME copied as it is). --time-limits
 // FILE (written by grade-runner --measure from the solution) becomes the kit's
@@ -27,7 +32,9 @@
 // assignment script adds them to the autograder's zip only). DIR is deleted first if it
 // holds an earlier kit.
 //
-// `restore` puts the solution of every exercise back between those comments in a kit
+// `restore` puts the solution of every exercise back between those comments (and the
+// later chapters' code between the LATER ones, unless `--later stub`: the kit as a
+// student who solved every exercise has it, which must reach full marks) in a kit
 // (the teacher's copy; the kit tests use it to prove the stubs are the only difference).
 // `list` prints every exercise region and the tests that declare points for it.
 // `check` proves that the book's marks and the kits' points agree, for every chapter (or
@@ -37,8 +44,9 @@
 // no exercise declares no points (it would give points for nothing). It prints every
 // disagreement, with file and line, and exits 1 if there is one.
 // `stub` prints FILE (a path under ROOT) with every exercise region, of any chapter,
-// replaced by its stub as a kit has it: the course edition's API reference reads the
-// library through it (Doxygen's INPUT_FILTER), so it shows no solution.
+// replaced by its stub as a kit has it, and every gives-away block by its stub: the
+// course edition's API reference reads the library through it (Doxygen's INPUT_FILTER),
+// so it shows no solution.
 //
 // The kit is checked while it is made: every exercise region of chapter NN must be named
 // by a test of chapter NN with points > 0, and every exercise a test names must exist.
@@ -168,7 +176,10 @@ bool is_code_file(const fs::path& path) {
 // ---------------------------------------------------------------------------------------
 // Exercise regions
 
-/// One `//> exercise ID: hint` ... `//< exercise ID` region of solution code.
+/// One `//> exercise ID: hint` ... `//< exercise ID` region of solution code, or one
+/// `//> gives-away ID` ... `//< gives-away ID` block: code outside the region that states
+/// exercise ID's answer (a second use of the same formula), shown wherever the region is
+/// shown as its stub: as its own stub lines (`//|`), which must compile.
 struct Region {
     std::string id;                    // e.g. "ch02-edge-bias"
     std::string hint;                  // the one-line hint after the colon
@@ -177,26 +188,59 @@ struct Region {
     std::vector<std::string> solution; // the code lines, markers removed
     std::vector<std::string> stub;     // the uncommented stub lines
     std::size_t kit_line = 0;          // of the EXERCISE comment in the kit, if stubbed
+    bool gives_away = false;           // a gives-away block, not the exercise's region
     std::string chapter() const { return id.substr(0, 4); }
 };
 
 const std::string kit_begin = "// EXERCISE ";
 const std::string kit_end = "// END EXERCISE ";
+// A region or gives-away block of a later chapter's exercise, shipped as its stub: the
+// grader never takes it from a submission (it is not an EXERCISE region) and `restore`
+// puts its solution back.
+const std::string later_begin = "// LATER EXERCISE ";
+const std::string later_end = "// END LATER EXERCISE ";
+// A gives-away block as the course edition's API reference shows it.
+const std::string course_hidden_begin =
+    "// NOT IN THE COURSE EDITION (it would give exercise ";
+const std::string course_hidden_end = "// END OF WHAT THE COURSE EDITION LEAVES OUT";
 
 /// A file after the region markers have been interpreted.
 struct Processed {
     std::vector<std::string> lines; // the kit's text of the file
     std::vector<Region> regions;    // every exercise region found in it
+    std::vector<Region> blocks;     // every region and gives-away block, in file order
 };
 
-/// Reads the markers of one file. Regions of `stub_chapter` ("ch02", or "*" for every
-/// chapter) are replaced by their stubs between the kit's EXERCISE comments; all other
-/// regions keep their solution.
+/// How a kit shows a region or block.
+enum class Shown { solution, exercise, later };
+
+/// Reads the markers of one file. `stub_chapter` is "chNN" for chapter NN's kit: its
+/// regions become their stubs between the kit's EXERCISE comments, every region and
+/// gives-away block of a later chapter its stub between LATER EXERCISE comments (a kit
+/// holds no answer of a chapter after its own) unless `keep_later` names its exercise
+/// (`kit-keeps-later`, book/metadata.yaml), and an earlier chapter's keep their
+/// solution. "*" (the course edition's API reference) shows every region as its EXERCISE
+/// stub and every gives-away block as its stub; "" keeps every solution.
 Processed process_file(const fs::path& rel, const std::string& text,
-                       const std::string& stub_chapter) {
+                       const std::string& stub_chapter,
+                       const std::set<std::string>& keep_later = {}) {
     Processed result;
     std::optional<Region> open;
     const auto lines = split_lines(text);
+    const auto shown = [&](const Region& region) {
+        if (stub_chapter.empty()) {
+            return Shown::solution;
+        }
+        if (stub_chapter == "*") {
+            return region.gives_away ? Shown::later : Shown::exercise;
+        }
+        if (region.chapter() == stub_chapter) {
+            return region.gives_away ? Shown::solution : Shown::exercise;
+        }
+        return region.chapter() > stub_chapter && keep_later.count(region.id) == 0
+                   ? Shown::later
+                   : Shown::solution;
+    };
     for (std::size_t i = 0; i < lines.size(); ++i) {
         const std::string& line = lines[i];
         const auto first = line.find_first_not_of(" \t");
@@ -204,24 +248,22 @@ Processed process_file(const fs::path& rel, const std::string& text,
         const std::string_view rest = first == std::string::npos
                                           ? std::string_view{}
                                           : std::string_view(line).substr(first);
-        const auto stubbed = [&](const Region& region) {
-            return stub_chapter == "*" || region.chapter() == stub_chapter;
-        };
-        const bool stubbing = open && stubbed(*open);
+        const bool stubbing = open && shown(*open) != Shown::solution;
         if (starts_with(rest, "//>") || starts_with(rest, "//<")) {
             const std::string_view body = trim(rest.substr(3));
             const bool exercise = starts_with(body, "exercise ") || body == "exercise";
-            if (!exercise) {
+            const bool gives_away = starts_with(body, "gives-away ");
+            if (!exercise && !gives_away) {
                 continue; // a snippet marker: never part of a kit
             }
+            const std::string kind = exercise ? "exercise" : "gives-away";
+            const std::string_view spec = trim(body.substr(kind.size()));
             if (rest[2] == '>') {
                 if (open) {
-                    throw KitError(where(rel, i + 1) +
-                                   ": exercise region inside region " + open->id +
-                                   " (opened at line " + std::to_string(open->line) +
-                                   ")");
+                    throw KitError(where(rel, i + 1) + ": " + kind + " region inside region " +
+                                   open->id + " (opened at line " +
+                                   std::to_string(open->line) + ")");
                 }
-                const std::string_view spec = trim(body.substr(8));
                 const auto colon = spec.find(':');
                 const std::string id(trim(spec.substr(0, colon)));
                 std::string hint(colon == std::string_view::npos
@@ -230,7 +272,8 @@ Processed process_file(const fs::path& rel, const std::string& text,
                 const std::size_t open_line = i + 1;
                 // A hint too long for one line, as clang-format reflows it: the next
                 // lines at the same indent read "//word" (no space after the slashes).
-                while (i + 1 < lines.size() && starts_with(lines[i + 1], indent + "//") &&
+                while (exercise && i + 1 < lines.size() &&
+                       starts_with(lines[i + 1], indent + "//") &&
                        lines[i + 1].size() > indent.size() + 2 &&
                        std::string_view(" /<>|!").find(lines[i + 1][indent.size() + 2]) ==
                            std::string_view::npos) {
@@ -242,26 +285,49 @@ Processed process_file(const fs::path& rel, const std::string& text,
                     throw KitError(where(rel, open_line) + ": exercise ID '" + id +
                                    "' is not of the form chNN-name");
                 }
-                if (hint.empty()) {
+                if (exercise && hint.empty()) {
                     throw KitError(where(rel, open_line) + ": exercise " + id +
                                    " has no hint ('//> exercise " + id + ": hint')");
                 }
-                open = Region{id, hint, rel, open_line, {}, {}, 0};
-                if (stubbed(*open)) {
+                open = Region{id, hint, rel, open_line, {}, {}, 0, gives_away};
+                switch (shown(*open)) {
+                case Shown::exercise:
                     result.lines.push_back(indent + kit_begin + id + ": " + hint);
                     open->kit_line = result.lines.size();
+                    break;
+                case Shown::later:
+                    result.lines.push_back(
+                        indent + (stub_chapter == "*"
+                                      ? course_hidden_begin + id + " away); a stub:"
+                                      : later_begin + id + ": chapter " + id.substr(2, 2) +
+                                            "'s, not graded here; its stub until then"));
+                    open->kit_line = result.lines.size();
+                    break;
+                case Shown::solution:
+                    break;
                 }
             } else {
-                const std::string id(trim(body.substr(8)));
-                if (!open || open->id != id) {
-                    throw KitError(where(rel, i + 1) + ": '//< exercise " + id +
+                const std::string id(trim(spec));
+                if (!open || open->id != id || open->gives_away != gives_away) {
+                    throw KitError(where(rel, i + 1) + ": '//< " + kind + " " + id +
                                    "' closes no open region" +
                                    (open ? " (open: " + open->id + ")" : std::string{}));
                 }
-                if (stubbing) {
-                    result.lines.push_back(indent + kit_end + id);
+                if (gives_away && open->stub.empty()) {
+                    throw KitError(where(rel, open->line) + ": gives-away block of " + id +
+                                   " has no stub ('//|' lines that compile)");
                 }
-                result.regions.push_back(std::move(*open));
+                if (stubbing) {
+                    result.lines.push_back(indent + (shown(*open) == Shown::exercise
+                                                         ? kit_end + id
+                                                     : stub_chapter == "*"
+                                                         ? course_hidden_end
+                                                         : later_end + id));
+                }
+                result.blocks.push_back(*open);
+                if (!gives_away) {
+                    result.regions.push_back(std::move(*open));
+                }
                 open.reset();
             }
         } else if (starts_with(rest, "//|")) {
@@ -316,14 +382,25 @@ std::vector<fs::path> code_files(const fs::path& root) {
 /// Every exercise region in the tree, by ID (IDs are unique across the tree).
 std::map<std::string, Region> all_regions(const fs::path& root) {
     std::map<std::string, Region> regions;
+    std::vector<Region> gives_away;
     for (const auto& rel : code_files(root)) {
-        for (auto& region : process_file(rel, read_text(root / rel), "").regions) {
-            const auto [it, fresh] = regions.emplace(region.id, region);
+        for (auto& block : process_file(rel, read_text(root / rel), "").blocks) {
+            if (block.gives_away) {
+                gives_away.push_back(std::move(block));
+                continue;
+            }
+            const auto [it, fresh] = regions.emplace(block.id, block);
             if (!fresh) {
-                throw KitError(where(rel, region.line) + ": exercise " + region.id +
+                throw KitError(where(rel, block.line) + ": exercise " + block.id +
                                " is also defined at " +
                                where(it->second.file, it->second.line));
             }
+        }
+    }
+    for (const auto& block : gives_away) {
+        if (regions.count(block.id) == 0) {
+            throw KitError(where(block.file, block.line) + ": gives-away block of " +
+                           block.id + ", which is no exercise region");
         }
     }
     return regions;
@@ -870,6 +947,45 @@ int points_per_mark(const fs::path& root) {
     throw KitError(file.string() + ": no line '" + key + " N'");
 }
 
+/// The later chapters' exercises that chapter NN's kit keeps solved, from
+/// `kit-keeps-later: "chNN: ID ID; chMM: ID"` in book/metadata.yaml (none without it).
+std::set<std::string> kept_later(const fs::path& root, const std::string& number) {
+    const fs::path file = root / "book/metadata.yaml";
+    const std::string key = "kit-keeps-later:";
+    std::set<std::string> kept;
+    if (!fs::exists(file)) {
+        return kept;
+    }
+    for (const auto& line : split_lines(read_text(file))) {
+        if (!starts_with(line, key)) {
+            continue;
+        }
+        std::string value(trim(std::string_view(line).substr(key.size())));
+        value.erase(std::remove(value.begin(), value.end(), '"'), value.end());
+        std::istringstream entries(value);
+        for (std::string entry; std::getline(entries, entry, ';');) {
+            const auto colon = entry.find(':');
+            const std::string chapter(trim(std::string_view(entry).substr(0, colon)));
+            if (colon == std::string::npos || chapter.size() != 4 ||
+                !starts_with(chapter, "ch")) {
+                throw KitError(file.string() + ": " + key + " entry '" + entry +
+                               "' is not 'chNN: ID ...'");
+            }
+            std::istringstream ids(entry.substr(colon + 1));
+            for (std::string id; ids >> id;) {
+                if (!valid_exercise_id(id) || id.substr(0, 4) <= chapter) {
+                    throw KitError(file.string() + ": " + key + " '" + id +
+                                   "' is no exercise of a chapter after " + chapter);
+                }
+                if (chapter == "ch" + number) {
+                    kept.insert(id);
+                }
+            }
+        }
+    }
+    return kept;
+}
+
 /// Every disagreement between chapter NN's exercise tags and its tests' points (see
 /// `check` at the top of the file), one message each.
 std::vector<std::string>
@@ -936,6 +1052,7 @@ struct Options {
     std::string command;
     fs::path source, template_dir, out, kit, file, time_limits;
     std::string chapter, version = "0.0.0";
+    std::string later = "restore"; ///< restore: "stub" leaves the LATER stubs as they are
     std::string commit = "unknown"; ///< of the source tree, stamped on the kit
 };
 
@@ -1023,6 +1140,13 @@ void make_kit(const Options& options) {
     }
 
     // Every file of the kit, by relative path.
+    const auto keep_later = kept_later(root, number);
+    for (const auto& id : keep_later) {
+        if (regions.count(id) == 0) {
+            throw KitError("book/metadata.yaml: kit-keeps-later names " + id +
+                           ", which is no exercise region");
+        }
+    }
     std::map<fs::path, std::string> kit;
     std::vector<Region> stubbed;
     for (const auto& rel : files) {
@@ -1044,7 +1168,7 @@ void make_kit(const Options& options) {
                            : text;
             continue;
         }
-        auto processed = process_file(rel, read_text(root / rel), chapter);
+        auto processed = process_file(rel, read_text(root / rel), chapter, keep_later);
         kit[rel] = join_lines(processed.lines);
         for (auto& region : processed.regions) {
             if (region.chapter() == chapter) {
@@ -1195,15 +1319,20 @@ void make_kit(const Options& options) {
     }
 }
 
-/// Puts each region's solution back between the kit's EXERCISE comments; rewrites only
-/// the files that change, so an existing build recompiles only those.
+/// Puts each region's solution back between the kit's EXERCISE comments, and each later
+/// chapter's region or gives-away block back between its LATER EXERCISE comments (the
+/// n-th such block of an exercise in a file is the n-th block of that exercise in the
+/// source's file); rewrites only the files that change, so an existing build recompiles
+/// only those.
 void restore_kit(const Options& options) {
-    const auto regions = all_regions(fs::canonical(options.source));
+    const fs::path root = fs::canonical(options.source);
+    const auto regions = all_regions(root);
     const fs::path kit = options.kit;
     if (!fs::exists(kit / kit_stamp)) {
         throw KitError(kit.string() + " is not a kit made by make-kit");
     }
-    int restored = 0;
+    const bool keep_later_stubs = options.later == "stub";
+    int restored = 0, later = 0;
     std::vector<fs::path> files;
     for (const auto& entry : fs::recursive_directory_iterator(kit)) {
         const fs::path rel = fs::relative(entry.path(), kit);
@@ -1219,36 +1348,61 @@ void restore_kit(const Options& options) {
         const std::string text = read_text(kit / rel);
         const auto lines = split_lines(text);
         std::vector<std::string> out;
+        std::optional<std::vector<Region>> source_blocks; // read when first needed
+        std::map<std::string, std::size_t> later_seen;    // id -> LATER blocks so far
         for (std::size_t i = 0; i < lines.size(); ++i) {
             out.push_back(lines[i]);
             const std::string_view body = trim(lines[i]);
-            if (!starts_with(body, kit_begin) ||
+            const bool is_later = starts_with(body, later_begin);
+            if (!(starts_with(body, kit_begin) || (is_later && !keep_later_stubs)) ||
                 body.find(':') == std::string_view::npos) {
                 continue;
             }
-            const std::string_view spec = body.substr(kit_begin.size());
+            const std::string_view spec =
+                body.substr((is_later ? later_begin : kit_begin).size());
             const std::string id(trim(spec.substr(0, spec.find(':'))));
             if (!valid_exercise_id(id)) {
                 continue; // a comment that merely starts with the same words
             }
-            const auto region = regions.find(id);
-            if (region == regions.end()) {
-                throw KitError(where(rel, i + 1) + ": the source tree has no exercise " +
-                               id);
-            }
+            const std::string closing = (is_later ? later_end : kit_end) + id;
             std::size_t end = i + 1;
-            while (end < lines.size() && trim(lines[end]) != kit_end + id) {
+            while (end < lines.size() && trim(lines[end]) != closing) {
                 ++end;
             }
             if (end == lines.size()) {
-                throw KitError(where(rel, i + 1) + ": no '" + kit_end + id +
-                               "' after it");
+                throw KitError(where(rel, i + 1) + ": no '" + closing + "' after it");
             }
-            out.insert(out.end(), region->second.solution.begin(),
-                       region->second.solution.end());
+            const std::vector<std::string>* solution = nullptr;
+            if (!is_later) {
+                const auto region = regions.find(id);
+                if (region == regions.end()) {
+                    throw KitError(where(rel, i + 1) +
+                                   ": the source tree has no exercise " + id);
+                }
+                solution = &region->second.solution;
+                ++restored;
+            } else {
+                if (!source_blocks) {
+                    source_blocks = fs::exists(root / rel)
+                                        ? process_file(rel, read_text(root / rel), "").blocks
+                                        : std::vector<Region>{};
+                }
+                std::size_t n = later_seen[id]++;
+                for (const auto& block : *source_blocks) {
+                    if (block.id == id && n-- == 0) {
+                        solution = &block.solution;
+                        break;
+                    }
+                }
+                if (!solution) {
+                    throw KitError(where(rel, i + 1) + ": the source's " +
+                                   rel.generic_string() + " has no such block of " + id);
+                }
+                ++later;
+            }
+            out.insert(out.end(), solution->begin(), solution->end());
             out.push_back(lines[end]);
             i = end;
-            ++restored;
         }
         const std::string restored_text = join_lines(out);
         if (restored_text != text) {
@@ -1256,7 +1410,11 @@ void restore_kit(const Options& options) {
         }
     }
     std::cout << "make-kit: restored " << restored << " exercise solution"
-              << (restored == 1 ? "" : "s") << " in " << kit.string() << "\n";
+              << (restored == 1 ? "" : "s") << " in " << kit.string();
+    if (later > 0) {
+        std::cout << " (and " << later << " of later chapters)";
+    }
+    std::cout << "\n";
 }
 
 void print_stubbed(const Options& options) {
@@ -1359,6 +1517,11 @@ Options parse(int argc, char** argv) {
             options.file = value;
         } else if (flag == "--time-limits") {
             options.time_limits = value;
+        } else if (flag == "--later") {
+            if (value != "restore" && value != "stub") {
+                throw KitError("--later wants restore or stub, not '" + value + "'");
+            }
+            options.later = value;
         } else {
             throw KitError("unknown option " + flag);
         }

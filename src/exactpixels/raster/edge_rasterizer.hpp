@@ -234,8 +234,13 @@ void traverse_blocks_fast(const EdgeSetup<Edge>& s, PixelRect r, EmitFn& emit) {
     std::array<Value, 3> largest, smallest, block_step;
     for (int i = 0; i < 3; ++i) {
         const Value across = last * s.edge[i].step_x(), down = last * s.edge[i].step_y();
+        //> gives-away ch02-block-classify
         largest[i] = std::max(across, Value{0}) + std::max(down, Value{0});
         smallest[i] = std::min(across, Value{0}) + std::min(down, Value{0});
+        //| // stub: bounds wider than the corners' (no block is wrongly filled or rejected)
+        //| largest[i] = (across < 0 ? -across : across) + (down < 0 ? -down : down);
+        //| smallest[i] = -largest[i];
+        //< gives-away ch02-block-classify
         block_step[i] = block_size * s.edge[i].step_x();
     }
     const int first_x = r.x_begin - r.x_begin % block_size;
