@@ -3,6 +3,7 @@
 // dotted key is refused before the parser can recurse on it; NaN and infinity are stopped
 // before the first pixel in every precision, and --check counts them as failures.
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <string_view>
 
 using namespace exactpixels;
 
@@ -21,8 +23,9 @@ const std::string quad = "[[mesh]]\nprimitive = \"quad\"\n"
                          "corners = [[0, 0, 1], [1, 0, 1], [1, 1, 1], [0, 1, 1]]\n";
 
 /// A camera at the origin looking along +z with its near plane at `near`, and a textured
-/// triangle with a corner on the view axis at depth `axis_depth`.
-std::string axis_scene(double near, double axis_depth, const char* precision,
+/// triangle with a corner on the view axis at depth `axis_depth` (as the scene writes
+/// it).
+std::string axis_scene(double near, std::string_view axis_depth, const char* precision,
                        const char* mapper) {
     return fmt::format("[image]\nwidth = 64\nheight = 48\n"
                        "[camera]\nposition = [0, 0, 0]\ntarget = [0, 0, 1]\nnear = {}\n"
@@ -33,6 +36,11 @@ std::string axis_scene(double near, double axis_depth, const char* precision,
                        "positions = [[0, 0, {}], [-2, -1, 3], [2, -1, 3]]\n"
                        "uv = [[0, 0], [64, 0], [0, 64]]\n",
                        near, precision, mapper, axis_depth);
+}
+
+std::string axis_scene(double near, double axis_depth, const char* precision,
+                       const char* mapper) {
+    return axis_scene(near, fmt::format("{}", axis_depth), precision, mapper);
 }
 
 } // namespace
@@ -107,6 +115,68 @@ TEST_CASE("the smallest near plane with a corner on the view axis gives finite t
     const TexelError on_plane = check_against_exact(parse_scene(
         axis_scene(min_camera_near, min_camera_near, "float", "exact"), "n.toml", "."));
     CHECK(on_plane.pixels > 0);
+}
+
+TEST_CASE("a scene number below the least normal double reads as the nearest on every "
+          "library") {
+    // libc++'s streams, through which toml++ reads a float, refused the tiny ones: the
+    // loader reads them itself. Each is checked against its exact value.
+    const Integer ten = 10;
+    const struct {
+        const char* written;
+        Rational value;
+    } numbers[] = {
+        {"1e-320", Rational(1, pow(ten, 320))},
+        {"1e-310", Rational(1, pow(ten, 310))},
+        {"-1_0e-321", Rational(-1, pow(ten, 320))},
+        {"+0.000_3e-310", Rational(3, pow(ten, 314))},
+        {"4.9e-324", Rational(49, pow(ten, 325))}, // nearest: 2^-1074, the least double
+        // Just above and just below half of 2^-1074: 2^-1074 and 0.
+        {"2.4703282292062328e-324", Rational(24703282292062328, pow(ten, 340))},
+        {"2.4703282292062327e-324", Rational(24703282292062327, pow(ten, 340))},
+        {"2.2250738585072011e-308",
+         Rational(22250738585072011, pow(ten, 324))}, // < 2^-1022
+        {"1e-400",
+         Rational(1, pow(ten, 400))}, // 0, as toml++ read it through GCC's library
+        {"-1e-400", Rational(-1, pow(ten, 400))},
+        {"0.1", Rational(1, 10)},
+    };
+    for (const auto& number : numbers) {
+        const std::string written = number.written;
+        CAPTURE(written);
+        const Scene scene =
+            parse_scene(axis_scene(min_camera_near, number.written, "double", "exact"),
+                        "n.toml", ".");
+        const double read = scene.meshes[0].triangles[0][0].position.z;
+        const Rational error = abs(exact(read) - number.value);
+        for (const double towards : {-1.0, 1.0}) {
+            CHECK(error <= abs(exact(std::nextafter(read, towards)) - number.value));
+        }
+    }
+    // Columns count code points, from after a byte-order mark.
+    const Scene utf8 = parse_scene(
+        "\xEF\xBB\xBFmesh = [{ name = \"\xC3\xA9t\xC3\xA9\", primitive = \"triangles\", "
+        "texture = \"c\", positions = [[0, 0, 1e-320], [-2, -1, 3], [2, -1, 3]], "
+        "uv = [[0, 0], [64, 0], [0, 64]] }]\n[textures.c]\nkind = \"checkerboard\"\n"
+        "size = [64, 64]\nsquare = 8\n",
+        "u.toml", ".");
+    CHECK(utf8.meshes[0].triangles[0][0].position.z == 1e-320);
+    // Numbers in a key's place are keys: a 0 put there for toml++ would rename them.
+    for (const std::string keys :
+         {"[image]\nwidth = 64\n1e-320 = 1\n", "image = { width = 64, 1e-310 = 2 }\n",
+          "image = { width = 64, 1e-310 . x = 2 }\n"}) {
+        CAPTURE(keys);
+        CHECK_THROWS_WITH_AS(parse_scene(keys + quad, "k.toml", "."),
+                             doctest::Contains("image.1e-3"), Error);
+    }
+    // A syntax error after such a number is reported where it is, not at the number.
+    CHECK_THROWS_WITH_AS(
+        parse_scene("[camera]\nnear = 1e-320\nfar = = 3\n" + quad, "s.toml", "."),
+        doctest::Contains("s.toml:3:"), Error);
+    // One beyond the doubles is toml++'s error, as before.
+    CHECK_THROWS_WITH_AS(parse_scene("[camera]\nnear = 1e400\n" + quad, "s.toml", "."),
+                         doctest::Contains("'1e400' could not be interpreted as a value"),
+                         Error);
 }
 
 TEST_CASE("NaN and infinity are stopped before the first pixel in every precision") {

@@ -28,6 +28,7 @@
 #include <cstdio>
 #include <fstream>
 #include <initializer_list>
+#include <iterator>
 #include <map>
 #include <optional>
 #include <set>
@@ -48,7 +49,9 @@ doctest::String list_string(Iterator first, Iterator last, std::size_t count) {
     std::string text = "[";
     std::size_t i = 0;
     for (; first != last && i < shown; ++first, ++i) {
-        const auto value = *first; // a copy: a vector<bool> element is a proxy
+        // A copy as the element type: a vector<bool> element is a proxy (libc++'s has no
+        // printer).
+        const typename std::iterator_traits<Iterator>::value_type value = *first;
         text += i == 0 ? "" : ", ";
         text += doctest::toString(value).c_str();
     }

@@ -1,5 +1,6 @@
 #include "exactpixels/scene/scene_loader.hpp"
 
+#include "exactpixels/base/decimal_from_chars.hpp"
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/input_file.hpp"
 #include "exactpixels/base/test_pattern.hpp"
@@ -15,6 +16,7 @@
 #include <limits>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <set>
 #include <sys/stat.h>
 
@@ -52,10 +54,17 @@ const char* type_name(const toml::node& node) {
     }
 }
 
-/// Where a message points: the file, and the line and column in it.
+/// A place in a scene's text as toml++ counts it: line, and column in code points (both
+/// from 1, the first line starting after a UTF-8 byte-order mark).
+using TextPlace = std::pair<toml::source_index, toml::source_index>;
+
+/// Where a message points: the file, and the line and column in it; and the numbers of
+/// the scene that the loader read itself (parse_toml), by where they are.
 struct Context {
     std::string file;
     std::filesystem::path folder;
+    std::string_view text;
+    std::map<TextPlace, double> own_numbers;
 
     [[noreturn]] void fail(const toml::source_region& where, const std::string& path,
                            const std::string& message) const {
@@ -63,6 +72,93 @@ struct Context {
                                 where.begin.column, path, message));
     }
 };
+
+bool is_bare_char(char ch) { // of a bare key, a number, a date, true or false, inf, nan
+    return (ch >= '0' && ch <= '9') || (ch >= 'a' && ch <= 'z') ||
+           (ch >= 'A' && ch <= 'Z') || ch == '_' || ch == '-' || ch == '+' || ch == '.' ||
+           ch == ':';
+}
+
+/// The run of characters of a bare key, number or date that starts at text[i].
+std::string_view bare_run(std::string_view text, std::size_t i) {
+    std::size_t end = i;
+    while (end < text.size() && is_bare_char(text[end])) {
+        ++end;
+    }
+    return text.substr(i, end - i);
+}
+
+/// Whether `token` is a TOML decimal float with a finite value (an optional sign; an
+/// integer part with no leading zero; a fraction, an exponent or both; '_' only between
+/// digits).
+bool is_decimal_float(std::string_view token) {
+    std::size_t i = !token.empty() && (token[0] == '+' || token[0] == '-') ? 1 : 0;
+    const auto digits = [&] { // one or more digits, '_' between two of them
+        const std::size_t first = i;
+        while (i < token.size() &&
+               ((token[i] >= '0' && token[i] <= '9') ||
+                (token[i] == '_' && i > first && i + 1 < token.size() &&
+                 token[i + 1] >= '0' && token[i + 1] <= '9'))) {
+            ++i;
+        }
+        return i > first;
+    };
+    const std::size_t integer = i;
+    if (!digits() || (token[integer] == '0' && i > integer + 1)) {
+        return false;
+    }
+    const std::size_t whole = i;
+    if (i < token.size() && token[i] == '.' && !(++i, digits())) {
+        return false;
+    }
+    if (i < token.size() && (token[i] == 'e' || token[i] == 'E')) {
+        ++i;
+        i += i < token.size() && (token[i] == '+' || token[i] == '-') ? 1 : 0;
+        if (!digits()) {
+            return false;
+        }
+    }
+    return i == token.size() && i > whole;
+}
+
+/// The value of a TOML decimal float (is_decimal_float), rounded to the nearest double by
+/// the project's own reader (decimal_from_chars), the same on every standard library. A
+/// number beyond the doubles is std::nullopt; a nonzero number nearer 0 than the smallest
+/// double reads as 0 with its sign, as toml++ reads it through GCC's library.
+std::optional<double> read_decimal_float(std::string_view token) {
+    const bool negative = token[0] == '-';
+    std::string number; // without the sign and the underscores
+    for (const char ch : token.substr(token[0] == '-' || token[0] == '+' ? 1 : 0)) {
+        if (ch != '_') {
+            number += ch;
+        }
+    }
+    double value = 0.0;
+    const auto [end, status] =
+        decimal_from_chars(number.data(), number.data() + number.size(), value);
+    assert(end == number.data() + number.size());
+    if (status == std::errc::result_out_of_range) {
+        // Beyond the largest double (1.8e308), or nearer 0 than the smallest (4.9e-324):
+        // which one the place of the first nonzero digit says.
+        const std::size_t e = std::min(number.find_first_of("eE"), number.size());
+        const std::size_t point = std::min(number.find('.'), e);
+        const std::size_t first = number.find_first_of("123456789");
+        const long long place = static_cast<long long>(point) -
+                                static_cast<long long>(first) - (first < point ? 1 : 0);
+        long long exponent = 0; // saturated: only its sign beside `place` matters
+        for (std::size_t k = e + 1; k < number.size(); ++k) {
+            if (number[k] >= '0' && number[k] <= '9') {
+                exponent = std::min(exponent * 10 + (number[k] - '0'), 1'000'000'000LL);
+            }
+        }
+        exponent = e + 1 < number.size() && number[e + 1] == '-' ? -exponent : exponent;
+        if (place + exponent >= 0) {
+            return std::nullopt;
+        }
+        value = 0.0;
+    }
+    return negative ? -value : value;
+}
 
 //> table-reader
 /// One TOML table being read: every key read is recorded, and finish() rejects the
@@ -131,7 +227,11 @@ double exact_number(const Context& c, const toml::node& node, const std::string&
         return static_cast<double>(value);
     }
     if (const auto* floating = node.as_floating_point()) {
-        return floating->get();
+        // A number below 2^-1022 is the loader's own reading (parse_toml), the rest
+        // toml++'s: both round to the nearest double.
+        const auto own =
+            c.own_numbers.find({node.source().begin.line, node.source().begin.column});
+        return own != c.own_numbers.end() ? own->second : floating->get();
     }
     c.fail(node.source(), path,
            fmt::format("expected a number, got {}", type_name(node)));
@@ -1028,6 +1128,79 @@ void check_key_depth(const Context& c, std::string_view text) {
     }
 }
 
+namespace {
+
+/// Where in `text` the numbers are that toml++ may not read but the project does: the
+/// TOML decimal floats in a value's place whose magnitude is nonzero and below the
+/// smallest normal double, 2^-1022. toml++ reads a float through the standard library's
+/// streams, and LLVM's libc++ refuses such a number there (its strtod reports ERANGE).
+/// A value's place: after '=', or after '[' or ',' inside an array or inline table, and
+/// not before '=' (a key); headers and comments and strings are skipped.
+std::vector<std::size_t> tiny_numbers(std::string_view text) {
+    std::vector<std::size_t> found;
+    int depth = 0;       // of the arrays and inline tables open in a value
+    bool header = false; // between a table header's brackets
+    char last = '\n';    // the last character that counts (not blank, not in a comment)
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char ch = text[i];
+        if (ch == '"' || ch == '\'') {
+            i = past_string(text, i) - 1;
+            last = '"';
+        } else if (ch == '#') {
+            i = std::min(text.find('\n', i), text.size()) - 1;
+        } else if (ch == '\n') {
+            header = depth == 0 ? false : header;
+            last = depth == 0 ? '\n' : last;
+        } else if (ch == '[' && depth == 0 && (last == '\n' || header)) {
+            header = true;
+            last = ch;
+        } else if (ch == '[' || ch == '{') {
+            depth += header ? 0 : 1;
+            last = ch;
+        } else if (ch == ']' || ch == '}') {
+            depth -= depth > 0 && !header ? 1 : 0;
+            last = ch;
+        } else if (is_bare_char(ch)) {
+            const std::string_view token = bare_run(text, i);
+            const std::size_t next = text.find_first_not_of(" \t", i + token.size());
+            const bool value =
+                !header && (last == '=' || (depth > 0 && (last == '[' || last == ','))) &&
+                (next == std::string_view::npos || text[next] != '=');
+            if (value && is_decimal_float(token)) {
+                const std::optional<double> number = read_decimal_float(token);
+                const bool nonzero = // a digit 1 to 9 before the exponent
+                    token.find_first_of("123456789") < token.find_first_of("eE");
+                if (number && std::abs(*number) < std::numeric_limits<double>::min() &&
+                    nonzero) {
+                    found.push_back(i);
+                }
+            }
+            i += token.size() - 1;
+            last = 'a';
+        } else if (ch != ' ' && ch != '\t' && ch != '\r') {
+            last = ch;
+        }
+    }
+    return found;
+}
+
+/// Where in the scene's text toml++ read a float.
+void float_places(const toml::node& node, std::set<TextPlace>& out) {
+    if (const toml::table* table = node.as_table()) {
+        for (auto&& [key, child] : *table) {
+            float_places(child, out);
+        }
+    } else if (const toml::array* array = node.as_array()) {
+        for (const toml::node& child : *array) {
+            float_places(child, out);
+        }
+    } else if (node.is_floating_point()) {
+        out.insert({node.source().begin.line, node.source().begin.column});
+    }
+}
+
+} // namespace
+
 /// The key as written on `line` (one line of a scene) that a toml++ error at `column`
 /// (from 1) is about: the last key before the column that ends at an unquoted '=' (a
 /// key-value pair) or ']' (a table header), or the first one when the error points
@@ -1088,16 +1261,63 @@ std::string toml_message(const toml::parse_error& error, std::string_view text) 
     return key.empty() ? message : message.replace(open + 1, close - open - 1, key);
 }
 
+/// The scene's TOML document, as toml++ reads it with a 0 of the same length in place of
+/// each number below 2^-1022 (tiny_numbers), whose value the loader reads itself into
+/// c.own_numbers: every column stays where it was, and toml++ reads the same on every
+/// standard library. Where a 0 stood anywhere but in a float's place, the text is read as
+/// written, and so is a text with an error (the error is the text's as written, unless
+/// that is toml++ refusing a tiny number).
+toml::table parse_toml(Context& c) {
+    const std::vector<std::size_t> tiny = tiny_numbers(c.text);
+    std::string zeroed(c.text);
+    std::set<TextPlace> tiny_ends; // where toml++ reports refusing one
+    // The place of each, counted from the one before.
+    std::size_t i = c.text.substr(0, 3) == "\xEF\xBB\xBF" ? 3 : 0;
+    TextPlace place{1, 1};
+    for (const std::size_t at : tiny) {
+        for (; i < at; ++i) {
+            const bool continuation =
+                (static_cast<unsigned char>(c.text[i]) & 0xC0) == 0x80;
+            place = c.text[i] == '\n'
+                        ? TextPlace{place.first + 1, 1}
+                        : TextPlace{place.first, place.second + !continuation};
+        }
+        const std::string_view token = bare_run(c.text, at);
+        c.own_numbers[place] = *read_decimal_float(token);
+        tiny_ends.insert({place.first, place.second + token.size()});
+        const std::size_t digits = token[0] == '-' || token[0] == '+' ? 1 : 0;
+        zeroed.replace(at + digits, token.size() - digits,
+                       "0." + std::string(token.size() - digits - 2, '0'));
+    }
+    std::optional<toml::parse_error> zeroed_error;
+    try {
+        toml::table root = toml::parse(zeroed, c.file);
+        std::set<TextPlace> floats;
+        float_places(root, floats);
+        if (std::all_of(c.own_numbers.begin(), c.own_numbers.end(),
+                        [&](const auto& own) { return floats.count(own.first) != 0; })) {
+            return root;
+        }
+    } catch (const toml::parse_error& error) {
+        zeroed_error = error;
+    }
+    c.own_numbers.clear();
+    try {
+        return toml::parse(c.text, c.file);
+    } catch (const toml::parse_error& error) {
+        const bool refused = tiny_ends.count({error.source().begin.line,
+                                              error.source().begin.column}) != 0;
+        const toml::parse_error& shown = refused && zeroed_error ? *zeroed_error : error;
+        c.fail(shown.source(), "(syntax)", toml_message(shown, c.text));
+    }
+}
+
 Scene parse_scene(std::string_view text, const std::filesystem::path& file,
                   const std::filesystem::path& folder) {
-    const Context c{file.string(), folder};
-    check_key_depth(c, text);
-    toml::table root;
-    try {
-        root = toml::parse(text, file.string());
-    } catch (const toml::parse_error& error) {
-        c.fail(error.source(), "(syntax)", toml_message(error, text));
-    }
+    Context context{file.string(), folder, text, {}};
+    check_key_depth(context, text);
+    const toml::table root = parse_toml(context);
+    const Context& c = context;
     Scene scene;
     scene.file = file;
     const TableReader top(c, root, "",
