@@ -16,10 +16,10 @@ long long RenderReport::divides() const {
 }
 
 void share_drawing_time(RenderReport& report, const RenderReport& before, double spent) {
-    double sampled = 0.0; // texture's seconds hold its mappers' and filter's: not again
+    double sampled = 0.0; // texture's seconds hold its mappers': not again
     for (const auto stage :
          {&RenderReport::depth, &RenderReport::raster, &RenderReport::colour,
-          &RenderReport::texture, &RenderReport::lighting}) {
+          &RenderReport::texture, &RenderReport::filter, &RenderReport::lighting}) {
         sampled += (report.*stage).seconds - (before.*stage).seconds;
     }
     const double scale = sampled > 0.0 ? spent / sampled : 0.0;

@@ -1,7 +1,8 @@
 // render_report.hpp: what a render did, stage by stage (counts, divides and times), the
-// report as a table, and the clocks the stages are timed with. The stages count; the
-// times come from one sampled clock per mesh (SampledClock) and are shared among the
-// stages afterwards (share_drawing_time).
+// report as a table, and the clocks the stages are timed with. The stages return
+// what they did and the drawing counts it; their times come from one sampled timer
+// around the stage calls (StageTimer) and are shared among the stages afterwards
+// (share_drawing_time).
 //
 // Usage:
 //   RenderReport report;                       // filled in by run_geometry, render_scene
@@ -91,15 +92,30 @@ inline std::size_t timed_triangle_interval(std::size_t count) {
     return std::max<std::size_t>(1, count / timed_triangles_per_mesh);
 }
 
-/// The clock of the stages inside one triangle: it reads the time only when `on`, and
-/// otherwise gives zero durations.
-struct SampledClock {
-    bool on = true; ///< whether this triangle is one of the timed ones
+/// The one place the drawing stages are timed (as clox keeps its tracing in one block):
+/// on a triangle its mesh samples (timed_triangles_per_mesh) it reads the clock around
+/// each stage call and adds the time to the stage's seconds and to the triangle's
+/// shading time; on every other triangle it only calls the stage.
+struct StageTimer {
+    bool on = true;       ///< whether this triangle is one of the timed ones
+    double shading = 0.0; ///< seconds its stages took (the rest is coverage's)
     /// The time now, or a dummy when off.
     Clock::time_point now() const { return on ? Clock::now() : Clock::time_point{}; }
     /// Seconds since `start`, or 0 when off.
     double since(Clock::time_point start) const {
         return on ? seconds_since(start) : 0.0;
+    }
+    /// Calls stage() and returns what it returns; when on, adds its time to `seconds`.
+    /// (One call of stage(): the compiler inlines it.)
+    template <class Stage> auto timed(double& seconds, Stage&& stage) {
+        const Clock::time_point start = now();
+        const auto result = stage();
+        if (on) {
+            const double spent = seconds_since(start);
+            seconds += spent;
+            shading += spent;
+        }
+        return result;
     }
 };
 

@@ -89,7 +89,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
                           : nullptr,
                       Material{mesh.specular, mesh.shininess},
                       to_rgba8(mesh.colour),
-                      {}};
+                      true};
         m.masked_fetch = fast.masked_fetch && m.texture != nullptr &&
                          can_fetch_masked(*m.texture, mesh.wrap);
         bool full_chain = mesh.texture && full_chains[*mesh.texture];

@@ -73,9 +73,10 @@ struct FastPaths {
     /// positions (SceneMesh::positions), each is moved and projected once for all the
     /// corners at it.
     bool unlit_geometry = true;
-    /// Drawing: a mesh whose only stages are nearest texels (or its flat colour) and
-    /// depth is drawn by draw_triangle_lean, which writes each visible pixel straight to
-    /// the frame instead of shading a row of pixels that later stages would change.
+    /// Drawing: for a mesh whose only stages are nearest texels (or its flat colour)
+    /// and depth, the span loop calls the direct span (span_stages.cpp), which writes
+    /// each visible pixel straight to the frame instead of shading a row of pixels that
+    /// later stages would change.
     bool lean_spans = true;
 };
 

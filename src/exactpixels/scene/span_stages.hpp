@@ -36,14 +36,15 @@ struct MeshContext {
     const std::vector<ViewLight>* lights; ///< lighting stage per pixel, or nullptr
     Material material;                    ///< the mesh's specular colour and exponent
     Rgba8 flat;                           ///< the mesh's colour, as written
-    SampledClock clock;                   ///< on for the triangles whose stages are timed
+    bool timed = true; ///< whether the triangle being drawn is one of the sampled ones
     bool masked_fetch = false; ///< FastPaths::masked_fetch, and the texture allows it
 };
 
-/// Draws `triangles`, one mesh's, in order with the stages of `m` (draw_triangle_lean
-/// where `lean_spans` and the mesh allows it), times the whole and shares the time among
-/// the stages as the sampled triangles spent it (share_drawing_time). Throws Error when a
-/// triangle leaves the rasterizer's or the mapper's exact range.
+/// Draws `triangles`, one mesh's, in order with the stages of `m` (each visible pixel
+/// straight to the frame where `lean_spans` and the mesh allow it), times the whole and
+/// shares the time among the stages as the sampled triangles spent it
+/// (share_drawing_time). Throws Error when a triangle leaves the rasterizer's or the
+/// mapper's exact range.
 void draw_mesh(MeshContext& m, const std::vector<ScreenTriangle>& triangles,
                bool lean_spans);
 
