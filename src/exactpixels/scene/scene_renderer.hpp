@@ -18,14 +18,20 @@
 // (lighting.hpp): per vertex (Gouraud, the lit colours go through the colour stage) or
 // per pixel (Phong, after the texture and colour stages). Timings are wall clock seconds
 // of a single run: the geometry stage and each mesh's drawing are timed whole, and a
-// mesh's drawing time is shared among its stages as measured span by span on one
-// triangle in 16 (reading the clock per span would cost more than small spans do);
-// counts are exact.
+// mesh's drawing time is shared among its stages as measured span by span on about 512
+// of its triangles (timed_triangles_per_mesh: reading the clock per span would cost more
+// than small spans do); counts are exact.
+//
+// The code is in one file per part of chapter 7: camera.hpp (the camera and the
+// projection), geometry_stage.cpp (run_geometry), span_stages.cpp (drawing a mesh span by
+// span), filter_stage.cpp (chapter 8's filters), render_report.cpp (the report and its
+// clocks) and scene_renderer.cpp (render_scene, which runs them in order).
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
 #include "exactpixels/raster/fill_work.hpp"
 #include "exactpixels/scene/lighting.hpp"
+#include "exactpixels/scene/render_report.hpp"
 #include "exactpixels/scene/scene.hpp"
 #include "exactpixels/scene/scene_pipeline.hpp"
 #include "exactpixels/texture/texel_error.hpp"
@@ -67,66 +73,16 @@ struct FastPaths {
     /// positions (SceneMesh::positions), each is moved and projected once for all the
     /// corners at it.
     bool unlit_geometry = true;
-    /// Drawing: a mesh whose only stages are nearest texels (or its flat colour) and
-    /// depth is drawn by draw_triangle_lean, which writes each visible pixel straight to
-    /// the frame instead of shading a row of pixels that later stages would change.
+    /// Drawing: for a mesh whose only stages are nearest texels (or its flat colour)
+    /// and depth, the span loop calls the direct span (span_stages.cpp), which writes
+    /// each visible pixel straight to the frame instead of shading a row of pixels that
+    /// later stages would change.
     bool lean_spans = true;
 };
 
 /// Every fast path off: the plain teaching path.
 inline constexpr FastPaths plain_paths{false, false, false, false};
 //< fast-paths
-
-/// What one stage did over a whole render.
-struct StageCounter {
-    long long triangles = 0; ///< triangles the stage ran on
-    long long spans = 0;     ///< row spans it ran on
-    long long pixels = 0;    ///< pixels it ran on
-    long long divides = 0;   ///< divides it performed
-    double seconds = 0.0;    ///< time spent in it
-};
-
-/// What ran while rendering a scene: one counter per stage and per mapper.
-struct RenderReport {
-    StageCounter geometry; ///< triangles moved to view space and projected
-    /// triangles wholly outside one plane of the view volume (a screen edge, near or
-    /// far), dropped before they are projected or lit
-    StageCounter rejected;
-    /// triangles cut in view space because a corner lies nearer than the near plane,
-    /// beyond the far plane or past the guard band (guard_band_px)
-    StageCounter clipping;
-    StageCounter culling; ///< triangles skipped because their back faces the camera
-    StageCounter depth;   ///< depth stage: the triangles, spans and pixels it tested
-    StageCounter hidden;  ///< pixels that failed the depth test (spans with any)
-    StageCounter raster;  ///< coverage: the triangles, spans and pixels drawn
-    StageCounter flat;    ///< pixels written with the mesh's flat colour
-    StageCounter colour;  ///< vertex colours interpolated and applied
-    StageCounter colour_perspective; ///< of those, perspective-correct (c/w over 1/w)
-    StageCounter texture;            ///< texture coordinates computed and texels sampled
-    StageCounter auto_choice;        ///< spans whose mapper `auto` chose, and its divides
-    std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
-    StageCounter filter; ///< pixels filtered (any filter but nearest), 3 divides each
-    /// Lighting per pixel (Phong): the triangles, spans and pixels lit, and one divide
-    /// per pixel, 1/w (the reciprocal square roots of normalising are not counted)
-    StageCounter lighting;
-    long long lit_vertices = 0; ///< corners lit per vertex (Gouraud), in the geometry
-    bool lighting_on = false;   ///< whether the scene has lights (the stage ran)
-    int lights = 0;             ///< how many
-    int phong_meshes = 0;       ///< meshes lit per pixel
-    int gouraud_meshes = 0;     ///< meshes lit per vertex
-    /// Triangles per filter the filter stage ran: bilinear, trilinear, anisotropic.
-    std::array<long long, 3> filter_triangles{};
-    int mip_chains = 0;    ///< mip chains built (one per texture that needed one)
-    double seconds = 0.0;  ///< the whole render
-    bool depth_on = false; ///< whether the depth stage ran
-    double colour_bound =
-        0.0; ///< largest screen-colour error bound, levels (colour meshes)
-    std::string depth_reason; ///< why it ran or not (plan_depth)
-
-    /// Every divide performed: the mappers', auto's, the perspective colours', the
-    /// filter stage's and per-pixel lighting's.
-    long long divides() const;
-};
 
 /// The stages a mesh runs in this scene: plan_mesh's, and under Gouraud lighting the
 /// colour stage, which interpolates the lit colours (they hold the mesh's colour).
@@ -180,9 +136,6 @@ struct RenderResult {
 /// counts are the same either way.
 RenderResult render_scene(const Scene& scene, TexelMap* coordinates = nullptr,
                           FastPaths fast = {});
-
-/// The report as a table: one line per stage and per mapper that ran.
-std::string format_report(const RenderReport& report);
 
 /// Bytes a TexelMap holds per pixel: the covered bit, the texel indices i and j, and the
 /// coordinates u and v.
