@@ -75,7 +75,9 @@ TEST_CASE("a huge token is cut with an ellipsis in the message") {
     CHECK(input.exit_code == 2);
     CHECK(lines_in(input.err) == 1);
     // The word is the value in its quotes: a quote and 4095 letters, then the ellipsis.
-    CHECK(input.err.find("'" + std::string(4095, 'x') + "...") != std::string::npos);
+    std::string cut = "'"; // built by appending: GCC 12's -Wrestrict misfires on "'" + s
+    cut.append(4095, 'x').append("...");
+    CHECK(input.err.find(cut) != std::string::npos);
     CHECK(input.err.find(std::string(4096, 'x')) == std::string::npos);
 }
 
