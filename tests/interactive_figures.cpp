@@ -19,7 +19,7 @@
 //
 // Label `interactive` (and `bookcheck`: it needs the built book, so it runs in the book
 // workflow after `cmake --build --preset book`). Each figure as loaded is saved in
-// build/book/screenshots/live-NAME.png.
+// its edition's screenshots/live-NAME.png (build/book/screenshots/ for the public book).
 #include "bookcheck_cdp.hpp"
 
 #include "exactpixels/base/fixed_point.hpp"
