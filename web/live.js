@@ -32,14 +32,21 @@
   }
 
   // The module needs no system: its WASI imports (left over from the C library's
-  // start-up code) are never called by the figures' functions; each one fails loudly.
-  function wasiStubs() {
+  // start-up code) are never called by the figures' functions, except the clock, which
+  // chapter 7's renderer reads to time its stages (render_report.hpp): it is given
+  // performance.now(). Every other call fails loudly.
+  function wasiStubs(memory) {
     const names = ["environ_get", "environ_sizes_get", "fd_close", "fd_seek", "fd_write",
                    "proc_exit"];
     const stubs = {};
     for (const name of names) {
       stubs[name] = () => { throw new Error("live figures: unexpected WASI call " + name); };
     }
+    stubs.clock_time_get = (id, precision, out) => {
+      new DataView(memory().buffer).setBigUint64(
+        out, BigInt(Math.round(performance.now() * 1e6)), true);
+      return 0; // success
+    };
     return new Proxy(stubs, {
       get: (target, name) => target[name] ||
         (() => { throw new Error("live figures: unexpected WASI call " + String(name)); }),
@@ -48,12 +55,19 @@
 
   async function loadModule() {
     const bytes = decode(window.exactpixelsModule);
+    let memory = null;
     const { instance } = await WebAssembly.instantiate(bytes,
-      { wasi_snapshot_preview1: wasiStubs() });
+      { wasi_snapshot_preview1: wasiStubs(() => memory) });
+    memory = instance.exports.memory;
     instance.exports._initialize();
     const e = { ...instance.exports };
     // The cells array, read through a fresh view after every call (memory may grow).
     e.cells = (count) => new Int32Array(e.memory.buffer, e.ep_cells(), count);
+    e.values = (count) => new Float64Array(e.memory.buffer, e.ep_values(), count);
+    e.text = () => {
+      const bytes = new Uint8Array(e.memory.buffer, e.ep_text(), 256);
+      return new TextDecoder().decode(bytes.subarray(0, bytes.indexOf(0)));
+    };
     return e;
   }
 
@@ -114,10 +128,31 @@
     return node;
   }
 
-  // Handles for a triangle's vertices in a W x H grid: steps of 1/8 px, Shift for 1 px.
-  function vertexHandles(svg, v, W, H, update) {
+  // Handles for a triangle's vertices in a W x H grid: steps of 1/8 px, Shift for 1 px;
+  // `scale` times CELL screen units per pixel.
+  function vertexHandles(svg, v, W, H, update, scale = 1) {
     const bounds = { x0: 0, y0: 0, x1: W, y1: H, bigStep: 1 };
-    v.forEach((p, i) => handle(svg, `vertex v${i}`, p, 1 / 8, bounds, update));
+    v.forEach((p, i) => handle(svg, `vertex v${i}`, p, 1 / 8, bounds, update, scale));
+  }
+
+  // An image of W x H pixels in an SVG <image>, painted through a canvas: colour(i)
+  // gives pixel i's [r, g, b] (0 to 255). Drawn `unit` SVG units per pixel, unsmoothed.
+  function pixelImage(parent, W, H, unit) {
+    const canvas = document.createElement("canvas");
+    canvas.width = W;
+    canvas.height = H;
+    const node = el("image", { width: W * unit, height: H * unit, class: "live-pixels",
+                               preserveAspectRatio: "none" }, parent);
+    return (colour) => {
+      const context = canvas.getContext("2d");
+      const data = context.createImageData(W, H);
+      for (let i = 0; i < W * H; ++i) {
+        const [r, g, b] = colour(i);
+        data.data.set([r, g, b, 255], 4 * i);
+      }
+      context.putImageData(data, 0, 0);
+      node.setAttribute("href", canvas.toDataURL());
+    };
   }
 
   function grid(svg, width, height) {
@@ -386,9 +421,194 @@
     update();
   }
 
+  // Chapter 2: 8 x 8 blocks rejected, accepted and tested for a triangle.
+  function blockWalk(figure, m) {
+    const W = 32, H = 24, B = 8, S = 0.5; // S: CELL units per pixel (20 SVG units)
+    const u = S * CELL;
+    const v = [{ x: 3.5, y: 2.25 }, { x: 29.25, y: 7.5 }, { x: 9.75, y: 21.5 }];
+    const svg = newSvg(figure, W * S, H * S, 0.4);
+    const blockLayer = el("g", {}, svg);
+    const cellLayer = el("g", {}, svg);
+    const lines = el("g", { class: "live-grid" }, svg);
+    for (let x = 0; x <= W; ++x) el("line", { x1: x * u, y1: 0, x2: x * u, y2: H * u }, lines);
+    for (let y = 0; y <= H; ++y) el("line", { x1: 0, y1: y * u, x2: W * u, y2: y * u }, lines);
+    const blockLines = el("g", { class: "live-block-grid" }, svg);
+    for (let x = 0; x <= W; x += B) el("line", { x1: x * u, y1: 0, x2: x * u, y2: H * u }, blockLines);
+    for (let y = 0; y <= H; y += B) el("line", { x1: 0, y1: y * u, x2: W * u, y2: y * u }, blockLines);
+    const outline = el("polygon", { class: "live-triangle" }, svg);
+    const names = ["", "rejected", "accepted", "tested", "walked directly"];
+    function update() {
+      const covered = m.ep_blocks(v[0].x, v[0].y, v[1].x, v[1].y, v[2].x, v[2].y, W, H);
+      if (covered < 0) return false;
+      const cells = m.cells(W * H + (W / B) * (H / B));
+      blockLayer.replaceChildren();
+      cellLayer.replaceChildren();
+      const pixels = [], blocks = [], count = [0, 0, 0, 0, 0];
+      for (let j = 0; j < H / B; ++j) {
+        for (let i = 0; i < W / B; ++i) {
+          const c = cells[W * H + j * (W / B) + i];
+          blocks.push(c);
+          ++count[c];
+          if (c) {
+            el("rect", { x: i * B * u, y: j * B * u, width: B * u, height: B * u,
+                         class: `live-block-${names[c].split(" ")[0]}` }, blockLayer);
+          }
+        }
+      }
+      for (let y = 0; y < H; ++y) {
+        for (let x = 0; x < W; ++x) {
+          if (cells[y * W + x] !== 1) continue;
+          pixels.push([x, y]);
+          el("circle", { cx: (x + 0.5) * u, cy: (y + 0.5) * u, r: 3.5, class: "live-tie-won" },
+             cellLayer);
+        }
+      }
+      outline.setAttribute("points", v.map((p) => `${p.x * u},${p.y * u}`).join(" "));
+      const verdicts = count[4] ? `its bounding box lies within one block, walked pixel by pixel`
+        : `of the blocks its bounding box meets, ${count[1]} rejected, ${count[2]} accepted ` +
+          `(filled without a test) and ${count[3]} tested pixel by pixel`;
+      show(figure, { vertices: v.map((p) => [p.x, p.y]), covered, pixels, blocks },
+           `v0 ${point(v[0])}, v1 ${point(v[1])}, v2 ${point(v[2])}: ${verdicts}; ` +
+           `${covered} pixels covered.`);
+      return true;
+    }
+    vertexHandles(svg, v, W, H, update, S);
+    update();
+  }
+
+  // Chapter 8: a floor tilted by the reader, each pixel coloured by its level of detail.
+  function floorLevel(figure, m) {
+    const W = 48, H = 32, P = 10; // P: SVG units per image pixel
+    const tilt = { x: 60, y: 0 }, distance = { x: 6, y: 0 };
+    const svg = newSvg(figure, (W * P) / CELL, (H * P + 100) / CELL, 0.4);
+    const paint = pixelImage(svg, W, H, P);
+    el("rect", { x: 0, y: 0, width: W * P, height: H * P, class: "live-outline" }, svg);
+    // Level bands: magnified (level < 0), then [0, 1), [1, 2), ... [5, infinity).
+    const bands = [[236, 240, 244], [44, 123, 182], [171, 217, 233], [255, 255, 191],
+                   [253, 174, 97], [215, 25, 28], [123, 50, 148]];
+    const bandNames = ["< 0", "0", "1", "2", "3", "4", "5+"];
+    const band = (level) => level < 0 ? 0 : Math.min(6, 1 + Math.floor(level));
+    const legend = el("g", { transform: `translate(0,${H * P + 14})` }, svg);
+    bands.forEach((c, i) => {
+      el("rect", { x: 44 * i, y: 0, width: 16, height: 12, fill: `rgb(${c.join(",")})`,
+                   class: "live-swatch" }, legend);
+      el("text", { x: 44 * i + 19, y: 11, class: "live-label" }, legend).textContent = bandNames[i];
+    });
+    el("text", { x: 44 * 7 + 4, y: 11, class: "live-label" }, legend).textContent = "level";
+    const sliders = el("g", { transform: `translate(0,${H * P + 50})` }, svg);
+    const tiltLine = el("g", { transform: "translate(10,0)" }, sliders);
+    el("line", { x1: 0, y1: 0, x2: 80 * 2.5, y2: 0, class: "live-axis" }, tiltLine);
+    const tiltLabel = el("text", { x: 80 * 2.5 + 12, y: 5, class: "live-label" }, tiltLine);
+    const distanceLine = el("g", { transform: "translate(10,36)" }, sliders);
+    el("line", { x1: 4 * 25, y1: 0, x2: 12 * 25, y2: 0, class: "live-axis" }, distanceLine);
+    const distanceLabel = el("text", { x: 12 * 25 + 12, y: 5, class: "live-label" }, distanceLine);
+    const n = (x) => Number(x.toPrecision(6));
+    function update() {
+      const covered = m.ep_level(tilt.x, distance.x);
+      if (covered < 0) return false;
+      const cells = m.cells(W * H);
+      const values = m.values(W * H + 2);
+      const levels = [], count = [0, 0, 0, 0, 0, 0, 0];
+      for (let i = 0; i < W * H; ++i) {
+        levels.push(cells[i] === 1 ? values[i] : null);
+        if (cells[i] === 1) ++count[band(values[i])];
+      }
+      paint((i) => levels[i] === null ? [255, 255, 255] : bands[band(levels[i])]);
+      tiltLabel.textContent = `tilt ${tilt.x}°`;
+      distanceLabel.textContent = `distance ${distance.x}`;
+      const centre = values[W * H], closed = values[W * H + 1];
+      const shares = count.map((c, i) => c ? `${c} at level ${bandNames[i]}` : "")
+        .filter((t) => t).join(", ");
+      show(figure, { tilt: tilt.x, distance: distance.x, covered, levels, centre, closedForm: closed },
+           `Tilt ${tilt.x}°, distance ${distance.x}: ${covered} pixels of floor, ${shares}. ` +
+           `At the image centre the level is ${n(centre)}; the closed form ` +
+           `log2(s d / (f cos a)) gives ${n(closed)}.`);
+      return true;
+    }
+    handle(tiltLine, "floor tilt in degrees", tilt, 5, { x0: 0, y0: 0, x1: 80, y1: 0, bigStep: 15 },
+           update, 2.5 / CELL);
+    handle(distanceLine, "floor distance", distance, 0.5, { x0: 4, y0: 0, x1: 12, y1: 0, bigStep: 2 },
+           update, 25 / CELL);
+    update();
+  }
+
+  // Chapter 7: the camera moved about a small scene (web/live_scene.hpp), drawn by
+  // render_scene, with what the geometry and depth stages decided.
+  function sceneCamera(figure, m) {
+    const W = 64, H = 40, P = 6;   // the image, SVG units per pixel
+    const R = 7, S = 16;           // the plan reaches +-R world units, S SVG units each
+    const cam = { x: 4, y: 5 };    // the camera on the plan: world x and -z (down = -z)
+    const planX = W * P + 24 + R * S, planY = R * S;
+    const svg = newSvg(figure, (W * P + 24 + 2 * R * S) / CELL,
+                       Math.max(H * P + 40, 2 * R * S) / CELL, 0.4);
+    const paint = pixelImage(svg, W, H, P);
+    el("rect", { x: 0, y: 0, width: W * P, height: H * P, class: "live-outline" }, svg);
+    const plan = el("g", { transform: `translate(${planX},${planY})` }, svg);
+    el("rect", { x: -R * S, y: -R * S, width: 2 * R * S, height: 2 * R * S,
+                 class: "live-outline" }, plan);
+    const tris = el("g", {}, plan);
+    const clip = el("clipPath", { id: "live-plan-clip" }, plan);
+    el("rect", { x: -R * S, y: -R * S, width: 2 * R * S, height: 2 * R * S }, clip);
+    const wedge = el("g", { "clip-path": "url(#live-plan-clip)" }, plan);
+    const kinds = ["drawn", "rejected", "clipped", "culled"];
+    const legend = el("g", { transform: `translate(0,${H * P + 22})` }, svg);
+    kinds.forEach((k, i) => {
+      el("rect", { x: 92 * i, y: 0, width: 16, height: 12, class: `live-tri-${k}` }, legend);
+      el("text", { x: 92 * i + 20, y: 11, class: "live-label" }, legend).textContent = k;
+    });
+    const hfov = Math.atan(Math.tan(Math.PI / 6) * W / H); // half the horizontal angle
+    function update() {
+      const count = m.ep_scene(cam.x, -cam.y);
+      if (count < 0) return false;
+      const cells = m.cells(2576 + 4 * count);
+      const corners = m.values(6 * count);
+      const image = Array.from(cells.subarray(0, W * H));
+      paint((i) => [image[i] >> 16 & 255, image[i] >> 8 & 255, image[i] & 255]);
+      const r = Array.from(cells.subarray(2560, 2570));
+      const reason = m.text();
+      const flags = [], culledPieces = [], pieces = [], pixels = [];
+      tris.replaceChildren();
+      for (let k = 0; k < count; ++k) {
+        const t = cells.subarray(2576 + 4 * k, 2580 + 4 * k);
+        flags.push(t[0]);
+        culledPieces.push(t[1]);
+        pieces.push(t[2]);
+        pixels.push(t[3]);
+        const kind = t[0] & 1 ? "rejected" : t[2] === 0 && t[1] > 0 ? "culled"
+          : t[0] & 2 ? "clipped" : "drawn";
+        const points = [0, 1, 2].map((c) =>
+          `${corners[6 * k + 2 * c] * S},${-corners[6 * k + 2 * c + 1] * S}`).join(" ");
+        el("polygon", { points, class: `live-tri-${kind}` }, tris);
+      }
+      // The horizontal field of view, drawn from the camera towards the target (the
+      // plan's origin; atan2 of the plan's y, which points down, that is towards -z).
+      wedge.replaceChildren();
+      for (const side of [-1, 1]) {
+        const a = Math.atan2(-cam.y, -cam.x) + side * hfov;
+        el("line", { x1: cam.x * S, y1: cam.y * S, x2: (cam.x + 30 * Math.cos(a)) * S,
+                     y2: (cam.y + 30 * Math.sin(a)) * S, class: "live-axis" }, wedge);
+      }
+      const [geometry, rejected, clipped, culled, drawn, covered, depthOn, tested, hidden] = r;
+      show(figure, { camera: [cam.x, -cam.y], triangles: count, geometry, rejected, clipped,
+                     culled, drawn, covered, depthOn: depthOn === 1, tested, hidden, reason,
+                     flags, culledPieces, pieces, pixels, image },
+           `Camera at (${cam.x}, 1.5, ${-cam.y}), looking at (0, 0.8, 0): of ${count} ` +
+           `triangles, ${rejected} rejected (wholly outside one plane of the view volume), ` +
+           `${clipped} clipped (cut at the near plane, the far plane at depth 12 or the ` +
+           `guard band), ${culled} culled (back faces); ${drawn} drawn, covering ` +
+           `${covered} pixels. Depth stage ${depthOn ? "on" : "off"} (${reason})` +
+           (depthOn ? `: ${tested} pixels tested, ${hidden} hidden.` : "."));
+      return true;
+    }
+    handle(plan, "camera", cam, 1 / 4, { x0: -R, y0: -R, x1: R, y1: R, bigStep: 1 }, update,
+           S / CELL);
+    update();
+  }
+
   const figures = { "ch00-edge-centres": edgeCentres, "ch01-scanline": scanline, "ch02-fill-rule": fillRule,
                     "ch03-span-mappers": spanMappers,
-                    "ch04-texel-rule": texelRule };
+                    "ch04-texel-rule": texelRule, "ch02-blocks": blockWalk,
+                    "ch07-scene": sceneCamera, "ch08-level": floorLevel };
 
   async function start() {
     const all = document.querySelectorAll("figure[data-live]");

@@ -14,8 +14,13 @@
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/gradients.hpp"
 #include "exactpixels/raster/scanline.hpp"
+#include "exactpixels/scene/scene_renderer.hpp"
+#include "exactpixels/texture/level_of_detail.hpp"
+#include "exactpixels/texture/perspective.hpp"
 #include "exactpixels/texture/rounding.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
+
+#include "live_scenes.hpp"
 
 #include <algorithm>
 #include <array>
@@ -29,12 +34,23 @@ using namespace exactpixels;
 
 namespace {
 
-// The largest figure: 32 x 32 pixels, one cell each.
+// The largest grid figure: 32 x 32 pixels, one cell each.
 constexpr int max_side = 32;
-std::int32_t cells[max_side * max_side];
-// Real-valued answers (chapter 3's u along a span): 4 mappers x 64 pixels.
+// The answers: 4096 cells (chapter 7's image and its triangles are the most) and 4096
+// real values (chapter 8's levels, 48 x 32, are the most).
+constexpr int cell_count = 4096;
+std::int32_t cells[cell_count];
 constexpr int span_pixels = 64;
-double values[4 * span_pixels + 4];
+double values[4096];
+
+// Text answers (a reason, a message), NUL-terminated.
+char text[256];
+
+void copy_text(const std::string& s) {
+    const std::size_t n = std::min(s.size(), sizeof text - 1);
+    std::copy(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(n), text);
+    text[n] = '\0';
+}
 
 bool in_figure(double v, int side) {
     return std::isfinite(v) && v >= -1 && v <= side + 1;
@@ -53,14 +69,19 @@ bool triangle_fits(std::array<double, 3> x, std::array<double, 3> y, int width, 
 
 } // namespace
 
-/// Where the figures' answers are written: max_side * max_side 32-bit cells.
+/// Where the figures' answers are written: 4096 32-bit cells.
 EXPORT("ep_cells") std::int32_t* ep_cells() {
     return cells;
 }
 
-/// Where the real-valued answers are written: 4 * 64 + 4 doubles.
+/// Where the real-valued answers are written: 4096 doubles.
 EXPORT("ep_values") double* ep_values() {
     return values;
+}
+
+/// Where text answers are written: a NUL-terminated string of at most 255 bytes.
+EXPORT("ep_text") const char* ep_text() {
+    return text;
 }
 
 /// Chapter 3, the mappers along one span: 64 pixels, u from 0 at pixel 0 to 64 at pixel
@@ -270,4 +291,155 @@ int ep_edge_centres(double ax, double ay, double bx, double by, int width, int h
     cells[width * height] = twos(b.x - a.x);
     cells[width * height + 1] = twos(b.y - a.y);
     return count;
+}
+
+
+/// Chapter 2, blocks of 8 x 8 pixels: the triangle (x0, y0), (x1, y1), (x2, y2), snapped
+/// to 1/256 px, in a width x height grid (multiples of 8). Cell y * width + x is 1 for a
+/// pixel traverse_blocks emits (the plain block walk of @sec:edge-blocks), else 0. Cell
+/// width * height + j * (width / 8) + i is the block in column i, row j of blocks:
+/// 0 outside the bounding box (pixel_bounds), 1 rejected, 2 accepted, 3 partial (tested
+/// pixel by pixel), as classify_block says of the block cut to the box, or 4 for every
+/// block of a box within one block, which traverse_blocks walks pixel by pixel without
+/// classifying. Returns the number of pixels emitted, or -1 for inputs outside the figure.
+EXPORT("ep_blocks")
+int ep_blocks(double x0, double y0, double x1, double y1, double x2, double y2, int width,
+              int height) {
+    if (!triangle_fits({x0, x1, x2}, {y0, y1, y2}, width, height) || width % block_size ||
+        height % block_size) {
+        return -1;
+    }
+    const std::array<FixedPoint2, 3> v = {snap_to_subpixel(Point2{x0, y0}),
+                                          snap_to_subpixel(Point2{x1, y1}),
+                                          snap_to_subpixel(Point2{x2, y2})};
+    const int columns = width / block_size, rows = height / block_size;
+    std::fill(cells, cells + width * height + columns * rows, 0);
+    const EdgeSetup<FixedEdge> s = setup_edges(v);
+    const PixelRect box = pixel_bounds(v, Viewport{width, height});
+    if (s.empty || box.empty()) {
+        return 0;
+    }
+    int emitted = 0;
+    auto emit = [&](int x, int y) {
+        cells[y * width + x] = 1;
+        ++emitted;
+    };
+    traverse_blocks(s, box, emit);
+    const bool one_block =
+        box.x_end - box.x_begin <= block_size && box.y_end - box.y_begin <= block_size;
+    for (int j = 0; j < rows; ++j) {
+        for (int i = 0; i < columns; ++i) {
+            const PixelRect b{std::max(i * block_size, box.x_begin),
+                              std::max(j * block_size, box.y_begin),
+                              std::min((i + 1) * block_size, box.x_end),
+                              std::min((j + 1) * block_size, box.y_end)};
+            int verdict = 0;
+            if (!b.empty()) {
+                verdict = one_block ? 4 : 1 + static_cast<int>(classify_block(s, b));
+            }
+            cells[width * height + j * columns + i] = verdict;
+        }
+    }
+    return emitted;
+}
+
+/// Chapter 8, the level of detail on a tilted floor (live::tilted_floor, which holds
+/// its size and camera): its two triangles rasterized by edge_rasterize_pixels into
+/// 48 x 32 pixels; at each covered pixel centre values[y * 48 + x] is isotropic_level of
+/// derivatives_at, the level chapter 8 reads, and cells[y * 48 + x] is 1 (0 where not
+/// covered, values 0). values[1536] is the level at the image centre, where the view
+/// axis meets the floor, and values[1537] its closed form log2(s d / (f cos a))
+/// (@sec:level). Returns the number of covered pixels, or -1 for a tilt outside [0, 80]
+/// degrees or a distance outside [4, 12].
+EXPORT("ep_level")
+int ep_level(double tilt, double distance) {
+    if (!live::floor_allowed(tilt, distance)) {
+        return -1;
+    }
+    constexpr int width = live::floor_width, height = live::floor_height;
+    const auto triangles = live::tilted_floor(tilt, distance);
+    std::fill(cells, cells + width * height, 0);
+    std::fill(values, values + width * height + 2, 0.0);
+    int covered = 0;
+    for (const auto& t : triangles) {
+        const std::array<FixedPoint2, 3> v = {snap_to_subpixel(t[0].position),
+                                              snap_to_subpixel(t[1].position),
+                                              snap_to_subpixel(t[2].position)};
+        edge_rasterize_pixels(v, Viewport{width, height}, [&](int x, int y) {
+            cells[y * width + x] = 1;
+            values[y * width + x] =
+                isotropic_level(derivatives_at(t, Point2{x + 0.5, y + 0.5}));
+            ++covered;
+        });
+    }
+    const Pinhole lens = live::floor_lens();
+    values[width * height] = isotropic_level(derivatives_at(triangles[0], lens.centre));
+    values[width * height + 1] =
+        std::log2(live::floor_texels_per_unit * distance /
+                  (lens.focal * std::cos(tilt * std::acos(-1.0) / 180.0)));
+    return covered;
+}
+
+/// Chapter 7, the camera moved about a small scene (live_scenes.hpp) standing at
+/// (x, 1.5, z), rendered by render_scene. Cells:
+///   y * 64 + x (the first 64 x 40)  the pixel's colour, 0xRRGGBB;
+///   2560 to 2569  the report: geometry, rejected, clipping and culling triangles,
+///                 raster triangles and pixels, whether the depth stage ran, the pixels
+///                 it tested and those it hid, and the number of triangles n;
+///   2576 + 4k to 2579 + 4k  triangle k of the scene (meshes in order): what the
+///                 geometry stage did to it, as render_scene reports it for a scene
+///                 holding that triangle alone (the stage treats each triangle on its
+///                 own): bit 0 rejected, bit 1 clipped; the pieces culled; the pieces
+///                 drawn; the pixels they cover.
+/// values[2k], values[2k + 1], ... the floor-plan (x, z) of triangle k's three corners,
+/// six per triangle. The text at ep_text() is the depth plan's reason (depth_reason).
+/// Returns the number of triangles, or -1 where the camera may not stand
+/// (live::camera_allowed).
+EXPORT("ep_scene")
+int ep_scene(double x, double z) {
+    if (!live::camera_allowed(x, z)) {
+        return -1;
+    }
+    const Scene scene = live::live_scene(x, z);
+    const RenderResult whole = render_scene(scene);
+    const int width = scene.width, height = scene.height;
+    static_assert(live::scene_width * live::scene_height <= 2560);
+    for (int y = 0; y < height; ++y) {
+        for (int i = 0; i < width; ++i) {
+            const Rgba8 p = whole.image.at(i, y);
+            cells[y * width + i] = (p.r << 16) | (p.g << 8) | p.b;
+        }
+    }
+    const RenderReport& r = whole.report;
+    std::int32_t* report = cells + 2560;
+    const long long counts[] = {r.geometry.triangles, r.rejected.triangles,
+                                r.clipping.triangles, r.culling.triangles,
+                                r.raster.triangles,   r.raster.pixels,
+                                r.depth_on ? 1 : 0,   r.depth.pixels,
+                                r.hidden.pixels};
+    for (int k = 0; k < 9; ++k) {
+        report[k] = static_cast<std::int32_t>(counts[k]);
+    }
+    copy_text(r.depth_reason);
+    int n = 0;
+    for (const SceneMesh& mesh : scene.meshes) {
+        for (const auto& triangle : mesh.triangles) {
+            Scene alone = scene;
+            alone.meshes = {mesh};
+            alone.meshes[0].triangles = {triangle};
+            const RenderReport one = render_scene(alone).report;
+            std::int32_t* t = cells + 2576 + 4 * n;
+            t[0] = (one.rejected.triangles > 0 ? 1 : 0) | (one.clipping.triangles > 0 ? 2 : 0);
+            t[1] = static_cast<std::int32_t>(one.culling.triangles);
+            t[2] = static_cast<std::int32_t>(one.raster.triangles);
+            t[3] = static_cast<std::int32_t>(one.raster.pixels);
+            for (int c = 0; c < 3; ++c) {
+                values[6 * n + 2 * c] = triangle[c].position.x;
+                values[6 * n + 2 * c + 1] = triangle[c].position.z;
+            }
+            ++n;
+        }
+    }
+    report[9] = n;
+    return n;
 }
