@@ -70,8 +70,7 @@
 // `--report` prints format_report of the median of seven renders (by total time) of each
 // drawn RUN; `--png=FILE` writes our render of the full scene. `--fast=NAMES` (before
 // --once, --report or --png) makes our side use only the named fast paths (FastPaths,
-// scene_renderer.hpp), a comma-separated list of screen_accept, masked_fetch,
-// unlit_geometry and lean_spans, or
+// scene_renderer.hpp), a comma-separated list of masked_fetch and lean_spans, or
 // `none` for the plain path: the instruction count of each fast path is the difference
 // it makes.
 #define GL_GLEXT_PROTOTYPES 1
@@ -124,12 +123,8 @@ bool read_fast_paths(const std::string& names) {
     while (at <= names.size()) {
         const std::size_t comma = std::min(names.find(',', at), names.size());
         const std::string name = names.substr(at, comma - at);
-        if (name == "screen_accept") {
-            fast_paths.screen_accept = true;
-        } else if (name == "masked_fetch") {
+        if (name == "masked_fetch") {
             fast_paths.masked_fetch = true;
-        } else if (name == "unlit_geometry") {
-            fast_paths.unlit_geometry = true;
         } else if (name == "lean_spans") {
             fast_paths.lean_spans = true;
         } else if (name != "none") {

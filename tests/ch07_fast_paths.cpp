@@ -1,13 +1,16 @@
 // Chapter 7 tests: the renderer's fast paths (FastPaths) are speed tricks only. With
 // them on and off, every shipped scene and the big torus of the speed comparison give
-// the same pixels, the same texel coordinates and the same report counts; random
-// triangles placed on and around the screen's edges, the guard band, the near and the
-// far plane are rejected, clipped and drawn alike; the masked texel fetch reads the
-// texel fetch_texel reads.
+// the same pixels, the same texel coordinates and the same report counts; the masked
+// texel fetch reads the texel fetch_texel reads. The geometry stage's indexed mesh: its
+// outcodes reject and clip random triangles placed on and around the screen's edges,
+// the guard band, the near and the far plane as the view volume's plane tests do, and
+// a mesh drawn from its own index, from one made again after a change or from none
+// gives the same picture.
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/lab/model_generator.hpp"
+#include "exactpixels/scene/camera.hpp"
 #include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
@@ -21,6 +24,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -129,17 +133,25 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
     REQUIRE(scene.meshes.size() == 1);
     CHECK(scene.meshes[0].triangles.size() == 102400);
     // A closed grid of 400 x 128 quads: each position is shared by six corners, and
-    // unlit_geometry moves each once.
+    // the geometry stage moves each once.
     CHECK(scene.meshes[0].positions.size() == 400 * 128);
     check_fast_is_plain(scene);
-    // Corners changed after loading no longer match their shared positions: those
-    // triangles are moved corner by corner, and the picture is still the plain one.
+    // Corners changed after loading, the index made again: the picture changes, and is
+    // the one the stage draws from a mesh without an index, which it indexes itself.
     Scene changed = scene;
     for (std::size_t t = 0; t < changed.meshes[0].triangles.size(); t += 97) {
         glm::dvec3& p = changed.meshes[0].triangles[t][t % 3].position;
         p = p * 1.001;
     }
+    share_positions(changed.meshes[0]);
     check_fast_is_plain(changed);
+    Scene unindexed = changed;
+    unindexed.meshes[0].positions.clear();
+    unindexed.meshes[0].corner_positions.clear();
+    const RenderResult from_index = render_scene(changed);
+    CHECK(from_index.image != render_scene(scene).image);
+    CHECK(render_scene(unindexed).image == from_index.image);
+    check_same_report(render_scene(unindexed).report, from_index.report);
     // Each fast path alone (as big_scene.sh counts their instructions), on the torus and
     // on it without depth, where every pixel a triangle covers is written: the same
     // pixels and counts as the plain path. All of them together is the check above.
@@ -147,11 +159,10 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
     no_depth.options.depth = DepthMode::off;
     for (const Scene* s : std::array<const Scene*, 2>{&scene, &no_depth}) {
         const RenderResult plain = render_scene(*s, nullptr, plain_paths);
-        for (int path = 0; path < 4; ++path) {
+        for (int path = 0; path < 2; ++path) {
             INFO("fast path " << path << (s == &scene ? ", depth on" : ", depth off"));
             FastPaths alone = plain_paths;
-            bool* const flags[] = {&alone.screen_accept, &alone.masked_fetch,
-                                   &alone.unlit_geometry, &alone.lean_spans};
+            bool* const flags[] = {&alone.masked_fetch, &alone.lean_spans};
             *flags[path] = true;
             const RenderResult fast = render_scene(*s, nullptr, alone);
             CHECK(fast.image == plain.image);
@@ -181,16 +192,21 @@ TEST_CASE("share_positions lists each distinct position once, bit for bit") {
     CHECK(mesh.corner_positions[0] == std::array<std::uint32_t, 3>{0, 1, 2});
     CHECK(mesh.corner_positions[1] == std::array<std::uint32_t, 3>{0, 2, 3});
     CHECK(mesh.corner_positions[2] == std::array<std::uint32_t, 3>{4, 1, 3});
+    const auto bits = [](const glm::dvec3& p) {
+        return std::array<std::uint64_t, 3>{std::bit_cast<std::uint64_t>(p.x),
+                                            std::bit_cast<std::uint64_t>(p.y),
+                                            std::bit_cast<std::uint64_t>(p.z)};
+    };
     for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
         for (std::size_t k = 0; k < 3; ++k) {
-            CHECK(same_bits(mesh.positions[mesh.corner_positions[t][k]],
-                            mesh.triangles[t][k].position));
+            CHECK(bits(mesh.positions[mesh.corner_positions[t][k]]) ==
+                  bits(mesh.triangles[t][k].position));
         }
     }
-    CHECK(!same_bits({0.0, 0.0, 0.0}, {-0.0, 0.0, 0.0}));
 }
 
-TEST_CASE("screen_accept decides as the view volume's planes on triangles at its edges") {
+TEST_CASE(
+    "outcodes reject and clip as the view volume's planes on triangles at its edges") {
     // Corners placed on screen at and around each line the tests compare with: the
     // screen's edges, the guard band's, the margin inside them; at depths at and
     // around the near and the far plane. A corner (px, py) at depth z is the view-space
@@ -272,11 +288,51 @@ TEST_CASE("screen_accept decides as the view volume's planes on triangles at its
             positions, uvs);
         const Scene scene = parse_scene(toml, "edges.toml", ".");
         check_fast_is_plain(scene);
+        // The counts the view volume's plane tests give, corner by corner, triangle by
+        // triangle (outside_one, then any_outside), as chapter 6 states them.
+        const CameraFrame frame = camera_frame(scene.camera);
+        const ViewVolume volume = view_volume(scene, pinhole(scene));
+        long long rejected = 0, cut = 0;
+        for (const auto& triangle : scene.meshes.at(0).triangles) {
+            std::array<ViewVertex, 3> view{};
+            for (std::size_t k = 0; k < 3; ++k) {
+                const glm::dvec3 d = triangle[k].position - frame.eye;
+                view[k] = {{glm::dot(d, frame.right), glm::dot(d, frame.up),
+                            glm::dot(d, frame.forward)},
+                           triangle[k].uv};
+            }
+            if (outside_one(volume.reject, view)) {
+                rejected += 1;
+            } else if (any_outside(volume.clip, view)) {
+                cut += 1;
+            }
+        }
         // The scene reaches every case: some triangles rejected, some cut, some drawn.
         const RenderReport report = render_scene(scene).report;
+        CHECK(report.rejected.triangles == rejected);
+        CHECK(report.clipping.triangles == cut);
         CHECK(report.rejected.triangles > 0);
         CHECK(report.clipping.triangles > 0);
         CHECK(report.raster.triangles > 1000);
+        // Every stored corner is project_vertex's projection of its view-space point,
+        // with 1/w (or -z) as the depth stage wants it: the stage projects each moved
+        // position once, with project()'s arithmetic written out.
+        RenderReport geometry_report;
+        const SceneGeometry geometry = run_geometry(scene, geometry_report);
+        const Pinhole lens = pinhole(scene);
+        long long corners = 0, differ = 0;
+        for (const ScreenTriangle& t : geometry.meshes.at(0)) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                const TexturedVertex p =
+                    project_vertex(scene, lens, {t.points[k], t.corners[k].uv});
+                const double nearness = perspective ? 1.0 / p.w : -t.points[k].z;
+                corners += 1;
+                differ += !(p.position == t.corners[k].position &&
+                            p.w == t.corners[k].w && nearness == t.nearness[k]);
+            }
+        }
+        CHECK(corners > 3000);
+        CHECK(differ == 0);
     }
 }
 
@@ -364,11 +420,12 @@ TEST_CASE("texture planes and rounding from shared quotients are those of the co
     }
 }
 
-TEST_CASE("unlit_geometry stops a corner that is not finite as the plain path does") {
+TEST_CASE("the geometry stage stops a corner that is not finite, naming the triangle") {
     // The loader's limits keep u/w finite; a scene made in code need not. Under float
     // precision a texture coordinate of 1e45 texels gives u/w beyond the largest float at
-    // every depth the horizon has: the fast path's bound fails and check_finite throws
-    // the plain path's message, naming the same mesh and the same triangle.
+    // every depth the horizon has: the stage's tests of the moved position and the
+    // corner's uv fail and check_finite throws its message, naming the mesh and the
+    // triangle, with every fast path and without.
     Scene scene = load_scene(shipped_scene_folder() / "horizon.toml");
     REQUIRE(scene.lights.empty());
     scene.options.precision = Precision::float32;
@@ -388,6 +445,6 @@ TEST_CASE("unlit_geometry stops a corner that is not finite as the plain path do
     const std::string plain = message(plain_paths);
     INFO(plain);
     CHECK(plain.find("not finite in float") != std::string::npos);
+    CHECK(plain.find(mesh.origin + ": triangle ") == 0);
     CHECK(message(FastPaths{}) == plain);
-    CHECK(message(FastPaths{false, false, true, false}) == plain); // unlit_geometry alone
 }

@@ -15,7 +15,7 @@
 #   LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch07_frame_once \
 #       bench_ch07_big_scene --once=NAME
 # (and for our full scene also with --fast=none, and --fast=NAME for each fast path,
-# screen_accept, masked_fetch, unlit_geometry and lean_spans, before --once: the plain
+# masked_fetch and lean_spans, before --once: the plain
 # path and each fast path alone)
 # which counts one frame after an uncounted first one (llvmpipe compiles its code then;
 # LP_NUM_THREADS=0 makes it rasterize in the counted thread). Writes Markdown tables whose
@@ -163,9 +163,7 @@ instructions() {
     lp_empty=$(instructions llvmpipe/empty)
     ours_flat=$(instructions ours/flat)
     ours_plain=$(instructions ours/full none)
-    ours_accept=$(instructions ours/full screen_accept)
     ours_masked=$(instructions ours/full masked_fetch)
-    ours_unlit=$(instructions ours/full unlit_geometry)
     ours_lean=$(instructions ours/full lean_spans)
     echo "| run | instructions |"
     echo "|:--|--:|"
@@ -184,9 +182,7 @@ instructions() {
     echo "| run | instructions |"
     echo "|:--|--:|"
     echo "| instructions ours full plain | $ours_plain |"
-    echo "| instructions ours full screen_accept | $ours_accept |"
     echo "| instructions ours full masked_fetch | $ours_masked |"
-    echo "| instructions ours full unlit_geometry | $ours_unlit |"
     echo "| instructions ours full lean_spans | $ours_lean |"
     echo
     echo "The same in millions:"
@@ -199,12 +195,8 @@ instructions() {
     echo "| instructions ours empty millions | $(ratio "$ours_empty" 1000000) |"
     echo "| instructions llvmpipe empty millions | $(ratio "$lp_empty" 1000000) |"
     echo "| instructions ours full plain millions | $(ratio "$ours_plain" 1000000) |"
-    echo "| instructions ours full screen_accept millions |" \
-         "$(ratio "$ours_accept" 1000000) |"
     echo "| instructions ours full masked_fetch millions |" \
          "$(ratio "$ours_masked" 1000000) |"
-    echo "| instructions ours full unlit_geometry millions |" \
-         "$(ratio "$ours_unlit" 1000000) |"
     echo "| instructions ours full lean_spans millions |" \
          "$(ratio "$ours_lean" 1000000) |"
     "$bench" --report >"$scratch/report.txt"

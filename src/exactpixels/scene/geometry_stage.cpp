@@ -1,6 +1,7 @@
-// geometry_stage.cpp: chapter 7's geometry stage (scene_renderer.hpp declares it): every
-// triangle of every mesh to view space, rejected, lit per vertex, clipped, projected and
-// culled, with the fast variants of FastPaths beside the plain steps.
+// geometry_stage.cpp: chapter 7's geometry stage (scene_renderer.hpp declares it). Every
+// mesh is an indexed mesh: each distinct position is moved to view space, given its
+// outcode, projected and checked once; each triangle is then rejected, lit per vertex,
+// clipped and culled from its corners' outcodes, projections and attributes.
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/raster/fill_work.hpp"
 #include "exactpixels/scene/camera.hpp"
@@ -13,9 +14,10 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -40,184 +42,142 @@ std::vector<std::array<ViewVertex, 3>> fan(const ClippedPolygon& polygon) {
     return out;
 }
 
-/// Chapter 6's clipping, at every plane of `planes`, of a triangle, its vertex colours
-/// and its normals. clip_triangle carries the texture coordinate; colours and normals
-/// are linear along view-space edges too, so more passes with them in place of uv, two
-/// numbers at a time, cut them at the same parameters (the cuts depend only on the
-/// positions). A cut normal is shorter than 1; the lighting stage renormalises it.
-std::vector<ClippedCorners> clip_corners(const std::array<ViewVertex, 3>& view,
-                                         const std::array<Colour, 3>& colours,
-                                         const std::array<glm::dvec3, 3>& normals,
+/// Three numbers per corner of `view` (a colour, a normal) at the corners of the pieces
+/// clip_triangle cuts `view` into at `planes`: clip_triangle carries two numbers as the
+/// texture coordinate, and the cuts depend only on the positions, so two more passes
+/// with the values in place of uv cut them at the same parameters.
+std::vector<std::array<glm::dvec3, 3>>
+clip_values(const std::array<ViewVertex, 3>& view,
+            const std::array<glm::dvec3, 3>& values,
+            const std::vector<ViewPlane>& planes) {
+    std::array<ViewVertex, 3> xy = view, z = view;
+    for (std::size_t k = 0; k < 3; ++k) {
+        xy[k].uv = {values[k].x, values[k].y};
+        z[k].uv = {values[k].z, 0.0};
+    }
+    const auto cxy = fan(clip_triangle(xy, planes)), cz = fan(clip_triangle(z, planes));
+    assert(cxy.size() == cz.size());
+    std::vector<std::array<glm::dvec3, 3>> out(cxy.size());
+    for (std::size_t t = 0; t < out.size(); ++t) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            assert(cxy[t][k].position == cz[t][k].position);
+            out[t][k] = {cxy[t][k].uv.x, cxy[t][k].uv.y, cz[t][k].uv.x};
+        }
+    }
+    return out;
+}
+
+/// Chapter 6's clipping, at every plane of `planes`, of a triangle with its texture
+/// coordinates, and its vertex colours and normals where asked (clip_values). A cut
+/// normal is shorter than 1; the lighting stage renormalises it.
+std::vector<ClippedCorners> clip_corners(const ClippedCorners& whole,
                                          const std::vector<ViewPlane>& planes,
                                          bool with_colours, bool with_normals) {
-    const auto clip = [&](const std::array<ViewVertex, 3>& v) {
-        return fan(clip_triangle(v, planes));
-    };
-    const std::vector<std::array<ViewVertex, 3>> uv = clip(view);
-    std::vector<ClippedCorners> pieces(uv.size());
+    const std::vector<std::array<ViewVertex, 3>> uv =
+        fan(clip_triangle(whole.view, planes));
+    std::vector<ClippedCorners> pieces(uv.size(),
+                                       whole); // colours, normals unused unless asked
     for (std::size_t t = 0; t < pieces.size(); ++t) {
         pieces[t].view = uv[t];
-        pieces[t].colours = colours; // unused unless with_colours
-        pieces[t].normals = normals; // unused unless with_normals
     }
     if (with_normals) {
-        std::array<ViewVertex, 3> xy = view, z = view;
-        for (std::size_t k = 0; k < 3; ++k) {
-            xy[k].uv = {normals[k].x, normals[k].y};
-            z[k].uv = {normals[k].z, 0.0};
-        }
-        const auto cxy = clip(xy), cz = clip(z);
+        const auto normals = clip_values(whole.view, whole.normals, planes);
         for (std::size_t t = 0; t < pieces.size(); ++t) {
-            for (std::size_t k = 0; k < 3; ++k) {
-                pieces[t].normals[k] = {cxy[t][k].uv.x, cxy[t][k].uv.y, cz[t][k].uv.x};
-            }
+            pieces[t].normals = normals[t];
         }
     }
     if (with_colours) {
-        std::array<ViewVertex, 3> rg = view, b = view;
-        for (std::size_t k = 0; k < 3; ++k) {
-            rg[k].uv = {colours[k].r, colours[k].g};
-            b[k].uv = {colours[k].b, 0.0};
-        }
-        const auto crg = clip(rg), cb = clip(b);
+        const auto colours = clip_values(whole.view, whole.colours, planes);
         for (std::size_t t = 0; t < pieces.size(); ++t) {
-            for (std::size_t k = 0; k < 3; ++k) {
-                assert(crg[t][k].position == pieces[t].view[k].position);
-                pieces[t].colours[k] = {crg[t][k].uv.x, crg[t][k].uv.y, cb[t][k].uv.x};
-            }
+            pieces[t].colours = colours[t];
         }
     }
     return pieces;
 }
 
-//> screen-accept
-/// How far inside the screen's edges and the guard band's the fast test wants projected
-/// corners, px: one sub-pixel step. A corner's plane value for the screen line x = s is
-/// z (px - s) (z = 1 orthographic); computed in double, it and px are off by a few
-/// units of 2^-53 times numbers below 2^21 px, some 2^-30 px, so a corner this far
-/// inside a line on screen is inside its plane too (@eq:scene-screen-accept).
-constexpr double screen_accept_margin_px = 1.0 / 256.0;
+//> outcodes
+/// The most planes a view volume has: the screen's four edges, near, far, and the
+/// guard band's four.
+constexpr std::size_t max_outcode_planes = 10;
 
-/// The fast variant of the view-volume tests (FastPaths::screen_accept) for the common
-/// triangle. True when every corner lies between the near and far planes (compared as
-/// the planes compare: z >= near, z <= far) and projects at least
-/// screen_accept_margin_px inside the guard band, and the projected corners' box
-/// overlaps the screen by that margin on each side: then no plane of volume.clip has a
-/// corner outside and no plane of volume.reject has all three outside, as any_outside
-/// and outside_one would find (tests/ch07_fast_paths.cpp). Writes the projected corners
-/// (project_vertex's values, not yet checked for finite 1/w and uv/w) when it says yes;
-/// false means undecided, and the plain tests run. NaN and infinities fail a compare.
-bool screen_accept(const Scene& scene, const Pinhole& lens,
-                   const std::array<ViewVertex, 3>& view,
-                   std::array<TexturedVertex, 3>& corners) {
-    const bool perspective = scene.camera.projection == Projection::perspective;
-    for (const ViewVertex& v : view) {
-        const double z = v.position.z;
-        if (perspective && !(z >= scene.camera.near && z <= scene.camera.far)) {
-            return false; // before project_vertex, which refuses z <= 0
-        }
-        if (!std::isfinite(v.position.x) || !std::isfinite(v.position.y) ||
-            !std::isfinite(z)) {
-            return false; // project_vertex refuses these too
-        }
-    }
-    const double margin = screen_accept_margin_px;
-    const double band = guard_band_px - margin;
-    Point2 lo{band, band}, hi{-band, -band};
-    for (std::size_t k = 0; k < 3; ++k) {
-        corners[k] = project_vertex(scene, lens, view[k]);
-        const Point2 p = corners[k].position;
-        if (!(std::abs(p.x) <= band && std::abs(p.y) <= band)) {
-            return false;
-        }
-        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
-    }
-    return hi.x >= margin && lo.x <= scene.width - margin && hi.y >= margin &&
-           lo.y <= scene.height - margin;
-}
-//< screen-accept
-
-/// A mesh position as unlit_geometry moves it once for all the corners at it: in view
-/// space, projected, whether PerspectiveAccept::corner accepts it, and 1/w.
-struct MovedPosition {
-    glm::dvec3 view;       ///< view space
-    Point2 at;             ///< on screen (meaningful where `inside`)
-    double nearness = 0.0; ///< 1 / view.z
-    bool inside = false;   ///< between the planes and within the band
+/// The view volume's planes as bits of an outcode: bit i is set when a point lies
+/// outside plane i. A plane in both of the volume's lists (near, far) has one bit. The
+/// planes a x + b y + c z + d are held as four rows of coefficients, each plane once,
+/// then planes no point lies outside (0 x + 0 y + 0 z + 1: 1, or NaN where a coordinate
+/// is not finite), so that every outcode runs the same ten sums, two at a time.
+struct OutcodePlanes {
+    std::array<double, max_outcode_planes> a{}, b{}, c{}, d{};
+    std::uint32_t reject = 0; ///< the bits of ViewVolume::reject's planes
+    std::uint32_t clip = 0;   ///< the bits of ViewVolume::clip's planes
 };
 
-/// screen_accept_perspective's two tests: on each corner, and on the box of the three.
-struct PerspectiveAccept {
-    double near, far;     ///< the camera's planes (far at most the largest double)
-    double margin, band;  ///< screen_accept_margin_px; the guard band less it
-    double width, height; ///< the screen
-    const Pinhole& lens;  ///< the projection
-    PerspectiveAccept(const Scene& scene, const Pinhole& pinhole)
-        : near(scene.camera.near),
-          far(std::min(scene.camera.far, std::numeric_limits<double>::max())),
-          margin(screen_accept_margin_px), band(guard_band_px - screen_accept_margin_px),
-          width(scene.width), height(scene.height), lens(pinhole) {}
-    /// Whether the view-space point p lies between the planes and projects to `at`
-    /// within the band (false for anything not finite).
-    bool corner(const glm::dvec3& p, Point2& at) const {
-        if (!(p.z >= near && p.z <= far)) {
-            return false;
+/// The outcode planes of `volume`.
+OutcodePlanes outcode_planes(const ViewVolume& volume) {
+    std::vector<ViewPlane> planes;
+    const auto bit_of = [&planes](const ViewPlane& p) {
+        std::size_t i = 0;
+        while (i < planes.size() &&
+               !(planes[i].normal == p.normal && planes[i].offset == p.offset)) {
+            ++i;
         }
-        at = {lens.centre.x + lens.focal * p.x / p.z, // as project()
-              lens.centre.y - lens.focal * p.y / p.z};
-        return std::abs(at.x) <= band && std::abs(at.y) <= band;
-    }
-    /// Whether the box from (lo_x, lo_y) to (hi_x, hi_y) overlaps the screen by more
-    /// than the margin.
-    bool box(double lo_x, double lo_y, double hi_x, double hi_y) const {
-        return hi_x >= margin && lo_x <= width - margin && hi_y >= margin &&
-               lo_y <= height - margin;
-    }
-};
-
-/// screen_accept under a perspective camera in fewer instructions, for
-/// FastPaths::unlit_geometry: the same compares on the same values in the same
-/// precision, with each finite test folded into a compare (false for NaN and infinity:
-/// z <= min(far, the largest double) is false for an infinite z, and a corner that is
-/// not finite projects to a value that fails the band's compare) and project()'s two
-/// divides written out. The same answer, and the same corners when it is yes
-/// (tests/ch07_fast_paths.cpp).
-bool screen_accept_perspective(const Scene& scene, const Pinhole& lens,
-                               const std::array<ViewVertex, 3>& view,
-                               std::array<TexturedVertex, 3>& corners) {
-    const PerspectiveAccept accept(scene, lens);
-    double lo_x = accept.band, lo_y = accept.band, hi_x = -accept.band,
-           hi_y = -accept.band;
-    for (std::size_t k = 0; k < 3; ++k) {
-        const glm::dvec3 p = view[k].position;
-        Point2 at{};
-        if (!accept.corner(p, at)) {
-            return false;
+        if (i == planes.size()) {
+            planes.push_back(p);
         }
-        corners[k] = {at, p.z, view[k].uv};
-        lo_x = std::min(lo_x, at.x);
-        lo_y = std::min(lo_y, at.y);
-        hi_x = std::max(hi_x, at.x);
-        hi_y = std::max(hi_y, at.y);
+        return std::uint32_t{1} << i;
+    };
+    OutcodePlanes codes;
+    for (const ViewPlane& p : volume.reject) {
+        codes.reject |= bit_of(p);
     }
-    return accept.box(lo_x, lo_y, hi_x, hi_y);
+    for (const ViewPlane& p : volume.clip) {
+        codes.clip |= bit_of(p);
+    }
+    assert(planes.size() <= max_outcode_planes);
+    codes.d.fill(1.0);
+    for (std::size_t i = 0; i < planes.size(); ++i) {
+        codes.a[i] = planes[i].normal.x;
+        codes.b[i] = planes[i].normal.y;
+        codes.c[i] = planes[i].normal.z;
+        codes.d[i] = planes[i].offset;
+    }
+    return codes;
 }
 
-/// Twice the signed screen area of the triangle; negative when it faces the camera
-/// (its corners run counter-clockwise as seen from its front).
-double screen_area2(const std::array<TexturedVertex, 3>& t) {
-    const Point2 a = t[1].position - t[0].position, b = t[2].position - t[0].position;
+/// The outcode of the view-space point p: a bit for each plane whose value there,
+/// computed as plane_value computes it, is < 0 (false for NaN): the test outside_one
+/// and any_outside make at each corner.
+std::uint32_t outcode(const OutcodePlanes& codes, const glm::dvec3& p) {
+    std::array<double, max_outcode_planes> value{};
+    for (std::size_t i = 0; i < max_outcode_planes; ++i) { // vectorised: no branch
+        value[i] = codes.a[i] * p.x + codes.b[i] * p.y + codes.c[i] * p.z + codes.d[i];
+    }
+    std::uint32_t code = 0;
+    for (std::size_t i = 0; i < max_outcode_planes; ++i) {
+        code |= static_cast<std::uint32_t>(value[i] < 0.0) << i;
+    }
+    return code;
+}
+//< outcodes
+
+/// Twice the signed screen area of the triangle p0 p1 p2; negative when it faces the
+/// camera (its corners run counter-clockwise as seen from its front).
+double screen_area2(Point2 p0, Point2 p1, Point2 p2) {
+    const Point2 a = p1 - p0, b = p2 - p0;
     return a.x * b.y - a.y * b.x;
+}
+
+/// The largest magnitude a mapper can hold in `precision` (float overflows above
+/// 3.4e38, long before double does).
+double largest(Precision precision) {
+    return precision == Precision::float32 ? double(std::numeric_limits<float>::max())
+                                           : std::numeric_limits<double>::max();
 }
 
 /// Stops NaN and infinity before the first pixel: throws Error when a projected corner
 /// has a coordinate, depth, 1/w or u/w, v/w that is not finite in the precision the
-/// mappers will use (float overflows above 3.4e38, long before double does).
+/// mappers will use.
 void check_finite(const TexturedVertex& v, Precision precision, std::size_t triangle) {
-    const double limit = precision == Precision::float32
-                             ? double(std::numeric_limits<float>::max())
-                             : std::numeric_limits<double>::max();
+    const double limit = largest(precision);
     const double inverse_w = 1.0 / v.w;
     for (const double value : {v.position.x, v.position.y, v.w, inverse_w,
                                v.uv.x * inverse_w, v.uv.y * inverse_w}) {
@@ -229,6 +189,295 @@ void check_finite(const TexturedVertex& v, Precision precision, std::size_t tria
                 inverse_w));
         }
     }
+}
+
+/// World to view space along the camera's axes: the components of d on right, up and
+/// forward, each dot product in glm::dot's order. A point p is moved as p - eye.
+glm::dvec3 to_view(const CameraFrame& camera, const glm::dvec3& d) {
+    const glm::dvec3 &r = camera.right, &u = camera.up, &f = camera.forward;
+    return {d.x * r.x + d.y * r.y + d.z * r.z, d.x * u.x + d.y * u.y + d.z * u.z,
+            d.x * f.x + d.y * f.y + d.z * f.z};
+}
+
+/// What the geometry stage knows of the scene, the same for every mesh.
+struct StageSetup {
+    const Scene& scene;
+    const CameraFrame camera;
+    const bool perspective;
+    const Pinhole lens;
+    const ViewVolume volume;
+    const OutcodePlanes codes;
+    const double limit; ///< largest(scene.options.precision)
+    const std::vector<ViewLight>& lights;
+    const bool lit; ///< no light, no lighting stage
+    StageSetup(const Scene& s, const CameraFrame& frame, const std::vector<ViewLight>& l)
+        : scene(s), camera(frame),
+          perspective(s.camera.projection == Projection::perspective), lens(pinhole(s)),
+          volume(view_volume(s, lens)), codes(outcode_planes(volume)),
+          limit(largest(s.options.precision)), lights(l), lit(!s.lights.empty()) {}
+};
+
+/// A mesh position as the geometry stage moves it, once for all the corners at it.
+struct MovedPosition {
+    glm::dvec3 view;        ///< view space
+    Point2 at;              ///< on screen (where `projected`)
+    double w = 0.0;         ///< project_vertex's depth (where `projected`)
+    double inverse_w = 0.0; ///< 1 / w, as check_finite computes it
+    double nearness = 0.0;  ///< 1/w (perspective) or -z (orthographic)
+    std::uint32_t code = 0; ///< the planes it lies outside (OutcodePlanes)
+    bool projected = false; ///< inside every clipping plane, and project_vertex took it
+    bool finite = false;    ///< projected, and at, w and 1/w within the precision's limit
+};
+
+/// Position p moved: to view space, its outcode, and where no clipping plane has it
+/// outside (only then is a corner at it projected as it is) project_vertex's value and
+/// check_finite's tests of it (all but u/w and v/w, which belong to a corner).
+MovedPosition move_position(const StageSetup& s, const glm::dvec3& p) {
+    MovedPosition m;
+    m.view = to_view(s.camera, p - s.camera.eye);
+    m.code = outcode(s.codes, m.view);
+    const bool finite =
+        std::isfinite(m.view.x) && std::isfinite(m.view.y) && std::isfinite(m.view.z);
+    // project() refuses a point that is not finite; the triangle asks it again, to throw.
+    m.projected = (m.code & s.codes.clip) == 0 && (finite || !s.perspective);
+    if (m.projected) {
+        // project_vertex; under perspective project()'s two divides written out, since
+        // z >= near > 0 and finite pass its checks (tests/ch07_fast_paths.cpp compares).
+        const TexturedVertex c =
+            s.perspective
+                ? TexturedVertex{{s.lens.centre.x + s.lens.focal * m.view.x / m.view.z,
+                                  s.lens.centre.y - s.lens.focal * m.view.y / m.view.z},
+                                 m.view.z,
+                                 {}}
+                : project_vertex(s.scene, s.lens, {m.view, {}});
+        m.at = c.position;
+        m.w = c.w;
+        m.inverse_w = 1.0 / c.w;
+        m.nearness = s.perspective ? m.inverse_w : -m.view.z;
+        m.finite = std::abs(m.at.x) <= s.limit && std::abs(m.at.y) <= s.limit &&
+                   std::abs(m.w) <= s.limit && std::abs(m.inverse_w) <= s.limit;
+    }
+    return m;
+}
+
+/// Whether `corners` indexes the corner positions of `triangles` in `positions`, bit for
+/// bit (SceneMesh's promise; checked in debug builds).
+[[maybe_unused]] bool
+index_matches(const std::vector<std::array<SceneVertex, 3>>& triangles,
+              const std::vector<glm::dvec3>& positions,
+              const std::vector<std::array<std::uint32_t, 3>>& corners) {
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            const glm::dvec3& p = triangles[t][k].position;
+            if (std::memcmp(&positions.at(corners[t][k]), &p, sizeof p) != 0) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+/// The three moved positions at a triangle's corners.
+using MovedCorners = std::array<const MovedPosition*, 3>;
+
+/// The geometry stage on one mesh: its positions moved once, then its triangles
+/// decided, lit, cut and stored.
+class MeshPass {
+  public:
+    MeshPass(const StageSetup& setup, const SceneMesh& mesh, std::size_t i,
+             RenderReport& report, SceneGeometry& geometry);
+    void run();
+
+  private:
+    void triangle(std::size_t index);
+    void check_corners(std::size_t index, const MovedCorners& m) const;
+    void light(std::size_t index, const std::array<glm::dvec3, 3>& points,
+               std::array<Colour, 3>& colours, std::array<glm::dvec3, 3>& normals);
+    void cut_triangle(std::size_t index, const MovedCorners& m);
+    void keep_piece(std::size_t index, const ClippedCorners& piece);
+    TexturedVertex checked(const TexturedVertex& corner, std::size_t index) const;
+
+    const StageSetup& s;
+    const SceneMesh& mesh;
+    RenderReport& report;
+    std::vector<ScreenTriangle>& out;
+    MeshFootprint& footprint;
+    bool with_colours = false, gouraud = false, phong = false;
+    std::vector<CornerNormals> normals; ///< world space, per triangle (lit meshes)
+    SharedPositions own; ///< the mesh's positions indexed here, when it has no index
+    const std::vector<glm::dvec3>* positions = nullptr; ///< the mesh's or own's
+    const std::vector<std::array<std::uint32_t, 3>>* corners = nullptr; ///< likewise
+    std::vector<MovedPosition> moved;                                   ///< per position
+};
+
+MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
+                   RenderReport& r, SceneGeometry& geometry)
+    : s(setup), mesh(m), report(r), out(geometry.meshes[i]),
+      footprint(geometry.footprints[i]) {
+    with_colours = mesh_stages(s.scene, mesh).colour;
+    gouraud = s.lit && mesh_shading(s.scene, mesh) == Shading::gouraud;
+    phong = s.lit && !gouraud;
+    report.gouraud_meshes += gouraud;
+    report.phong_meshes += phong;
+    if (s.lit) {
+        normals = mesh_normals(mesh);
+    }
+    footprint.name = fmt::format("mesh[{}]", i); // as messages name it
+    // Only `depth = "auto"` asks (a scan of every corner per corner of one face).
+    footprint.can_overlap_itself =
+        s.scene.options.depth == DepthMode::automatic && can_overlap_itself(mesh);
+    positions = &mesh.positions;
+    corners = &mesh.corner_positions;
+    if (corners->size() != mesh.triangles.size()) { // a mesh made in code
+        own = shared_positions(mesh.triangles);
+        positions = &own.positions;
+        corners = &own.corners;
+    }
+    assert(index_matches(mesh.triangles, *positions, *corners));
+}
+
+TexturedVertex MeshPass::checked(const TexturedVertex& corner, std::size_t index) const {
+    try {
+        check_finite(corner, s.scene.options.precision, index);
+    } catch (const Error& error) { // naming the mesh
+        throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
+    }
+    return corner;
+}
+
+//> geometry-mesh
+/// Every position moved once, then every triangle.
+void MeshPass::run() {
+    const Clock::time_point t0 = Clock::now(); // the whole mesh: clocks cost time
+    moved.reserve(positions->size());
+    for (const glm::dvec3& p : *positions) {
+        moved.push_back(move_position(s, p));
+    }
+    out.reserve(mesh.triangles.size() / 2); // a closed mesh shows about half
+    for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
+        triangle(index);
+    }
+    report.geometry.seconds += seconds_since(t0);
+}
+
+/// One triangle: rejected when its corners' outcodes share a plane of the screen or
+/// the depth range, cut when one of them is outside a clipping plane, else projected
+/// as it is, culled, stored and lit.
+void MeshPass::triangle(std::size_t index) {
+    const std::array<std::uint32_t, 3>& at = (*corners)[index];
+    const MovedCorners m{&moved[at[0]], &moved[at[1]], &moved[at[2]]};
+    report.geometry.triangles += 1;
+    if ((m[0]->code & m[1]->code & m[2]->code & s.codes.reject) != 0) {
+        report.rejected.triangles += 1; // all outside one plane: covers no pixel
+        return;
+    }
+    if (((m[0]->code | m[1]->code | m[2]->code) & s.codes.clip) != 0) {
+        cut_triangle(index, m); // lit, then cut into pieces
+        return;
+    }
+    check_corners(index, m); // projected as they are: each finite, or an error
+    if (mesh.cull_back && screen_area2(m[0]->at, m[1]->at, m[2]->at) >= 0.0) {
+        report.culling.triangles += 1; // before it is lit
+        return;
+    }
+    const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
+    ScreenTriangle& t = out.emplace_back();
+    for (std::size_t k = 0; k < 3; ++k) {
+        t.corners[k] = {m[k]->at, m[k]->w, triangle[k].uv};
+        t.nearness[k] = m[k]->nearness;
+        t.points[k] = m[k]->view;
+        t.colours[k] = triangle[k].colour;
+        footprint.box.add(m[k]->at);
+    }
+    if (s.lit) {
+        light(index, t.points, t.colours, t.normals);
+    }
+}
+//< geometry-mesh
+
+/// Stops a triangle drawn uncut whose corner fails check_finite's tests, with its
+/// error (or project()'s, for a position not finite): the tests of the corner's
+/// position (MovedPosition::finite) and of its u/w and v/w, in its order.
+void MeshPass::check_corners(std::size_t index, const MovedCorners& m) const {
+    const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
+    for (std::size_t k = 0; k < 3; ++k) {
+        const MovedPosition& p = *m[k];
+        const TexCoord uv = triangle[k].uv;
+        if (!(p.finite && std::abs(uv.x * p.inverse_w) <= s.limit &&
+              std::abs(uv.y * p.inverse_w) <= s.limit)) { // each throws
+            checked(p.projected ? TexturedVertex{p.at, p.w, uv}
+                                : project_vertex(s.scene, s.lens, {p.view, uv}),
+                    index);
+        }
+    }
+}
+
+/// The normals at the view-space `points` of a triangle, and under Gouraud the lit
+/// colours in place of `colours`.
+void MeshPass::light(std::size_t index, const std::array<glm::dvec3, 3>& points,
+                     std::array<Colour, 3>& colours,
+                     std::array<glm::dvec3, 3>& at_normals) {
+    const Clock::time_point l0 = Clock::now();
+    for (std::size_t k = 0; k < 3; ++k) {
+        at_normals[k] = to_view(s.camera, normals[index][k]);
+    }
+    //> gouraud-vertices
+    if (gouraud) { // the lit colour replaces the corner's colour
+        const Material material{mesh.specular, mesh.shininess};
+        for (std::size_t k = 0; k < 3; ++k) {
+            const Colour diffuse = mesh.vertex_colours ? colours[k] : mesh.colour;
+            colours[k] =
+                light_colour(s.lights, s.scene.options.ambient, diffuse, material,
+                             points[k], at_normals[k], to_eye(s.scene, points[k]));
+        }
+        report.lit_vertices += 3;
+    }
+    //< gouraud-vertices
+    report.lighting.seconds += seconds_since(l0);
+}
+
+/// A triangle with a corner outside a clipping plane: lit, then cut into pieces.
+void MeshPass::cut_triangle(std::size_t index, const MovedCorners& m) {
+    const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
+    ClippedCorners whole{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        whole.view[k] = {m[k]->view, triangle[k].uv};
+        whole.colours[k] = triangle[k].colour;
+    }
+    if (s.lit) {
+        light(index, {m[0]->view, m[1]->view, m[2]->view}, whole.colours, whole.normals);
+    }
+    //> clip-only-when-needed
+    const Clock::time_point c0 = Clock::now(); // only a triangle that is cut pays
+    const std::vector<ClippedCorners> pieces =
+        clip_corners(whole, s.volume.clip, with_colours, phong);
+    report.clipping.triangles += 1;
+    report.clipping.seconds += seconds_since(c0);
+    for (const ClippedCorners& piece : pieces) {
+        keep_piece(index, piece); // projected, checked, culled
+    }
+    //< clip-only-when-needed
+}
+
+/// Projects, checks, culls and stores one piece of a triangle that was cut.
+void MeshPass::keep_piece(std::size_t index, const ClippedCorners& piece) {
+    ScreenTriangle t{};
+    for (std::size_t k = 0; k < 3; ++k) {
+        t.corners[k] = checked(project_vertex(s.scene, s.lens, piece.view[k]), index);
+        t.nearness[k] = s.perspective ? 1.0 / t.corners[k].w : -piece.view[k].position.z;
+        t.points[k] = piece.view[k].position;
+    }
+    t.colours = piece.colours;
+    t.normals = piece.normals;
+    if (mesh.cull_back && screen_area2(t.corners[0].position, t.corners[1].position,
+                                       t.corners[2].position) >= 0.0) {
+        report.culling.triangles += 1; // a piece seen from behind
+        return;
+    }
+    for (const TexturedVertex& v : t.corners) {
+        footprint.box.add(v.position);
+    }
+    out.push_back(t);
 }
 
 } // namespace
@@ -244,290 +493,25 @@ MeshStages mesh_stages(const Scene& scene, const SceneMesh& mesh) {
     return stages;
 }
 
-//> geometry-stage
-SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths fast) {
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
     SceneGeometry geometry;
     const CameraFrame camera = camera_frame(scene.camera);
-    const bool perspective = scene.camera.projection == Projection::perspective;
-    const Pinhole lens = pinhole(scene);
-    const ViewVolume volume = view_volume(scene, lens);
-    // World to view space: a translation for points, then the camera's rotation.
-    const auto to_view = [&](glm::dvec3 v, bool is_point) {
-        const glm::dvec3 d = is_point ? v - camera.eye : v;
-        return glm::dvec3{glm::dot(d, camera.right), glm::dot(d, camera.up),
-                          glm::dot(d, camera.forward)};
-    };
-    const bool lit = !scene.lights.empty(); // no light, no lighting stage
-    if (lit) {
-        geometry.lights = lights_in_view(scene.lights, to_view);
+    if (!scene.lights.empty()) {
+        geometry.lights = lights_in_view(scene.lights, [&](glm::dvec3 v, bool is_point) {
+            return to_view(camera, is_point ? v - camera.eye : v);
+        });
     }
-    const std::vector<ViewLight>& lights = geometry.lights;
-    report.lighting_on = lit;
-    report.lights = static_cast<int>(lights.size());
-    // Every mesh first: the depth stage's plan needs to know where on screen each mesh
-    // lands.
+    report.lighting_on = !scene.lights.empty();
+    report.lights = static_cast<int>(geometry.lights.size());
+    const StageSetup setup(scene, camera, geometry.lights);
+    // Every mesh first: the depth stage's plan needs to know where on screen each lands.
     geometry.meshes.resize(scene.meshes.size());
     geometry.footprints.resize(scene.meshes.size());
-    std::vector<MovedPosition> moved; // unlit_geometry's positions, mesh by mesh
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-        const SceneMesh& mesh = scene.meshes[i];
-        std::vector<ScreenTriangle>& out = geometry.meshes[i];
-        MeshFootprint& footprint = geometry.footprints[i];
-        const bool with_colours = mesh_stages(scene, mesh).colour;
-        const bool gouraud = lit && mesh_shading(scene, mesh) == Shading::gouraud;
-        const bool phong = lit && !gouraud;
-        report.gouraud_meshes += gouraud;
-        report.phong_meshes += phong;
-        const std::vector<CornerNormals> normals =
-            lit ? mesh_normals(mesh) : std::vector<CornerNormals>{};
-        footprint.name = fmt::format("mesh[{}]", i); // as messages name it
-        // Only `depth = "auto"` asks (a scan of every corner per corner of one face).
-        footprint.can_overlap_itself =
-            scene.options.depth == DepthMode::automatic && can_overlap_itself(mesh);
-        // Stops a projected corner that is not finite (naming the mesh).
-        const auto checked = [&](const TexturedVertex& corner, std::size_t index) {
-            try {
-                check_finite(corner, scene.options.precision, index);
-            } catch (const Error& error) {
-                throw Error(fmt::format("{}: {}", mesh.origin, error.what()));
-            }
-            return corner;
-        };
-        const auto project_checked = [&](const ViewVertex& v, std::size_t index) {
-            return checked(project_vertex(scene, lens, v), index);
-        };
-        // Every step of one triangle, the plain way (the fast paths inside it are
-        // screen_accept's). Inlined into the plain loop below, and called out of line
-        // where unlit_geometry hands a triangle over (plain_triangle_call): inlined
-        // there too, it would crowd the fast loop (callgrind: 2.6M instructions more
-        // on the big torus's frame).
-        const auto plain_triangle = [&](std::size_t index)
-            __attribute__((always_inline)) {
-            const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
-            std::array<ViewVertex, 3> view{};
-            std::array<Colour, 3> colours{};
-            for (std::size_t k = 0; k < 3; ++k) {
-                view[k] = {to_view(triangle[k].position, true), triangle[k].uv};
-                colours[k] = triangle[k].colour;
-            }
-            report.geometry.triangles += 1;
-            std::array<TexturedVertex, 3> corners{}; // of a triangle not clipped
-            bool needs_clip = false;
-            if (fast.screen_accept && screen_accept(scene, lens, view, corners)) {
-                for (std::size_t k = 0; k < 3; ++k) { // inside: neither rejected nor cut
-                    corners[k] = checked(corners[k], index);
-                }
-            } else {                                    // the plain path
-                if (outside_one(volume.reject, view)) { // covers no pixel: not projected
-                    report.rejected.triangles += 1;
-                    return;
-                }
-                needs_clip = any_outside(volume.clip, view);
-                if (!needs_clip) {
-                    for (std::size_t k = 0; k < 3; ++k) {
-                        corners[k] = project_checked(view[k], index);
-                    }
-                }
-            }
-            // A whole triangle is culled before it is lit: the same projected corners
-            // decide it here and below, so the decision cannot differ.
-            if (!needs_clip) {
-                if (mesh.cull_back && screen_area2(corners) >= 0.0) {
-                    report.culling.triangles += 1;
-                    return;
-                }
-            }
-            std::array<glm::dvec3, 3> view_normals{};
-            if (lit) {
-                const Clock::time_point l0 = Clock::now();
-                for (std::size_t k = 0; k < 3; ++k) {
-                    view_normals[k] = to_view(normals[index][k], false);
-                }
-                //> gouraud-vertices
-                if (gouraud) { // the lit colour replaces the corner's colour
-                    const Material material{mesh.specular, mesh.shininess};
-                    for (std::size_t k = 0; k < 3; ++k) {
-                        const Colour diffuse =
-                            mesh.vertex_colours ? colours[k] : mesh.colour;
-                        const glm::dvec3 at = view[k].position;
-                        colours[k] =
-                            light_colour(lights, scene.options.ambient, diffuse, material,
-                                         at, view_normals[k], to_eye(scene, at));
-                    }
-                    report.lit_vertices += 3;
-                }
-                //< gouraud-vertices
-                report.lighting.seconds += seconds_since(l0);
-            }
-            //> clip-only-when-needed
-            const ClippedCorners whole{view, colours, view_normals}; // uncut: one piece
-            std::vector<ClippedCorners> cut; // the pieces of a cut triangle
-            if (needs_clip) {                // the only triangles that pay for it
-                const Clock::time_point c0 = Clock::now();
-                cut = clip_corners(view, colours, view_normals, volume.clip, with_colours,
-                                   phong);
-                report.clipping.triangles += 1;
-                report.clipping.seconds += seconds_since(c0);
-            }
-            //< clip-only-when-needed
-            const std::size_t piece_count = needs_clip ? cut.size() : 1;
-            for (std::size_t p = 0; p < piece_count; ++p) {
-                const ClippedCorners& piece = needs_clip ? cut[p] : whole;
-                ScreenTriangle t{};
-                for (std::size_t k = 0; k < 3; ++k) {
-                    t.corners[k] = needs_clip ? project_checked(piece.view[k], index)
-                                              : corners[k]; // piece.view is view
-                    t.nearness[k] =
-                        perspective ? 1.0 / t.corners[k].w : -piece.view[k].position.z;
-                    t.points[k] = piece.view[k].position;
-                }
-                t.colours = piece.colours;
-                t.normals = piece.normals;
-                if (mesh.cull_back && screen_area2(t.corners) >= 0.0) {
-                    report.culling.triangles += 1; // a clipped piece seen from behind
-                    continue;
-                }
-                for (const TexturedVertex& v : t.corners) {
-                    footprint.box.add(v.position);
-                }
-                out.push_back(t);
-            }
-        };
-        const auto plain_triangle_call = [&](std::size_t index)
-            __attribute__((noinline)) {
-            plain_triangle(index);
-        };
-        //> unlit-geometry
-        // FastPaths::unlit_geometry: an unlit mesh under a perspective camera. A corner
-        // screen_accept accepts has a finite w >= near > 0 and a finite position inside
-        // the band, so of check_finite's values only w, 1/w and uv/w are left to
-        // compare with the limit, and 1/w <= 1/near, |uv| (1/w) <= |uv| (1/near)
-        // (rounding is monotone): a few compares per triangle, without 1/w, and
-        // check_finite itself where one fails (it throws as on the plain path).
-        const double limit = scene.options.precision == Precision::float32
-                                 ? double(std::numeric_limits<float>::max())
-                                 : std::numeric_limits<double>::max();
-        const double most_inverse_w = 1.0 / scene.camera.near;
-        // to_view for points, each dot product written out in glm::dot's order (the same
-        // doubles: callgrind counted 52 instructions a corner through glm, 8M a frame).
-        const glm::dvec3 eye = camera.eye, right = camera.right, up = camera.up,
-                         forward = camera.forward;
-        const auto point_to_view = [&](const glm::dvec3& v) {
-            const double dx = v.x - eye.x, dy = v.y - eye.y, dz = v.z - eye.z;
-            return glm::dvec3{dx * right.x + dy * right.y + dz * right.z,
-                              dx * up.x + dy * up.y + dz * up.z,
-                              dx * forward.x + dy * forward.y + dz * forward.z};
-        };
-        // After the accept test: the finite check, culling and the stored triangle, of
-        // corners whose view-space positions are `at` and whose 1/w is nearness(k).
-        const auto keep_unlit = [&](std::size_t index,
-                                    const std::array<glm::dvec3, 3>& at,
-                                    std::array<TexturedVertex, 3>& corners,
-                                    const auto& nearness) {
-            const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
-            report.geometry.triangles += 1;
-            bool within = most_inverse_w <= limit; // each compare false for NaN
-            for (const TexturedVertex& c : corners) {
-                within = within && c.w <= limit &&
-                         std::abs(c.uv.x) * most_inverse_w <= limit &&
-                         std::abs(c.uv.y) * most_inverse_w <= limit;
-            }
-            if (!within) {
-                for (std::size_t k = 0; k < 3; ++k) {
-                    corners[k] = checked(corners[k], index); // throws as the plain path
-                }
-            }
-            if (mesh.cull_back && screen_area2(corners) >= 0.0) {
-                report.culling.triangles += 1;
-                return;
-            }
-            ScreenTriangle& t = out.emplace_back();
-            for (std::size_t k = 0; k < 3; ++k) {
-                t.corners[k] = corners[k];
-                t.nearness[k] = nearness(k);
-                t.points[k] = at[k];
-                t.colours[k] = triangle[k].colour;
-                footprint.box.add(corners[k].position);
-            }
-        };
-        const auto unlit_triangle = [&](std::size_t index) {
-            const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
-            std::array<ViewVertex, 3> view{};
-            for (std::size_t k = 0; k < 3; ++k) {
-                view[k] = {point_to_view(triangle[k].position), triangle[k].uv};
-            }
-            std::array<TexturedVertex, 3> corners{};
-            if (!screen_accept_perspective(scene, lens, view, corners)) {
-                plain_triangle_call(index); // near a plane or off screen: plane tests
-                return;
-            }
-            keep_unlit(index, {view[0].position, view[1].position, view[2].position},
-                       corners, [&](std::size_t k) { return 1.0 / corners[k].w; });
-        };
-        // Where the mesh lists its distinct positions (SceneMesh::positions), each is
-        // moved, projected, tested and divided into 1/w once, not once per corner (six
-        // corners share a position of a closed grid), with the same arithmetic.
-        const PerspectiveAccept accept(scene, lens);
-        const auto move_positions = [&] {
-            moved.resize(mesh.positions.size());
-            for (std::size_t i = 0; i < moved.size(); ++i) {
-                MovedPosition& m = moved[i];
-                m.view = point_to_view(mesh.positions[i]);
-                m.inside = accept.corner(m.view, m.at);
-                m.nearness = 1.0 / m.view.z;
-            }
-        };
-        const auto unlit_shared = [&](std::size_t index) {
-            const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
-            const std::array<std::uint32_t, 3>& ids = mesh.corner_positions[index];
-            for (std::size_t k = 0; k < 3; ++k) { // a corner changed since: on its own
-                if (!same_bits(triangle[k].position, mesh.positions[ids[k]])) {
-                    unlit_triangle(index);
-                    return;
-                }
-            }
-            const MovedPosition &a = moved[ids[0]], &b = moved[ids[1]],
-                                &c = moved[ids[2]];
-            if (!(a.inside && b.inside && c.inside &&
-                  accept.box(std::min({a.at.x, b.at.x, c.at.x}),
-                             std::min({a.at.y, b.at.y, c.at.y}),
-                             std::max({a.at.x, b.at.x, c.at.x}),
-                             std::max({a.at.y, b.at.y, c.at.y})))) {
-                plain_triangle_call(index); // near a plane or off screen: plane tests
-                return;
-            }
-            std::array<TexturedVertex, 3> corners{{{a.at, a.view.z, triangle[0].uv},
-                                                   {b.at, b.view.z, triangle[1].uv},
-                                                   {c.at, c.view.z, triangle[2].uv}}};
-            const std::array<const MovedPosition*, 3> from{&a, &b, &c};
-            keep_unlit(index, {a.view, b.view, c.view}, corners,
-                       [&](std::size_t k) { return from[k]->nearness; });
-        };
-        //< unlit-geometry
-        const Clock::time_point t0 = Clock::now(); // the whole mesh: clocks cost time
-        if (fast.unlit_geometry && perspective && !lit) {
-            out.reserve(mesh.triangles.size() / 2); // about half face the camera
-            if (mesh.corner_positions.size() == mesh.triangles.size() &&
-                !mesh.triangles.empty()) {
-                move_positions();
-                for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
-                    unlit_shared(index);
-                }
-            } else {
-                for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
-                    unlit_triangle(index);
-                }
-            }
-        } else {
-            for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
-                plain_triangle(index);
-            }
-        }
-        report.geometry.seconds += seconds_since(t0);
+        MeshPass(setup, scene.meshes[i], i, report, geometry).run();
     }
     return geometry;
 }
-//< geometry-stage
 
 std::vector<long long> fill_work(const SceneGeometry& geometry, Viewport image) {
     std::vector<long long> work;

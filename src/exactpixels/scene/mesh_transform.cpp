@@ -92,26 +92,35 @@ struct PositionBitsHash {
 
 } // namespace
 
-void share_positions(SceneMesh& mesh) {
-    mesh.positions.clear();
-    mesh.corner_positions.clear();
-    if (mesh.triangles.size() > std::numeric_limits<std::uint32_t>::max() / 3) {
-        return; // beyond 32-bit indices (the loader stops at 2^20): moved corner by corner
+SharedPositions
+shared_positions(const std::vector<std::array<SceneVertex, 3>>& triangles) {
+    if (triangles.size() > std::numeric_limits<std::uint32_t>::max() / 3) {
+        throw Error(
+            fmt::format("a mesh of {} triangles is beyond 32-bit position indices",
+                        triangles.size()));
     }
-    mesh.corner_positions.assign(mesh.triangles.size(), {});
+    SharedPositions shared;
+    shared.corners.assign(triangles.size(), {});
     std::unordered_map<PositionBits, std::uint32_t, PositionBitsHash> index;
-    index.reserve(mesh.triangles.size()); // a closed mesh has about half as many
-    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    index.reserve(triangles.size()); // a closed mesh has about half as many
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
         for (std::size_t k = 0; k < 3; ++k) {
-            const glm::dvec3& p = mesh.triangles[t][k].position;
-            const auto next = static_cast<std::uint32_t>(mesh.positions.size());
+            const glm::dvec3& p = triangles[t][k].position;
+            const auto next = static_cast<std::uint32_t>(shared.positions.size());
             const auto [at, added] = index.try_emplace(bits_of(p), next);
             if (added) {
-                mesh.positions.push_back(p);
+                shared.positions.push_back(p);
             }
-            mesh.corner_positions[t][k] = at->second;
+            shared.corners[t][k] = at->second;
         }
     }
+    return shared;
+}
+
+void share_positions(SceneMesh& mesh) {
+    SharedPositions shared = shared_positions(mesh.triangles);
+    mesh.positions = std::move(shared.positions);
+    mesh.corner_positions = std::move(shared.corners);
 }
 
 } // namespace exactpixels

@@ -18,8 +18,9 @@
 
 #include "exactpixels/scene/scene.hpp"
 
-#include <bit>
+#include <array>
 #include <cstdint>
+#include <vector>
 
 namespace exactpixels {
 
@@ -47,16 +48,22 @@ glm::dvec3 unit_normal(const glm::dvec3& n);
 /// beyond the doubles.
 void transform_mesh(SceneMesh& mesh, const MeshTransform& t);
 
-/// Fills mesh.positions with the distinct corner positions of mesh.triangles (equal bit
-/// for bit: 0 and -0 differ), in the order they first appear, and mesh.corner_positions
-/// with each corner's index into it. The loader calls it once a mesh is placed.
-void share_positions(SceneMesh& mesh);
+/// A mesh's corner positions as an indexed mesh: each distinct position once (equal
+/// bit for bit: 0 and -0 differ), in the order they first appear, and each triangle's
+/// corners as indices into that list.
+struct SharedPositions {
+    std::vector<glm::dvec3> positions;                 ///< distinct, in first-seen order
+    std::vector<std::array<std::uint32_t, 3>> corners; ///< per triangle, into positions
+};
 
-/// Whether two positions are the same bit for bit (0 and -0 are not).
-inline bool same_bits(const glm::dvec3& a, const glm::dvec3& b) {
-    return std::bit_cast<std::uint64_t>(a.x) == std::bit_cast<std::uint64_t>(b.x) &&
-           std::bit_cast<std::uint64_t>(a.y) == std::bit_cast<std::uint64_t>(b.y) &&
-           std::bit_cast<std::uint64_t>(a.z) == std::bit_cast<std::uint64_t>(b.z);
-}
+/// The indexed positions of `triangles`. Throws Error beyond 32-bit indices (over
+/// 2^32 / 3 triangles; the loader stops at 2^20).
+SharedPositions
+shared_positions(const std::vector<std::array<SceneVertex, 3>>& triangles);
+
+/// Fills mesh.positions and mesh.corner_positions with shared_positions(mesh.triangles).
+/// The loader calls it once a mesh is placed; code that moves a corner afterwards calls
+/// it again (or clears both) before rendering.
+void share_positions(SceneMesh& mesh);
 
 } // namespace exactpixels

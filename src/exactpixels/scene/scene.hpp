@@ -146,8 +146,9 @@ struct SceneMesh {
     std::vector<std::array<SceneVertex, 3>> triangles; ///< world space, none degenerate
     /// The distinct corner positions of `triangles`, each once (share_positions), and
     /// for each triangle the index of each corner's position: the geometry stage moves
-    /// a position shared by several corners once. Empty for a mesh made in code; a
-    /// corner whose position no longer equals its entry bit for bit is moved on its own.
+    /// a position shared by several corners once. Both empty, or both true of
+    /// `triangles` (call share_positions again after moving a corner); the geometry
+    /// stage indexes a mesh made in code without them itself.
     std::vector<glm::dvec3> positions;
     std::vector<std::array<std::uint32_t, 3>> corner_positions; ///< into `positions`
     std::optional<std::size_t> texture;                ///< index into Scene::textures

@@ -158,13 +158,6 @@ double colour_error_bound(const std::array<double, 3>& w,
 }
 //< colour-bound
 
-void ScreenBox::add(Point2 p) {
-    x0 = std::min(x0, p.x);
-    y0 = std::min(y0, p.y);
-    x1 = std::max(x1, p.x);
-    y1 = std::max(y1, p.y);
-}
-
 ScreenBox ScreenBox::clipped(Viewport viewport) const {
     return {std::max(x0, 0.0), std::max(y0, 0.0), std::min(x1, double(viewport.width)),
             std::min(y1, double(viewport.height))};

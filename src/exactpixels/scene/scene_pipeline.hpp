@@ -20,6 +20,7 @@
 #include "exactpixels/texture/span_mappers.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
 
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <vector>
@@ -88,8 +89,13 @@ struct ScreenBox {
     double y0 = std::numeric_limits<double>::infinity();  ///< top
     double x1 = -std::numeric_limits<double>::infinity(); ///< right
     double y1 = -std::numeric_limits<double>::infinity(); ///< bottom
-    /// Grows the box to hold p.
-    void add(Point2 p);
+    /// Grows the box to hold p. (Inline: the geometry stage calls it at every corner.)
+    void add(Point2 p) {
+        x0 = std::min(x0, p.x);
+        y0 = std::min(y0, p.y);
+        x1 = std::max(x1, p.x);
+        y1 = std::max(y1, p.y);
+    }
     /// The part of the box inside the viewport [0, width] x [0, height] (may be empty).
     ScreenBox clipped(Viewport viewport) const;
     /// True when the box holds no point.

@@ -44,7 +44,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
         Framebuffer(scene.width, scene.height, to_rgba8(scene.background)), {}};
     RenderReport& report = result.report;
     const bool lit = !scene.lights.empty();
-    const SceneGeometry geometry = run_geometry(scene, report, fast);
+    const SceneGeometry geometry = run_geometry(scene, report);
     check_fill_work(scene, geometry); // before the first pixel is drawn
     const DepthPlan depth_plan = plan_depth(scene.options.depth, geometry.footprints,
                                             Viewport{scene.width, scene.height});

@@ -57,22 +57,9 @@ inline constexpr double guard_band_px = 524288.0; // 2^19
 /// pipeline, giving the same pixels and the same report counts on every scene
 /// (tests/ch07_fast_paths.cpp). All on by default; all off is the plain teaching path.
 struct FastPaths {
-    /// Geometry: a triangle whose corners lie between the near and far planes and
-    /// project well inside the guard band, onto a box that overlaps the screen, is
-    /// neither rejected nor clipped, decided from its projected corners with a few
-    /// compares (screen_accept) instead of the view volume's plane tests.
-    bool screen_accept = true;
     /// Texture: a power-of-two texture under `repeat` is read inline with the indices
     /// wrapped by a bit mask (fetch_texel_masked) instead of two integer remainders.
     bool masked_fetch = true;
-    /// Geometry: an unlit mesh under a perspective camera goes through one short loop
-    /// (run_geometry's unlit_triangle): each triangle moved to view space, accepted by
-    /// screen_accept's compares, checked for finite values with one bound per triangle
-    /// instead of check_finite's six per corner, culled, and stored; a triangle the
-    /// compares do not accept takes the plain steps. Where the mesh lists its distinct
-    /// positions (SceneMesh::positions), each is moved and projected once for all the
-    /// corners at it.
-    bool unlit_geometry = true;
     /// Drawing: for a mesh whose only stages are nearest texels (or its flat colour)
     /// and depth, the span loop calls the direct span (span_stages.cpp), which writes
     /// each visible pixel straight to the frame instead of shading a row of pixels that
@@ -81,7 +68,7 @@ struct FastPaths {
 };
 
 /// Every fast path off: the plain teaching path.
-inline constexpr FastPaths plain_paths{false, false, false, false};
+inline constexpr FastPaths plain_paths{false, false};
 //< fast-paths
 
 /// The stages a mesh runs in this scene: plan_mesh's, and under Gouraud lighting the
@@ -105,15 +92,15 @@ struct SceneGeometry {
     std::vector<ViewLight> lights;                   ///< the lights in view space
 };
 
-/// The geometry stage alone, as render_scene runs it: every triangle of every mesh to
-/// view space, rejected when wholly outside one plane of the view volume, lit per vertex
-/// (Gouraud meshes), clipped at the near and far planes and the guard band, projected and
-/// back-face culled (a triangle that needs no clipping is culled before it is lit).
-/// Counts go to `report` (geometry, rejected, clipping, culling, lit_vertices, the
-/// lighting fields). Throws
-/// Error naming the mesh when a corner projects to a value that is not finite. `fast`
-/// chooses the fast variants (FastPaths); the result is the same either way.
-SceneGeometry run_geometry(const Scene& scene, RenderReport& report, FastPaths fast = {});
+/// The geometry stage alone, as render_scene runs it: each mesh as an indexed mesh,
+/// every distinct position moved to view space, given its outcode and projected once;
+/// every triangle rejected when its corners lie outside one plane of the view volume,
+/// lit per vertex (Gouraud meshes), clipped when a corner is outside a clipping plane
+/// (near, far, the guard band), and back-face culled (a triangle not clipped before it
+/// is lit). Counts go to `report` (geometry, rejected, clipping, culling, lit_vertices,
+/// the lighting fields). Throws Error naming the mesh when a corner projects to a value
+/// that is not finite.
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report);
 
 /// The fill work of each mesh of `geometry` (fill_work.hpp): the pixels of its
 /// triangles' bounding boxes inside `image`. render_scene refuses a scene whose sum
