@@ -276,6 +276,46 @@ const GiveAway give_aways[] = {
     {"ch09-run-of-row", "end.k=floor_div(w,end.s)+1"},
 };
 
+/// The answers of the variant exercises: exercises set in place of ones whose answer a
+/// chapter must print to teach (book/teaching.md, "Three editions"). Their point is that
+/// no chapter prints them, in any edition: each decisive expression (TeX or code, without
+/// white space) may appear on no page of the public book or the course edition outside
+/// the API reference (which prints the public library whole), and must appear in the
+/// teacher's edition, whose solutions derive them, so that the search is shown to see
+/// them.
+const GiveAway variant_answers[] = {
+    {"ch01-gradient-3d", R"(\Delta_2\,(\mathbfe_3\times\mathbfn)+\Delta_3\,(\mathbfn\times\mathbfe_2))"},
+    {"ch01-gradient-3d", "along2=cross(e3,n),along3=cross(n,e2)"},
+    {"ch01-prestep-up", R"(j=\lfloory-\tfrac12\rfloor)"},
+    {"ch01-prestep-up", "std::floor(y_from-0.5)"},
+    {"ch02-block-area", R"(\max\!\left(-\tfrac12s_x,(n_x-\tfrac12)\,s_x\right))"},
+    {"ch02-block-area", "right=(b.x_end-b.x_begin)*e.step_x()-half_x"},
+    {"ch03-pixel-of-u", R"(t=\frac{u\,q_0-p_0}{p_t-u\,q_t})"},
+    {"ch03-pixel-of-u", "(u*s.one_w-s.u_w)/(s.du_w-u*s.done_w)"},
+    {"ch03-quarter-point", R"(16\Delta\,w_0/(w_0+3w_2))"},
+    {"ch03-quarter-point", R"(a=\frac{4\Delta-k}{3n^2})"},
+    {"ch03-quarter-point", "T(16)*du*w0/(w0+T(3)*w2)"},
+};
+
+/// The variant answers found on the pages of `book` outside its API reference (its
+/// chapters and other pages, all at its top level), each with the page it is on.
+std::vector<std::string> variant_answers_in(const fs::path& book) {
+    std::vector<std::string> found;
+    for (const auto& entry : fs::directory_iterator(book)) {
+        if (entry.path().extension() != ".html") {
+            continue;
+        }
+        const std::string text = squeezed(html_text(read_text(entry.path())));
+        for (const auto& g : variant_answers) {
+            if (text.find(g.text) != std::string::npos) {
+                found.push_back(std::string(g.exercise) + ": \"" + g.text + "\" on " +
+                                entry.path().filename().string());
+            }
+        }
+    }
+    return found;
+}
+
 /// The give-aways found in `book`, each with the page it is on.
 std::vector<std::string> give_aways_in(const fs::path& book) {
     std::vector<std::string> found;
@@ -365,5 +405,30 @@ TEST_CASE("the public book states every answer the course edition keeps back") {
                                       return f.rfind(prefix, 0) == 0;
                                   }),
                       "never in the public book: " << prefix);
+    }
+}
+
+TEST_CASE("no chapter of the public book or the course edition prints a variant's answer") {
+    for (const char* edition : {"book", "book-course"}) {
+        const fs::path book = fs::path(EXACTPIXELS_BINARY_DIR) / edition;
+        REQUIRE(fs::exists(book / "index.html"));
+        for (const auto& found : variant_answers_in(book)) {
+            FAIL_CHECK("build/" << edition << " prints a variant exercise's answer: "
+                                << found);
+        }
+    }
+}
+
+TEST_CASE("the teacher's edition derives every variant's answer") {
+    const fs::path teacher = fs::path(EXACTPIXELS_BINARY_DIR) / "book-teacher";
+    REQUIRE(fs::exists(teacher / "index.html"));
+    const auto found = variant_answers_in(teacher);
+    for (const auto& g : variant_answers) {
+        const std::string prefix = std::string(g.exercise) + ": \"" + g.text + "\"";
+        CHECK_MESSAGE(std::any_of(found.begin(), found.end(),
+                                  [&](const std::string& f) {
+                                      return f.rfind(prefix, 0) == 0;
+                                  }),
+                      "never in the teacher's edition: " << prefix);
     }
 }
