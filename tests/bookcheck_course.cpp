@@ -284,7 +284,8 @@ const GiveAway give_aways[] = {
 /// teacher's edition, whose solutions derive them, so that the search is shown to see
 /// them.
 const GiveAway variant_answers[] = {
-    {"ch01-gradient-3d", R"(\Delta_2\,(\mathbfe_3\times\mathbfn)+\Delta_3\,(\mathbfn\times\mathbfe_2))"},
+    {"ch01-gradient-3d",
+     R"(\Delta_2\,(\mathbfe_3\times\mathbfn)+\Delta_3\,(\mathbfn\times\mathbfe_2))"},
     {"ch01-gradient-3d", "along2=cross(e3,n),along3=cross(n,e2)"},
     {"ch01-prestep-up", R"(j=\lfloory-\tfrac12\rfloor)"},
     {"ch01-prestep-up", "std::floor(y_from-0.5)"},
@@ -408,13 +409,13 @@ TEST_CASE("the public book states every answer the course edition keeps back") {
     }
 }
 
-TEST_CASE("no chapter of the public book or the course edition prints a variant's answer") {
+TEST_CASE("no page of the public book or the course edition prints a variant's answer") {
     for (const char* edition : {"book", "book-course"}) {
         const fs::path book = fs::path(EXACTPIXELS_BINARY_DIR) / edition;
         REQUIRE(fs::exists(book / "index.html"));
         for (const auto& found : variant_answers_in(book)) {
-            FAIL_CHECK("build/" << edition << " prints a variant exercise's answer: "
-                                << found);
+            FAIL_CHECK("build/" << edition
+                                << " prints a variant exercise's answer: " << found);
         }
     }
 }
@@ -425,10 +426,9 @@ TEST_CASE("the teacher's edition derives every variant's answer") {
     const auto found = variant_answers_in(teacher);
     for (const auto& g : variant_answers) {
         const std::string prefix = std::string(g.exercise) + ": \"" + g.text + "\"";
-        CHECK_MESSAGE(std::any_of(found.begin(), found.end(),
-                                  [&](const std::string& f) {
-                                      return f.rfind(prefix, 0) == 0;
-                                  }),
-                      "never in the teacher's edition: " << prefix);
+        CHECK_MESSAGE(
+            std::any_of(found.begin(), found.end(),
+                        [&](const std::string& f) { return f.rfind(prefix, 0) == 0; }),
+            "never in the teacher's edition: " << prefix);
     }
 }

@@ -414,7 +414,8 @@ Vector3<Rational> minus(const Vector3<Rational>& a, const Vector3<Rational>& b) 
 // The normal e2 x e3, computed here, not by the library.
 Vector3<Rational> normal_of(const SpaceTriangle& t) {
     const Vector3<Rational> a = minus(t.p[1], t.p[0]), b = minus(t.p[2], t.p[0]);
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0]};
 }
 
 } // namespace
@@ -430,8 +431,8 @@ TEST_CASE("the gradient in space gives every edge's change of c" *
         if (dot(normal_of(t), normal_of(t)) == Rational(0)) {
             continue;
         }
-        for (const auto& o : std::array<std::array<int, 3>, 3>{
-                 {{0, 1, 2}, {1, 2, 0}, {2, 1, 0}}}) {
+        for (const auto& o :
+             std::array<std::array<int, 3>, 3>{{{0, 1, 2}, {1, 2, 0}, {2, 1, 0}}}) {
             const std::array<Vector3<Rational>, 3> p{t.p[o[0]], t.p[o[1]], t.p[o[2]]};
             const std::array<Rational, 3> c{t.c[o[0]], t.c[o[1]], t.c[o[2]]};
             const Vector3<Rational> g = closed_form_gradient_3d(p, c);
@@ -469,8 +470,9 @@ TEST_CASE("the gradient in space lies in the triangle's plane" *
     CHECK(checked > trials / 40);
 }
 
-TEST_CASE("on the screen plane the gradient in space is chapter 1's, and zero area gives 0" *
-          doctest::description("points: 5; exercise: ch01-gradient-3d")) {
+TEST_CASE(
+    "on the screen plane the gradient in space is chapter 1's, and zero area gives 0" *
+    doctest::description("points: 5; exercise: ch01-gradient-3d")) {
     // With every z = 0 the plane is the screen's: (g_x, g_y) is @eq:closed-form's
     // gradient and g_z = 0. A triangle without area has no plane: {0, 0, 0}.
     std::mt19937_64 random(33);
@@ -480,10 +482,9 @@ TEST_CASE("on the screen plane the gradient in space is chapter 1's, and zero ar
         if (twice_area(s) == Rational(0)) {
             continue;
         }
-        const std::array<Vector3<Rational>, 3> p{
-            {{s.x[0], s.y[0], Rational(0)},
-             {s.x[1], s.y[1], Rational(0)},
-             {s.x[2], s.y[2], Rational(0)}}};
+        const std::array<Vector3<Rational>, 3> p{{{s.x[0], s.y[0], Rational(0)},
+                                                  {s.x[1], s.y[1], Rational(0)},
+                                                  {s.x[2], s.y[2], Rational(0)}}};
         const Vector3<Rational> g = closed_form_gradient_3d(p, s.c);
         const Gradient<Rational> flat = split_edge_gradient(s);
         CHECK(g[0] == flat.dx);

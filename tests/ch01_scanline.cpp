@@ -663,8 +663,7 @@ TEST_CASE("walking up, the first value is the edge's value on that row's centre 
         const RowValue r = prestep_up(in.value, in.slope, in.y);
         const int row = lowest_row_at_or_above(in.y);
         const Rational expected =
-            exact(in.value) +
-            (Rational(2 * row + 1, 2) - exact(in.y)) * exact(in.slope);
+            exact(in.value) + (Rational(2 * row + 1, 2) - exact(in.y)) * exact(in.slope);
         INFO("value " << in.value << ", slope " << in.slope << ", y " << in.y);
         REQUIRE(exact(r.value) == expected);
     }

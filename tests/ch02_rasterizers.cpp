@@ -516,8 +516,8 @@ BlockClass area_class_by_corners(const EdgeSetup<FixedEdge>& s, PixelRect b) {
         bool some_pass = false, all_pass = true;
         for (const int x : {b.x_begin, b.x_end}) {
             for (const int y : {b.y_begin, b.y_end}) {
-                const bool pass = covers(e, edge_value_at(e, std::int64_t{x} * 256,
-                                                          std::int64_t{y} * 256));
+                const bool pass = covers(
+                    e, edge_value_at(e, std::int64_t{x} * 256, std::int64_t{y} * 256));
                 some_pass = some_pass || pass;
                 all_pass = all_pass && pass;
             }
@@ -540,10 +540,11 @@ TEST_CASE("a block's squares are classified by the corners of the area they cove
     for (int trial = 0; trial < ch02::trials; ++trial) {
         // Half of the triangles with vertices on whole pixels, where an edge can run
         // along a block's border.
-        const auto v = trial % 2 == 0 ? ch02::random_triangle(rng, -5.0, 50.0)
-                                      : ch02::snap3({double(corner(rng)), double(corner(rng))},
-                                                    {double(corner(rng)), double(corner(rng))},
-                                                    {double(corner(rng)), double(corner(rng))});
+        const auto v = trial % 2 == 0
+                           ? ch02::random_triangle(rng, -5.0, 50.0)
+                           : ch02::snap3({double(corner(rng)), double(corner(rng))},
+                                         {double(corner(rng)), double(corner(rng))},
+                                         {double(corner(rng)), double(corner(rng))});
         const auto s = setup_edges(v);
         if (s.empty) {
             continue;
@@ -561,7 +562,8 @@ TEST_CASE("a block's squares are classified by the corners of the area they cove
     // by its centres, but its squares reach the top and left edges, where a point is in
     // only on a top or left edge (both are), and its top-left corner (0, 0) is a vertex.
     const auto t = setup_edges(ch02::snap3({0, 0}, {64, 0}, {0, 64}));
-    CHECK(classify_block_area(t, PixelRect{0, 0, 8, 8}) == area_class_by_corners(t, {0, 0, 8, 8}));
+    CHECK(classify_block_area(t, PixelRect{0, 0, 8, 8}) ==
+          area_class_by_corners(t, {0, 0, 8, 8}));
     CHECK(classify_block_area(t, PixelRect{8, 8, 16, 16}) == BlockClass::inside);
     // [28, 36) x [28, 36): its bottom-right centre (35.5, 35.5) is out, but its top-left
     // corner point (28, 28) is in.

@@ -314,12 +314,9 @@ TEST_CASE("the pixel where the span reaches a given u, exactly" *
             continue; // u the same along the row: no pixel of its own
         }
         const Rational one(1), rn(n);
-        const PerspectiveSpan<Rational> s{u0 / w0,
-                                          Rational(0),
-                                          one / w0,
-                                          (u1 / w1 - u0 / w0) / rn,
-                                          Rational(0),
-                                          (one / w1 - one / w0) / rn,
+        const PerspectiveSpan<Rational> s{u0 / w0,     Rational(0),
+                                          one / w0,    (u1 / w1 - u0 / w0) / rn,
+                                          Rational(0), (one / w1 - one / w0) / rn,
                                           n + 1};
         const Rational t(std::uniform_int_distribution<int>(0, 8 * n)(random), 8);
         const Rational f = t / rn;

@@ -348,8 +348,8 @@ TEST_CASE("the quarter-point parabola passes through the exact values at 0, n/4 
     }
     CHECK(curved > 1900);
     // Equal depths: the exact u is linear, and so is the parabola.
-    const Quadratic<Rational> flat =
-        quarter_point_quadratic(Rational(3), Rational(2), Rational(35), Rational(2), Rational(8));
+    const Quadratic<Rational> flat = quarter_point_quadratic(
+        Rational(3), Rational(2), Rational(35), Rational(2), Rational(8));
     CHECK(flat.a == Rational(0));
     CHECK(flat.b == Rational(4));
 }
