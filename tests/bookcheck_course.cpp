@@ -410,7 +410,7 @@ TEST_CASE("no page of the public book or the course edition prints a variant's a
         const fs::path book = fs::path(EXACTPIXELS_BINARY_DIR) / edition;
         REQUIRE(fs::exists(book / "index.html"));
         for (const auto& found : found_in(book, variant_answers, true)) {
-            FAIL_CHECK("build/" << edition
+            FAIL_CHECK("build/" << std::string(edition)
                                 << " prints a variant exercise's answer: " << found);
         }
     }
