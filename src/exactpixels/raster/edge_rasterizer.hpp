@@ -161,12 +161,12 @@ template <class Edge> BlockClass classify_block(const EdgeSetup<Edge>& s, PixelR
 //< classify-block
 
 //> classify-block-area
-/// Classifies the block `b` by every point of its pixels' squares, not only by their
-/// centres (exercise ch02-block-area): outside when one edge fails at every point of the
-/// rectangle [x_begin, x_end] x [y_begin, y_end] (in pixels), inside when every edge
-/// passes at every point of it, partial otherwise; a point is tested as a centre is
-/// (covers). A conservative rasterizer, which draws every pixel the triangle touches,
-/// skips the blocks this calls outside.
+/// Classifies the block `b` by every point of its pixels' squares, not only by
+/// their centres (exercise ch02-block-area): outside when one edge fails at every
+/// point of the rectangle [x_begin, x_end] x [y_begin, y_end] (in pixels), inside
+/// when every edge passes at every point of it, partial otherwise; a point is tested
+/// as a centre is (covers). A conservative rasterizer, which draws every pixel the
+/// triangle touches, skips the blocks this calls outside.
 template <class Edge>
 BlockClass classify_block_area(const EdgeSetup<Edge>& s, PixelRect b) {
     //> exercise ch02-block-area: where over the block's squares is each edge largest?
@@ -176,14 +176,15 @@ BlockClass classify_block_area(const EdgeSetup<Edge>& s, PixelRect b) {
     for (const Edge& e : s.edge) {
         const auto top_left = e.at(b.x_begin, b.y_begin); // at the top-left centre
         const auto half_x = e.step_x() / 2, half_y = e.step_y() / 2; // exact: even
-        const auto left = -half_x, right = (b.x_end - b.x_begin) * e.step_x() - half_x;
-        const auto top = -half_y, bottom = (b.y_end - b.y_begin) * e.step_y() - half_y;
-        const auto largest = top_left + std::max(left, right) + std::max(top, bottom);
-        const auto smallest = top_left + std::min(left, right) + std::min(top, bottom);
-        if (!covers(e, largest)) {
+        const auto left = -half_x, top = -half_y;
+        const auto right = (b.x_end - b.x_begin) * e.step_x() - half_x;
+        const auto bottom = (b.y_end - b.y_begin) * e.step_y() - half_y;
+        const auto most = top_left + std::max(left, right) + std::max(top, bottom);
+        const auto least = top_left + std::min(left, right) + std::min(top, bottom);
+        if (!covers(e, most)) {
             return BlockClass::outside; // no point of the block passes this edge
         }
-        inside = inside && covers(e, smallest);
+        inside = inside && covers(e, least);
     }
     return inside ? BlockClass::inside : BlockClass::partial;
     //| (void)s, (void)b;

@@ -61,16 +61,16 @@ template <class T> Gradient<T> closed_form_gradient(const PlaneSamples<T>& s) {
 template <class T> using Vector3 = std::array<T, 3>;
 
 //> gradient-3d
-/// The gradient of c over a triangle in space (exercise ch01-gradient-3d): the vector g
-/// in the triangle's plane along which c changes fastest, so that on the triangle
-/// c(p) = c[0] + g . (p - p[0]), as chapter 1's (dc/dx, dc/dy) is on the screen (where
-/// z = 0). Any vertex order; zero area gives {0, 0, 0}.
+/// The gradient of c over a triangle in space (exercise ch01-gradient-3d): the
+/// vector g in the triangle's plane along which c changes fastest, so that on the
+/// triangle c(p) = c[0] + g . (p - p[0]), as chapter 1's (dc/dx, dc/dy) is on the
+/// screen (where z = 0). Any vertex order; zero area gives {0, 0, 0}.
 template <class T>
 Vector3<T> closed_form_gradient_3d(const std::array<Vector3<T>, 3>& p,
                                    const std::array<T, 3>& c) {
     //> exercise ch01-gradient-3d: g . e2 = c[1] - c[0], g . e3 = c[2] - c[0], g . n = 0.
-    // Cross products build, from the edges e2 and e3 and the normal n = e2 x e3, one
-    // vector in the plane at right angles to e3 and one at right angles to e2.
+    // Cross products build, from the edges e2 and e3 and the normal n = e2 x e3,
+    // one vector in the plane at right angles to e3 and one at right angles to e2.
     const auto difference = [](const Vector3<T>& a, const Vector3<T>& b) {
         return Vector3<T>{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
     };

@@ -270,14 +270,14 @@ struct RowValue {
 
 //> prestep-up
 /// For a renderer that walks each edge up the screen, from its lower end, with a
-/// bottom-left fill rule (a centre exactly level with the lower end is drawn; exercise
-/// ch01-prestep-up): the first row of the walk, the lowest whose centre is at or above
-/// `y_from` (y down), and the value there, from `value` at `y_from` and its change
-/// `slope` per pixel down the edge.
+/// bottom-left fill rule (a centre exactly level with the lower end is drawn;
+/// exercise ch01-prestep-up): the first row of the walk, the lowest whose centre is
+/// at or above `y_from` (y down), and the value there, from `value` at `y_from` and
+/// its change `slope` per pixel down the edge.
 inline RowValue prestep_up(double value, double slope, double y_from) {
     //> exercise ch01-prestep-up: which row comes first going up, and how far away is it?
-    // The centre row + 1/2 <= y_from, the largest such row; the step there is upwards,
-    // so the distance (row + 1/2 - y_from) is in (-1, 0].
+    // The centre row + 1/2 <= y_from, the largest such row; the step there is
+    // upwards, so the distance (row + 1/2 - y_from) is in (-1, 0].
     const int row = static_cast<int>(std::floor(y_from - 0.5));
     return {row, value + ((row + 0.5) - y_from) * slope};
     //| (void)slope, (void)y_from;

@@ -59,8 +59,9 @@ template <class T> Quadratic<T> thellier_quadratic(T u0, T w0, T u2, T w2, T n) 
 /// in Thellier's manner: from the extent du = u2 - u0 and one ratio of the depths.
 template <class T> Quadratic<T> quarter_point_quadratic(T u0, T w0, T u2, T w2, T n) {
     //> exercise ch03-quarter-point: the exact u at t = n/4, then a and b from three points.
-    // At a quarter, 1/w is (3/w0 + 1/w2)/4, so u - u0 = du w0 / (w0 + 3 w2); with
-    // k = 16 (u(n/4) - u0), a n^2 + b n = du and a n^2/16 + b n/4 = k/16 give a and b.
+    // At a quarter, 1/w is (3/w0 + 1/w2)/4, so u - u0 = du w0 / (w0 + 3 w2);
+    // with k = 16 (u(n/4) - u0), a n^2 + b n = du and a n^2/16 + b n/4 = k/16
+    // give a and b.
     const T du = u2 - u0;
     const T k = T(16) * du * w0 / (w0 + T(3) * w2);
     return {(T(4) * du - k) / (T(3) * n * n), (k - du) / (T(3) * n), u0};
