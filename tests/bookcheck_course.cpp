@@ -276,22 +276,64 @@ const GiveAway give_aways[] = {
     {"ch09-run-of-row", "end.k=floor_div(w,end.s)+1"},
 };
 
-/// The give-aways found in `book`, each with the page it is on.
-std::vector<std::string> give_aways_in(const fs::path& book) {
+/// The answers of the variant exercises: exercises set in place of ones whose answer a
+/// chapter must print to teach (book/teaching.md, "Three editions"). Their point is that
+/// no chapter prints them, in any edition: each decisive expression (TeX or code, without
+/// white space) may appear on no page of the public book or the course edition outside
+/// the API reference (which prints the public library whole), and must appear in the
+/// teacher's edition, whose solutions derive them, so that the search is shown to see
+/// them.
+const GiveAway variant_answers[] = {
+    {"ch01-gradient-3d",
+     R"(\Delta_2\,(\mathbfe_3\times\mathbfn)+\Delta_3\,(\mathbfn\times\mathbfe_2))"},
+    {"ch01-gradient-3d", "along2=cross(e3,n),along3=cross(n,e2)"},
+    {"ch01-prestep-up", R"(j=\lfloory-\tfrac12\rfloor)"},
+    {"ch01-prestep-up", "std::floor(y_from-0.5)"},
+    {"ch02-block-area", R"(\max\!\left(-\tfrac12s_x,(n_x-\tfrac12)\,s_x\right))"},
+    {"ch02-block-area", "right=(b.x_end-b.x_begin)*e.step_x()-half_x"},
+    {"ch03-pixel-of-u", R"(t=\frac{u\,q_0-p_0}{p_t-u\,q_t})"},
+    {"ch03-pixel-of-u", "(u*s.one_w-s.u_w)/(s.du_w-u*s.done_w)"},
+    {"ch03-quarter-point", R"(16\Delta\,w_0/(w_0+3w_2))"},
+    {"ch03-quarter-point", R"(a=\frac{4\Delta-k}{3n^2})"},
+    {"ch03-quarter-point", "T(16)*du*w0/(w0+T(3)*w2)"},
+};
+
+/// The expressions of `list` found on the HTML pages of `book` (all of them, or with
+/// `top_level_only` its chapters and other pages without its API reference), each as
+/// `EXERCISE: "TEXT" on PAGE`.
+template <std::size_t N>
+std::vector<std::string> found_in(const fs::path& book, const GiveAway (&list)[N],
+                                  bool top_level_only = false) {
     std::vector<std::string> found;
-    for (const auto& entry : fs::recursive_directory_iterator(book)) {
-        if (entry.path().extension() != ".html") {
+    for (auto it = fs::recursive_directory_iterator(book);
+         it != fs::recursive_directory_iterator(); ++it) {
+        if (it->path().extension() != ".html" || (top_level_only && it.depth() > 0)) {
             continue;
         }
-        const std::string text = squeezed(html_text(read_text(entry.path())));
-        for (const auto& g : give_aways) {
+        const std::string text = squeezed(html_text(read_text(it->path())));
+        for (const auto& g : list) {
             if (text.find(g.text) != std::string::npos) {
                 found.push_back(std::string(g.exercise) + ": \"" + g.text + "\" on " +
-                                fs::relative(entry.path(), book).string());
+                                fs::relative(it->path(), book).string());
             }
         }
     }
     return found;
+}
+
+/// The entries of `list` that `found` (from found_in) never names.
+template <std::size_t N>
+std::vector<std::string> never_found(const std::vector<std::string>& found,
+                                     const GiveAway (&list)[N]) {
+    std::vector<std::string> missing;
+    for (const auto& g : list) {
+        const std::string prefix = std::string(g.exercise) + ": \"" + g.text + "\"";
+        if (std::none_of(found.begin(), found.end(),
+                         [&](const std::string& f) { return f.rfind(prefix, 0) == 0; })) {
+            missing.push_back(prefix);
+        }
+    }
+    return missing;
 }
 
 } // namespace
@@ -349,7 +391,7 @@ TEST_CASE("the search reads the API reference: the public book's prints solution
 TEST_CASE("no text of the course edition gives an exercise's answer away") {
     const fs::path course = fs::path(EXACTPIXELS_BINARY_DIR) / "book-course";
     REQUIRE(fs::exists(course / "index.html"));
-    for (const auto& found : give_aways_in(course)) {
+    for (const auto& found : found_in(course, give_aways)) {
         FAIL_CHECK("the course edition gives the answer away: " << found);
     }
 }
@@ -357,13 +399,28 @@ TEST_CASE("no text of the course edition gives an exercise's answer away") {
 TEST_CASE("the public book states every answer the course edition keeps back") {
     const fs::path public_book = fs::path(EXACTPIXELS_BINARY_DIR) / "book";
     REQUIRE(fs::exists(public_book / "index.html"));
-    const auto found = give_aways_in(public_book);
-    for (const auto& g : give_aways) {
-        const std::string prefix = std::string(g.exercise) + ": \"" + g.text + "\"";
-        CHECK_MESSAGE(std::any_of(found.begin(), found.end(),
-                                  [&](const std::string& f) {
-                                      return f.rfind(prefix, 0) == 0;
-                                  }),
-                      "never in the public book: " << prefix);
+    for (const auto& missing :
+         never_found(found_in(public_book, give_aways), give_aways)) {
+        FAIL_CHECK("never in the public book: " << missing);
+    }
+}
+
+TEST_CASE("no page of the public book or the course edition prints a variant's answer") {
+    for (const char* edition : {"book", "book-course"}) {
+        const fs::path book = fs::path(EXACTPIXELS_BINARY_DIR) / edition;
+        REQUIRE(fs::exists(book / "index.html"));
+        for (const auto& found : found_in(book, variant_answers, true)) {
+            FAIL_CHECK("build/" << std::string(edition)
+                                << " prints a variant exercise's answer: " << found);
+        }
+    }
+}
+
+TEST_CASE("the teacher's edition derives every variant's answer") {
+    const fs::path teacher = fs::path(EXACTPIXELS_BINARY_DIR) / "book-teacher";
+    REQUIRE(fs::exists(teacher / "index.html"));
+    const auto found = found_in(teacher, variant_answers, true);
+    for (const auto& missing : never_found(found, variant_answers)) {
+        FAIL_CHECK("never in the teacher's edition: " << missing);
     }
 }

@@ -95,8 +95,7 @@ template <class T> double norm(Gradient<T> g) {
 
 } // namespace
 
-TEST_CASE("split edge and closed form are the same number in exact arithmetic" *
-          doctest::description("points: 4; exercise: ch01-closed-form")) {
+TEST_CASE("split edge and closed form are the same number in exact arithmetic") {
     std::mt19937_64 random(11);
     int checked = 0;
     for (int trial = 0; trial < trials / 10; ++trial) {
@@ -119,8 +118,7 @@ TEST_CASE("split edge and closed form are the same number in exact arithmetic" *
     CHECK(checked > trials / 20);
 }
 
-TEST_CASE("closed form is unchanged by every vertex order" *
-          doctest::description("points: 2; exercise: ch01-closed-form")) {
+TEST_CASE("closed form is unchanged by every vertex order") {
     const std::array<std::array<int, 3>, 6> orders{
         {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
     std::mt19937_64 random(12);
@@ -160,8 +158,7 @@ TEST_CASE("closed form is unchanged by every vertex order" *
     }
 }
 
-TEST_CASE("split edge and closed form agree on random triangles" *
-          doctest::description("points: 4; exercise: ch01-closed-form")) {
+TEST_CASE("split edge and closed form agree on random triangles") {
     // Both formulas divide a difference of products by a difference of products. The
     // products round by eps relative, so the error is about eps kappa times the size
     // of the terms (@eq:error-estimate): the test allows 32 eps kappa (|delta c| / L +
@@ -216,8 +213,7 @@ TEST_CASE("split edge and closed form agree on random triangles" *
     CHECK(checked > trials / 2);
 }
 
-TEST_CASE("both edge slopes are the same number in exact arithmetic" *
-          doctest::description("points: 2; exercise: ch01-closed-form")) {
+TEST_CASE("both edge slopes are the same number in exact arithmetic") {
     std::mt19937_64 random(14);
     for (int trial = 0; trial < trials / 10; ++trial) {
         const PlaneSamples<Rational> s = random_integer_triangle(random, 50);
@@ -239,8 +235,7 @@ TEST_CASE("both edge slopes are the same number in exact arithmetic" *
     }
 }
 
-TEST_CASE("both edge slopes agree in floating point" *
-          doctest::description("points: 2; exercise: ch01-closed-form")) {
+TEST_CASE("both edge slopes agree in floating point") {
     // The form from the gradient inherits the gradient's error (32 eps kappa times the
     // term size, see above) times (1 + |dx/dy|); the direct form rounds twice. The
     // tolerance is the sum.
@@ -267,8 +262,7 @@ TEST_CASE("both edge slopes agree in floating point" *
     }
 }
 
-TEST_CASE("flat-top and flat-bottom triangles need no special case" *
-          doctest::description("points: 2; exercise: ch01-closed-form")) {
+TEST_CASE("flat-top and flat-bottom triangles need no special case") {
     // c = 1 + 2x + 3y sampled at integer vertices: every formula is exact in double.
     const auto plane = [](double x, double y) { return 1 + 2 * x + 3 * y; };
     const std::array<std::array<glm::dvec2, 3>, 4> triangles{{
@@ -331,8 +325,7 @@ TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
     }
 }
 
-TEST_CASE("the stability study's reference is the exact gradient" *
-          doctest::description("points: 2; exercise: ch01-closed-form")) {
+TEST_CASE("the stability study's reference is the exact gradient") {
     // exact_gradient computes @eq:closed-form in integers (every input in units of
     // 2^-40) and keeps each component as an exact fraction. Check it against the
     // library's closed form run in Rational arithmetic on the exact values of the same
@@ -366,8 +359,7 @@ TEST_CASE("the stability study's reference is the exact gradient" *
     CHECK(compared == 6 * 50); // the study keeps only triangles with a gradient
 }
 
-TEST_CASE("neither gradient loses accuracy as the y-delta shrinks" *
-          doctest::description("points: 2; exercise: ch01-closed-form")) {
+TEST_CASE("neither gradient loses accuracy as the y-delta shrinks") {
     // The chapter's stability table, re-measured on fewer triangles. What it claims:
     // on typical triangles (the median) both methods are accurate to within one
     // machine epsilon at every y-delta down to 1e-12 px and at exactly 0; 99% of
@@ -389,4 +381,121 @@ TEST_CASE("neither gradient loses accuracy as the y-delta shrinks" *
             CHECK(r.split_better > r.closed_better);
         }
     }
+}
+
+namespace {
+
+// A triangle in space with small integer coordinates and values, as exact rationals.
+struct SpaceTriangle {
+    std::array<Vector3<Rational>, 3> p;
+    std::array<Rational, 3> c;
+};
+
+SpaceTriangle random_space_triangle(std::mt19937_64& random, int range) {
+    std::uniform_int_distribution<int> coordinate(-range, range);
+    SpaceTriangle t{};
+    for (int i = 0; i < 3; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            t.p[i][k] = Rational(coordinate(random));
+        }
+        t.c[i] = Rational(coordinate(random));
+    }
+    return t;
+}
+
+Rational dot(const Vector3<Rational>& a, const Vector3<Rational>& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+Vector3<Rational> minus(const Vector3<Rational>& a, const Vector3<Rational>& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+// The normal e2 x e3, computed here, not by the library.
+Vector3<Rational> normal_of(const SpaceTriangle& t) {
+    const Vector3<Rational> a = minus(t.p[1], t.p[0]), b = minus(t.p[2], t.p[0]);
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0]};
+}
+
+} // namespace
+
+TEST_CASE("the gradient in space gives every edge's change of c" *
+          doctest::description("points: 10; exercise: ch01-gradient-3d")) {
+    // The plane c[0] + g . (p - p[0]) must take the value c[i] at every vertex: g . e
+    // is the change of c along each edge e, exactly, in every vertex order.
+    std::mt19937_64 random(31);
+    int checked = 0;
+    for (int trial = 0; trial < trials / 20; ++trial) {
+        const SpaceTriangle t = random_space_triangle(random, 30);
+        if (dot(normal_of(t), normal_of(t)) == Rational(0)) {
+            continue;
+        }
+        for (const auto& o :
+             std::array<std::array<int, 3>, 3>{{{0, 1, 2}, {1, 2, 0}, {2, 1, 0}}}) {
+            const std::array<Vector3<Rational>, 3> p{t.p[o[0]], t.p[o[1]], t.p[o[2]]};
+            const std::array<Rational, 3> c{t.c[o[0]], t.c[o[1]], t.c[o[2]]};
+            const Vector3<Rational> g = closed_form_gradient_3d(p, c);
+            for (int i = 0; i < 3; ++i) {
+                for (int j = 0; j < 3; ++j) {
+                    INFO("from vertex " << i << " to vertex " << j << ", g = (" << g[0]
+                                        << ", " << g[1] << ", " << g[2] << ")");
+                    REQUIRE(dot(g, minus(p[j], p[i])) == c[j] - c[i]);
+                }
+            }
+        }
+        ++checked;
+    }
+    CHECK(checked > trials / 40);
+}
+
+TEST_CASE("the gradient in space lies in the triangle's plane" *
+          doctest::description("points: 5; exercise: ch01-gradient-3d")) {
+    // Along the normal c does not change on the triangle, so the steepest direction has
+    // no part along it: g . n = 0. (Without it, g + k n would also pass the edges' test.)
+    // A triangle whose c varies has a gradient that is not zero.
+    std::mt19937_64 random(32);
+    int checked = 0;
+    for (int trial = 0; trial < trials / 20; ++trial) {
+        const SpaceTriangle t = random_space_triangle(random, 30);
+        const Vector3<Rational> n = normal_of(t);
+        if (dot(n, n) == Rational(0) || (t.c[0] == t.c[1] && t.c[1] == t.c[2])) {
+            continue;
+        }
+        const Vector3<Rational> g = closed_form_gradient_3d(t.p, t.c);
+        CHECK(dot(g, n) == Rational(0));
+        CHECK(dot(g, g) != Rational(0));
+        ++checked;
+    }
+    CHECK(checked > trials / 40);
+}
+
+TEST_CASE(
+    "on the screen plane the gradient in space is chapter 1's, and zero area gives 0" *
+    doctest::description("points: 5; exercise: ch01-gradient-3d")) {
+    // With every z = 0 the plane is the screen's: (g_x, g_y) is @eq:closed-form's
+    // gradient and g_z = 0. A triangle without area has no plane: {0, 0, 0}.
+    std::mt19937_64 random(33);
+    int checked = 0;
+    for (int trial = 0; trial < trials / 20; ++trial) {
+        const PlaneSamples<Rational> s = random_integer_triangle(random, 50);
+        if (twice_area(s) == Rational(0)) {
+            continue;
+        }
+        const std::array<Vector3<Rational>, 3> p{{{s.x[0], s.y[0], Rational(0)},
+                                                  {s.x[1], s.y[1], Rational(0)},
+                                                  {s.x[2], s.y[2], Rational(0)}}};
+        const Vector3<Rational> g = closed_form_gradient_3d(p, s.c);
+        const Gradient<Rational> flat = split_edge_gradient(s);
+        CHECK(g[0] == flat.dx);
+        CHECK(g[1] == flat.dy);
+        CHECK(g[2] == Rational(0));
+        ++checked;
+    }
+    CHECK(checked > trials / 40);
+    const std::array<Vector3<double>, 3> line{{{0, 0, 0}, {1, 2, 3}, {2, 4, 6}}};
+    const Vector3<double> none = closed_form_gradient_3d(line, {1.0, 2.0, 4.0});
+    CHECK(none[0] == 0.0);
+    CHECK(none[1] == 0.0);
+    CHECK(none[2] == 0.0);
 }

@@ -2,6 +2,7 @@
 // (ASCII masks, and an exact brute-force reference written straight from the top-left
 // rule's definition), watertightness by counting hits, attributes against the plane.
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/raster/gradients.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "support/printing.hpp"
@@ -528,8 +529,7 @@ TEST_CASE("a fan of 720 slivers around a pixel centre covers each pixel once") {
     CHECK(total == fixed_reference); // and the fan's total is the exact total
 }
 
-TEST_CASE("stepped attributes lie on the plane at every pixel centre" *
-          doctest::description("points: 7; exercise: ch01-prestep")) {
+TEST_CASE("stepped attributes lie on the plane at every pixel centre") {
     // Each drawn value is reached by one prestep down an edge, up to (rows) additions
     // of the edge slope, one prestep along the row and up to (columns) additions of
     // dc/dx. Every addition rounds by at most eps/2 of the running sum, and the edge's
@@ -586,8 +586,7 @@ TEST_CASE("stepped attributes lie on the plane at every pixel centre" *
     CHECK(drawn_total > 0);
 }
 
-TEST_CASE("the first pixel's value is the plane at its centre, not at the vertex" *
-          doctest::description("points: 3; exercise: ch01-prestep")) {
+TEST_CASE("the first pixel's value is the plane at its centre, not at the vertex") {
     // c = x + 10 y over a triangle whose vertices sit between pixel centres: every
     // drawn pixel must carry c at its own centre, exactly (the edges' dy are powers of
     // two, so every slope and step is a short binary fraction and nothing rounds).
@@ -604,4 +603,68 @@ TEST_CASE("the first pixel's value is the plane at its centre, not at the vertex
                              ++drawn;
                          });
     CHECK(drawn > 8);
+}
+
+namespace {
+
+// Random inputs on a grid of 1/256 px and values on a grid of 1/256, small enough that
+// value + (row + 1/2 - y) * slope is exact in double (a multiple of 2^-16 below 2^20).
+struct UpInput {
+    double value, slope, y;
+};
+
+UpInput random_up_input(std::mt19937_64& random, int trial) {
+    std::uniform_int_distribution<int> y(-20 * 256, 60 * 256), number(-4096, 4096);
+    // Every fourth y is a multiple of 1/2 px: centres and rows' edges, where the rule
+    // decides.
+    const int y_units = trial % 4 == 0 ? y(random) / 128 * 128 : y(random);
+    return {number(random) / 256.0, number(random) / 256.0, y_units / 256.0};
+}
+
+// The lowest row whose centre is at or above y (centre <= y, y down), found by walking
+// the rows, not by a formula.
+int lowest_row_at_or_above(double y) {
+    int row = static_cast<int>(y) + 2;
+    while (row + 0.5 > y) {
+        --row;
+    }
+    return row;
+}
+
+} // namespace
+
+TEST_CASE("walking up, the first row is the lowest centre at or above the lower end" *
+          doctest::description("points: 5; exercise: ch01-prestep-up")) {
+    std::mt19937_64 random(41);
+    int on_centre = 0;
+    for (int trial = 0; trial < trials; ++trial) {
+        const UpInput in = random_up_input(random, trial);
+        const RowValue r = prestep_up(in.value, in.slope, in.y);
+        INFO("y = " << in.y);
+        REQUIRE(r.row == lowest_row_at_or_above(in.y));
+        on_centre += r.row + 0.5 == in.y;
+    }
+    // A lower end exactly on a centre: the bottom-left rule draws that row.
+    CHECK(prestep_up(0.0, 1.0, 7.5).row == 7);
+    CHECK(prestep_up(0.0, 1.0, 7.25).row == 6);
+    CHECK(prestep_up(0.0, 1.0, -0.5).row == -1);
+    CHECK(prestep_up(0.0, 1.0, -0.75).row == -2);
+    CHECK(on_centre > 0);
+}
+
+TEST_CASE("walking up, the first value is the edge's value on that row's centre line" *
+          doctest::description("points: 5; exercise: ch01-prestep-up")) {
+    // The value changes by `slope` per pixel down the edge; on the first row's centre
+    // line, (row + 1/2 - y) pixels down (up, as it is negative or zero), it is exactly
+    // value + (row + 1/2 - y) * slope: checked in exact rationals.
+    std::mt19937_64 random(42);
+    for (int trial = 0; trial < trials; ++trial) {
+        const UpInput in = random_up_input(random, trial);
+        const RowValue r = prestep_up(in.value, in.slope, in.y);
+        const int row = lowest_row_at_or_above(in.y);
+        const Rational expected =
+            exact(in.value) + (Rational(2 * row + 1, 2) - exact(in.y)) * exact(in.slope);
+        INFO("value " << in.value << ", slope " << in.slope << ", y " << in.y);
+        REQUIRE(exact(r.value) == expected);
+    }
 }

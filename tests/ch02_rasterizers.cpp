@@ -350,8 +350,7 @@ TEST_CASE(
     CHECK(classify_block(s, PixelRect{2513, 302, 2521, 310}) != BlockClass::outside);
 }
 
-TEST_CASE("blocks are classified by their corners" *
-          doctest::description("points: 20; exercise: ch02-block-classify")) {
+TEST_CASE("blocks are classified by their corners") {
     // The triangle (0, 0), (64, 0), (0, 64) px: the block of pixels [0, 8) x [0, 8) is
     // deep inside, [56, 64) x [56, 64) entirely below the hypotenuse, and
     // [24, 32) x [32, 40) crosses it.
@@ -499,4 +498,112 @@ TEST_CASE("triangles at the edge of the exact range rasterize exactly") {
     const std::array<Point2f, 3> not_finite{{{0, 0}, {1, 0}, {0, std::nanf("")}}};
     CHECK_THROWS_WITH_AS(edge_rasterize_pixels(not_finite, Viewport{8, 8}, nothing),
                          doctest::Contains("vertex 2"), Error);
+}
+
+namespace {
+
+// The edge's value, bias included, at the point (X, Y) in 1/256 px, from its definition
+// (@eq:edge-function): exact in 64 bits for the small triangles here.
+std::int64_t edge_value_at(const FixedEdge& e, std::int64_t X, std::int64_t Y) {
+    return e.dx * (Y - e.a.y) - e.dy * (X - e.a.x) + e.bias;
+}
+
+// What a block's squares say, from the four corners of the rectangle they cover (a value
+// linear in the point is largest and smallest at corners of a rectangle).
+BlockClass area_class_by_corners(const EdgeSetup<FixedEdge>& s, PixelRect b) {
+    bool inside = true;
+    for (const FixedEdge& e : s.edge) {
+        bool some_pass = false, all_pass = true;
+        for (const int x : {b.x_begin, b.x_end}) {
+            for (const int y : {b.y_begin, b.y_end}) {
+                const bool pass = covers(
+                    e, edge_value_at(e, std::int64_t{x} * 256, std::int64_t{y} * 256));
+                some_pass = some_pass || pass;
+                all_pass = all_pass && pass;
+            }
+        }
+        if (!some_pass) {
+            return BlockClass::outside;
+        }
+        inside = inside && all_pass;
+    }
+    return inside ? BlockClass::inside : BlockClass::partial;
+}
+
+} // namespace
+
+TEST_CASE("a block's squares are classified by the corners of the area they cover" *
+          doctest::description("points: 12; exercise: ch02-block-area")) {
+    std::mt19937_64 rng(21);
+    std::uniform_int_distribution<int> corner(-4, 40), side(1, 9);
+    int decided = 0;
+    for (int trial = 0; trial < ch02::trials; ++trial) {
+        // Half of the triangles with vertices on whole pixels, where an edge can run
+        // along a block's border.
+        const auto v = trial % 2 == 0
+                           ? ch02::random_triangle(rng, -5.0, 50.0)
+                           : ch02::snap3({double(corner(rng)), double(corner(rng))},
+                                         {double(corner(rng)), double(corner(rng))},
+                                         {double(corner(rng)), double(corner(rng))});
+        const auto s = setup_edges(v);
+        if (s.empty) {
+            continue;
+        }
+        const int x = corner(rng), y = corner(rng);
+        const PixelRect b{x, y, x + side(rng), y + side(rng)};
+        const BlockClass expected = area_class_by_corners(s, b);
+        INFO("block [" << b.x_begin << ", " << b.x_end << ") x [" << b.y_begin << ", "
+                       << b.y_end << ")");
+        REQUIRE(classify_block_area(s, b) == expected);
+        decided += expected != BlockClass::partial;
+    }
+    CHECK(decided > ch02::trials / 10);
+    // The triangle (0, 0), (64, 0), (0, 64) px: the block [0, 8) x [0, 8) is inside it
+    // by its centres, but its squares reach the top and left edges, where a point is in
+    // only on a top or left edge (both are), and its top-left corner (0, 0) is a vertex.
+    const auto t = setup_edges(ch02::snap3({0, 0}, {64, 0}, {0, 64}));
+    CHECK(classify_block_area(t, PixelRect{0, 0, 8, 8}) ==
+          area_class_by_corners(t, {0, 0, 8, 8}));
+    CHECK(classify_block_area(t, PixelRect{8, 8, 16, 16}) == BlockClass::inside);
+    // [28, 36) x [28, 36): its bottom-right centre (35.5, 35.5) is out, but its top-left
+    // corner point (28, 28) is in.
+    CHECK(classify_block_area(t, PixelRect{28, 28, 36, 36}) == BlockClass::partial);
+    // [32, 40) x [32, 40): every centre is out and its top-left corner (32, 32) lies on
+    // the hypotenuse, which is not a top or left edge: outside.
+    CHECK(classify_block_area(t, PixelRect{32, 32, 40, 40}) == BlockClass::outside);
+}
+
+TEST_CASE("a block called outside by its squares has no point in the triangle" *
+          doctest::description("points: 8; exercise: ch02-block-area")) {
+    // Checked at every point of a 1/8 px grid over the block's squares, borders included:
+    // outside means some edge fails there, inside that every edge passes.
+    std::mt19937_64 rng(22);
+    std::uniform_int_distribution<int> corner(0, 40), side(1, 6);
+    int outside = 0, inside = 0;
+    for (int trial = 0; trial < ch02::trials / 4; ++trial) {
+        const auto v = ch02::random_triangle(rng, -5.0, 50.0);
+        const auto s = setup_edges(v);
+        if (s.empty) {
+            continue;
+        }
+        const int x = corner(rng), y = corner(rng);
+        const PixelRect b{x, y, x + side(rng), y + side(rng)};
+        const BlockClass c = classify_block_area(s, b);
+        if (c == BlockClass::partial) {
+            continue;
+        }
+        (c == BlockClass::outside ? outside : inside) += 1;
+        for (std::int64_t Y = b.y_begin * 256; Y <= b.y_end * 256; Y += 32) {
+            for (std::int64_t X = b.x_begin * 256; X <= b.x_end * 256; X += 32) {
+                bool in = true;
+                for (const FixedEdge& e : s.edge) {
+                    in = in && covers(e, edge_value_at(e, X, Y));
+                }
+                INFO("point (" << X / 256.0 << ", " << Y / 256.0 << ")");
+                REQUIRE(in == (c == BlockClass::inside));
+            }
+        }
+    }
+    CHECK(outside > 0);
+    CHECK(inside > 0);
 }

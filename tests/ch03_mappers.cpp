@@ -1,5 +1,6 @@
 // Chapter 3 tests: the span mappers against the perspective projection they model and
 // against the error bounds the chapter derives.
+#include "exactpixels/base/exact.hpp"
 #include "exactpixels/texture/perspective_error.hpp"
 #include "exactpixels/texture/rounding.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
@@ -47,8 +48,7 @@ double affine_curvature(double r, double lo, double hi) {
 }
 } // namespace
 
-TEST_CASE("the exact mapper reproduces the perspective projection of a textured line" *
-          doctest::description("points: 3; exercise: ch03-perspective-divide")) {
+TEST_CASE("the exact mapper reproduces the perspective projection of a textured line") {
     // A line in view space from A (u = 0) to B (u = 100 texels), seen by a pinhole with
     // focal length f. For each pixel centre X on its image, intersect the eye ray with
     // the line (independently of eq:linear-in-screen) and compare u.
@@ -93,8 +93,7 @@ TEST_CASE("the exact mapper reproduces the perspective projection of a textured 
     }
 }
 
-TEST_CASE("affine error between exact ends matches the formula and peaks at the bound" *
-          doctest::description("points: 2; exercise: ch03-perspective-divide")) {
+TEST_CASE("affine error between exact ends matches the formula and peaks at the bound") {
     // An affine piece exact at both ends: the subdivided mapper with one piece of 256
     // steps, from the exact u at pixel 0 to the exact u at pixel 256 (the scenes' affine
     // mapper takes its ends from the triangle's plane instead; ch03_triangles.cpp).
@@ -132,8 +131,7 @@ TEST_CASE("affine error between exact ends matches the formula and peaks at the 
     }
 }
 
-TEST_CASE("quadratic error on a span matches the formula and its tabulated peak" *
-          doctest::description("points: 3; exercise: ch03-quadratic-coefficients")) {
+TEST_CASE("quadratic error on a span matches the formula and its tabulated peak") {
     for (const double r : {1.25, 2.0, 4.0, 10.0, 100.0, 0.25}) {
         for (const double extent : {16.0, 64.0, 256.0}) {
             const int count = 257;
@@ -190,8 +188,7 @@ TEST_CASE("subdivided mappers are exact at every span point, bit for bit") {
     }
 }
 
-TEST_CASE("subdivided affine error falls as N shrinks, as the bound predicts" *
-          doctest::description("points: 2; exercise: ch03-perspective-divide")) {
+TEST_CASE("subdivided affine error falls as N shrinks, as the bound predicts") {
     // One long span, depth ratio 8, 256 texels. Each piece from pixel k0 to its target
     // has its own ratio and extent; the bound of eq:affine-bound applies piece by piece.
     const int count = 512;
@@ -299,4 +296,36 @@ TEST_CASE("rule 1 floors, rule 2 takes ceil - 1, and they differ only at ties") 
         const std::int32_t b = bias(random), U = coordinate(random);
         REQUIRE(real_texel_index(U / double(D), b) == fixed_texel_index(U, b));
     }
+}
+
+TEST_CASE("the pixel where the span reaches a given u, exactly" *
+          doctest::description("points: 10; exercise: ch03-pixel-of-u")) {
+    // A span from (u0, depth w0) at pixel 0 to (u1, depth w1) at pixel n, in exact
+    // rationals. For a pixel position t (on a grid of 1/8 px, ends included), u(t) is
+    // u/w and 1/w interpolated to t and divided; pixel_of_u must give t back from it.
+    std::mt19937 random(17);
+    std::uniform_int_distribution<int> texel(-500, 500), depth(1, 200), steps(1, 64);
+    int checked = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        const Rational u0(texel(random)), u1(texel(random));
+        const Rational w0(depth(random), depth(random)), w1(depth(random), depth(random));
+        const int n = steps(random);
+        if (u0 == u1) {
+            continue; // u the same along the row: no pixel of its own
+        }
+        const Rational one(1), rn(n);
+        const PerspectiveSpan<Rational> s{u0 / w0,     Rational(0),
+                                          one / w0,    (u1 / w1 - u0 / w0) / rn,
+                                          Rational(0), (one / w1 - one / w0) / rn,
+                                          n + 1};
+        const Rational t(std::uniform_int_distribution<int>(0, 8 * n)(random), 8);
+        const Rational f = t / rn;
+        const Rational u =
+            ((one - f) * (u0 / w0) + f * (u1 / w1)) / ((one - f) / w0 + f / w1);
+        INFO("u0 = " << u0 << ", w0 = " << w0 << ", u1 = " << u1 << ", w1 = " << w1
+                     << ", n = " << n << ", t = " << t << ", u = " << u);
+        REQUIRE(pixel_of_u(s, u) == t);
+        ++checked;
+    }
+    CHECK(checked > 1900);
 }

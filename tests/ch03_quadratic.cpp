@@ -28,8 +28,7 @@ Rational exact_u(Rational u0, Rational w0, Rational u2, Rational w2, Rational t)
 }
 } // namespace
 
-TEST_CASE("Thellier's coefficients equal Pursey's in exact arithmetic" *
-          doctest::description("points: 5; exercise: ch03-quadratic-coefficients")) {
+TEST_CASE("Thellier's coefficients equal Pursey's in exact arithmetic") {
     std::mt19937 random(3);
     std::uniform_int_distribution<int> texel(-2000, 2000), depth(1, 1000), steps(1, 512);
     for (int trial = 0; trial < 2000; ++trial) {
@@ -46,8 +45,7 @@ TEST_CASE("Thellier's coefficients equal Pursey's in exact arithmetic" *
     }
 }
 
-TEST_CASE("Thellier's and Pursey's coefficients agree in float within the stated bound" *
-          doctest::description("points: 3; exercise: ch03-quadratic-coefficients")) {
+TEST_CASE("Thellier's and Pursey's coefficients agree in float within the stated bound") {
     // Both forms, run in float, are compared with the exact coefficients of the same
     // float inputs. Pursey's 2 u0 - 4 u1 + 2 u2 cancels: its rounding error is a few ulps
     // of the largest |u| involved, so a and b are allowed 32 float epsilons of
@@ -78,8 +76,7 @@ TEST_CASE("Thellier's and Pursey's coefficients agree in float within the stated
     MESSAGE("largest float error: " << worst << " of the allowance");
 }
 
-TEST_CASE("the parabola passes through the exact values at both ends and the middle" *
-          doctest::description("points: 3; exercise: ch03-quadratic-coefficients")) {
+TEST_CASE("the parabola passes through the exact values at both ends and the middle") {
     std::mt19937 random(11);
     std::uniform_int_distribution<int> texel(-500, 500), depth(1, 200), steps(1, 300);
     for (int trial = 0; trial < 1000; ++trial) {
@@ -253,8 +250,7 @@ TEST_CASE("u is linear along lines of constant 1/w and bends along every other l
     CHECK(bent > 1000);
 }
 
-TEST_CASE("Pursey's parabola is monotonic exactly when the depth ratio is in [1/3, 3]" *
-          doctest::description("points: 3; exercise: ch03-quadratic-coefficients")) {
+TEST_CASE("Pursey's parabola is monotonic exactly when the depth ratio is in [1/3, 3]") {
     // Slopes at both ends (@eq:pursey-slopes), exact, for every r = i / j with i, j in
     // 1..24, on spans of 64 texels and 37 pixel steps.
     const Rational du(64), n(37);
@@ -277,8 +273,7 @@ TEST_CASE("Pursey's parabola is monotonic exactly when the depth ratio is in [1/
     CHECK(not_monotonic > 0);
 }
 
-TEST_CASE("beyond r = 3 the parabola overshoots its ends; by 8/15 texel at r = 4" *
-          doctest::description("points: 3; exercise: ch03-quadratic-coefficients")) {
+TEST_CASE("beyond r = 3 the parabola overshoots its ends; by 8/15 texel at r = 4") {
     // The extreme of a t^2 + b t + u0 is at t = -b / 2a with value u0 - b^2 / 4a: compare
     // it, exactly, with pursey_overshoot for r = i / j, on spans seen from either end.
     for (int i = 1; i <= 30; ++i) {
@@ -328,4 +323,33 @@ TEST_CASE("the depth at the screen midpoint is 2 w0 w2 / (w0 + w2), not the mean
         const Rational u0(texel(random)), u2(texel(random));
         CHECK(perspective_midpoint(u0, w0, u2, w2) == exact_u(u0, w0, u2, w2, half));
     }
+}
+
+TEST_CASE("the quarter-point parabola passes through the exact values at 0, n/4 and n" *
+          doctest::description("points: 20; exercise: ch03-quarter-point")) {
+    // In exact arithmetic, against u/w and 1/w interpolated and divided (exact_u): the
+    // parabola a t^2 + b t + u0 must take the exact value at the span's first pixel, a
+    // quarter of the way along and at its last pixel, for every depth ratio.
+    std::mt19937 random(13);
+    std::uniform_int_distribution<int> texel(-2000, 2000), depth(1, 1000), steps(1, 512);
+    int curved = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        const Rational u0(texel(random)), u2(texel(random));
+        const Rational w0(depth(random), depth(random)), w2(depth(random), depth(random));
+        const Rational n(steps(random));
+        const Quadratic<Rational> q = quarter_point_quadratic(u0, w0, u2, w2, n);
+        const auto at = [&](Rational t) { return q.u0 + q.b * t + q.a * t * t; };
+        INFO("u0 = " << u0 << ", w0 = " << w0 << ", u2 = " << u2 << ", w2 = " << w2
+                     << ", n = " << n);
+        REQUIRE(at(Rational(0)) == u0);
+        REQUIRE(at(n / 4) == exact_u(u0, w0, u2, w2, Rational(1, 4)));
+        REQUIRE(at(n) == u2);
+        curved += q.a != Rational(0);
+    }
+    CHECK(curved > 1900);
+    // Equal depths: the exact u is linear, and so is the parabola.
+    const Quadratic<Rational> flat = quarter_point_quadratic(
+        Rational(3), Rational(2), Rational(35), Rational(2), Rational(8));
+    CHECK(flat.a == Rational(0));
+    CHECK(flat.b == Rational(4));
 }

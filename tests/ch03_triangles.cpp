@@ -114,8 +114,7 @@ TEST_CASE("textures load from PNG; missing, corrupt or empty ones fail naming th
     fs::remove_all(folder);
 }
 
-TEST_CASE("a screen-aligned F is drawn unflipped by every mapper" *
-          doctest::description("points: 1; exercise: ch03-perspective-divide")) {
+TEST_CASE("a screen-aligned F is drawn unflipped by every mapper") {
     // Two triangles covering pixels [10, 20) x [4, 18), u = (x - 10) / 2, v = (y - 4) /
     // 2: the 5 x 7 F scaled by 2, every pixel centre inside one texel (u, v on
     // half-texels).
@@ -167,8 +166,7 @@ TEST_CASE("every mapper covers exactly the scanline rasterizer's pixels") {
     }
 }
 
-TEST_CASE("with constant w every mapper picks the exact texels, pixel for pixel" *
-          doctest::description("points: 1; exercise: ch03-perspective-divide")) {
+TEST_CASE("with constant w every mapper picks the exact texels, pixel for pixel") {
     // u = a x + b y + c with dyadic a, b, c, vertices on 1/4 px and w a power of two:
     // every quantity every mapper forms is a short dyadic number, so all arithmetic is
     // exact and the texel must be floor(u) at the pixel centre, ties (u an integer)
@@ -343,8 +341,7 @@ TEST_CASE("the scenes' affine mapper errs by its end errors plus the exact-ends 
     }
 }
 
-TEST_CASE("disagreement with the exact mapper falls as the approximation improves" *
-          doctest::description("points: 1; exercise: ch03-perspective-divide")) {
+TEST_CASE("disagreement with the exact mapper falls as the approximation improves") {
     const PerspectiveScene scene = wall_scene(320, 240);
     TexelMap exact(320, 240);
     map_scene(exact, scene, {});

@@ -143,7 +143,6 @@ enum class BlockClass {
 /// signs of step_x and step_y: if it fails even at the largest corner, every centre
 /// fails; if it passes even at the smallest, every centre passes (@eq:edge-block).
 template <class Edge> BlockClass classify_block(const EdgeSetup<Edge>& s, PixelRect b) {
-    //> exercise ch02-block-classify: test each edge at the block's extreme corners.
     bool inside = true;
     for (const Edge& e : s.edge) {
         const auto top_left = e.at(b.x_begin, b.y_begin);
@@ -158,11 +157,41 @@ template <class Edge> BlockClass classify_block(const EdgeSetup<Edge>& s, PixelR
         inside = inside && covers(e, smallest);
     }
     return inside ? BlockClass::inside : BlockClass::partial;
-    //| (void)s, (void)b;
-    //| return BlockClass::partial; // stub: test every pixel (slow, still correct)
-    //< exercise ch02-block-classify
 }
 //< classify-block
+
+//> classify-block-area
+/// Classifies the block `b` by every point of its pixels' squares, not only by
+/// their centres (exercise ch02-block-area): outside when one edge fails at every
+/// point of the rectangle [x_begin, x_end] x [y_begin, y_end] (in pixels), inside
+/// when every edge passes at every point of it, partial otherwise; a point is tested
+/// as a centre is (covers). A conservative rasterizer, which draws every pixel the
+/// triangle touches, skips the blocks this calls outside.
+template <class Edge>
+BlockClass classify_block_area(const EdgeSetup<Edge>& s, PixelRect b) {
+    //> exercise ch02-block-area: where over the block's squares is each edge largest?
+    // The rectangle's corners lie half a pixel beyond the corner centres: from the
+    // top-left centre, -1/2 or n - 1/2 pixels across and down.
+    bool inside = true;
+    for (const Edge& e : s.edge) {
+        const auto top_left = e.at(b.x_begin, b.y_begin); // at the top-left centre
+        const auto half_x = e.step_x() / 2, half_y = e.step_y() / 2; // exact: even
+        const auto left = -half_x, top = -half_y;
+        const auto right = (b.x_end - b.x_begin) * e.step_x() - half_x;
+        const auto bottom = (b.y_end - b.y_begin) * e.step_y() - half_y;
+        const auto most = top_left + std::max(left, right) + std::max(top, bottom);
+        const auto least = top_left + std::min(left, right) + std::min(top, bottom);
+        if (!covers(e, most)) {
+            return BlockClass::outside; // no point of the block passes this edge
+        }
+        inside = inside && covers(e, least);
+    }
+    return inside ? BlockClass::inside : BlockClass::partial;
+    //| (void)s, (void)b;
+    //| return BlockClass::partial; // stub: decide nothing
+    //< exercise ch02-block-area
+}
+//< classify-block-area
 
 /// The side of the square blocks that edge_rasterize_blocks works in, in pixels.
 inline constexpr int block_size = 8;
@@ -234,13 +263,8 @@ void traverse_blocks_fast(const EdgeSetup<Edge>& s, PixelRect r, EmitFn& emit) {
     std::array<Value, 3> largest, smallest, block_step;
     for (int i = 0; i < 3; ++i) {
         const Value across = last * s.edge[i].step_x(), down = last * s.edge[i].step_y();
-        //> gives-away ch02-block-classify
         largest[i] = std::max(across, Value{0}) + std::max(down, Value{0});
         smallest[i] = std::min(across, Value{0}) + std::min(down, Value{0});
-        //| // stub: bounds wider than the corners' (no block is wrongly filled or rejected)
-        //| largest[i] = (across < 0 ? -across : across) + (down < 0 ? -down : down);
-        //| smallest[i] = -largest[i];
-        //< gives-away ch02-block-classify
         block_step[i] = block_size * s.edge[i].step_x();
     }
     const int first_x = r.x_begin - r.x_begin % block_size;

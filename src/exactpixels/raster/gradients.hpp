@@ -49,17 +49,52 @@ template <class T> struct PlaneSamples {
 template <class T> Gradient<T> closed_form_gradient(const PlaneSamples<T>& s) {
     const T dx2 = s.x[1] - s.x[0], dy2 = s.y[1] - s.y[0], dc2 = s.c[1] - s.c[0];
     const T dx3 = s.x[2] - s.x[0], dy3 = s.y[2] - s.y[0], dc3 = s.c[2] - s.c[0];
-    //> exercise ch01-closed-form: dc/dx and dc/dy as the ratio of two cross products.
     const T area2 = dx2 * dy3 - dx3 * dy2; // 2A: > 0 when clockwise on screen (y down)
     if (area2 == T(0)) {
         return {T(0), T(0)}; // collinear or coincident vertices: no plane
     }
     return {(dc2 * dy3 - dc3 * dy2) / area2, (dc3 * dx2 - dc2 * dx3) / area2};
-    //| (void)dx2, (void)dy2, (void)dc2, (void)dx3, (void)dy3, (void)dc3;
-    //| return {T(0), T(0)}; // stub: a flat plane
-    //< exercise ch01-closed-form
 }
 //< closed-form
+
+/// A point or a vector in space, as three numbers of type T (float, double or exact).
+template <class T> using Vector3 = std::array<T, 3>;
+
+//> gradient-3d
+/// The gradient of c over a triangle in space (exercise ch01-gradient-3d): the
+/// vector g in the triangle's plane along which c changes fastest, so that on the
+/// triangle c(p) = c[0] + g . (p - p[0]), as chapter 1's (dc/dx, dc/dy) is on the
+/// screen (where z = 0). Any vertex order; zero area gives {0, 0, 0}.
+template <class T>
+Vector3<T> closed_form_gradient_3d(const std::array<Vector3<T>, 3>& p,
+                                   const std::array<T, 3>& c) {
+    //> exercise ch01-gradient-3d: g . e2 = c[1] - c[0], g . e3 = c[2] - c[0], g . n = 0.
+    // Cross products build, from the edges e2 and e3 and the normal n = e2 x e3,
+    // one vector in the plane at right angles to e3 and one at right angles to e2.
+    const auto difference = [](const Vector3<T>& a, const Vector3<T>& b) {
+        return Vector3<T>{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    };
+    const auto cross = [](const Vector3<T>& a, const Vector3<T>& b) {
+        return Vector3<T>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                          a[0] * b[1] - a[1] * b[0]};
+    };
+    const Vector3<T> e2 = difference(p[1], p[0]), e3 = difference(p[2], p[0]);
+    const Vector3<T> n = cross(e2, e3); // normal to the plane, |n| = 2A
+    const T n2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+    if (n2 == T(0)) {
+        return {T(0), T(0), T(0)}; // collinear or coincident vertices: no plane
+    }
+    // along2 . e2 = |n|^2, along2 . e3 = 0; along3 . e3 = |n|^2, along3 . e2 = 0.
+    const Vector3<T> along2 = cross(e3, n), along3 = cross(n, e2);
+    const T dc2 = c[1] - c[0], dc3 = c[2] - c[0];
+    return {(dc2 * along2[0] + dc3 * along3[0]) / n2,
+            (dc2 * along2[1] + dc3 * along3[1]) / n2,
+            (dc2 * along2[2] + dc3 * along3[2]) / n2};
+    //| (void)p, (void)c;
+    //| return {T(0), T(0), T(0)}; // stub: c the same everywhere
+    //< exercise ch01-gradient-3d
+}
+//< gradient-3d
 
 /// The indices of the vertices sorted by y (ties keep their input order): the top
 /// vertex first, the bottom vertex last.

@@ -258,13 +258,33 @@ void scanline_spans(const std::array<FixedPoint2, 3>& v, Viewport viewport,
 /// which it changes by `slope` per pixel (@eq:prestep): how every walk reaches its first
 /// sample point.
 inline double prestep(double value, double slope, double from, double to) {
-    //> exercise ch01-prestep: move the value from where it is known to the sample point.
     return value + (to - from) * slope;
-    //| (void)slope, (void)from, (void)to;
-    //| return value; // stub: the value where it is known, not at the sample point
-    //< exercise ch01-prestep
 }
 //< prestep
+
+/// A value at the centre of one row: where a walk up an edge starts.
+struct RowValue {
+    int row;      ///< the row, whose centre is at y = row + 1/2
+    double value; ///< the value at the edge's crossing of that row's centre line
+};
+
+//> prestep-up
+/// For a renderer that walks each edge up the screen, from its lower end, with a
+/// bottom-left fill rule (a centre exactly level with the lower end is drawn;
+/// exercise ch01-prestep-up): the first row of the walk, the lowest whose centre is
+/// at or above `y_from` (y down), and the value there, from `value` at `y_from` and
+/// its change `slope` per pixel down the edge.
+inline RowValue prestep_up(double value, double slope, double y_from) {
+    //> exercise ch01-prestep-up: which row comes first going up, and how far away is it?
+    // The centre row + 1/2 <= y_from, the largest such row; the step there is
+    // upwards, so the distance (row + 1/2 - y_from) is in (-1, 0].
+    const int row = static_cast<int>(std::floor(y_from - 0.5));
+    return {row, value + ((row + 0.5) - y_from) * slope};
+    //| (void)slope, (void)y_from;
+    //| return {0, value}; // stub: row 0, the value where it is known
+    //< exercise ch01-prestep-up
+}
+//< prestep-up
 
 //> scanline-interpolate
 /// Draws the triangle v like scanline_spans and calls shade(x, y, values) for every

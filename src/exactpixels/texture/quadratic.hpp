@@ -47,15 +47,29 @@ template <class T> Quadratic<T> pursey_quadratic(T u0, T w0, T u2, T w2, T n) {
 /// Thellier's form of the same parabola (@eq:thellier): one ratio 4 w0 / (w0 + w2) and
 /// the span's texel extent du = u2 - u0 give both coefficients.
 template <class T> Quadratic<T> thellier_quadratic(T u0, T w0, T u2, T w2, T n) {
-    //> exercise ch03-quadratic-coefficients: a and b from du and 4 w0 / (w0 + w2).
     const T du = u2 - u0;                   // the span's extent in texels
     const T k = T(4) * du * w0 / (w0 + w2); // 4 (u1 - u0), @eq:midpoint
     return {(T(2) * du - k) / (n * n), (k - du) / n, u0};
-    //| (void)w0, (void)w2;
-    //| return {T(0), (u2 - u0) / n, u0}; // stub: the affine line
-    //< exercise ch03-quadratic-coefficients
 }
 //< thellier
+
+//> quarter-point
+/// A parabola over the same span through the exact values at its first pixel, at a
+/// quarter of the way (t = n/4) and at its last pixel (exercise ch03-quarter-point),
+/// in Thellier's manner: from the extent du = u2 - u0 and one ratio of the depths.
+template <class T> Quadratic<T> quarter_point_quadratic(T u0, T w0, T u2, T w2, T n) {
+    //> exercise ch03-quarter-point: the exact u at t = n/4, then a and b from three points.
+    // At a quarter, 1/w is (3/w0 + 1/w2)/4, so u - u0 = du w0 / (w0 + 3 w2);
+    // with k = 16 (u(n/4) - u0), a n^2 + b n = du and a n^2/16 + b n/4 = k/16
+    // give a and b.
+    const T du = u2 - u0;
+    const T k = T(16) * du * w0 / (w0 + T(3) * w2);
+    return {(T(4) * du - k) / (T(3) * n * n), (k - du) / (T(3) * n), u0};
+    //| (void)w0, (void)w2;
+    //| return {T(0), (u2 - u0) / n, u0}; // stub: the affine line
+    //< exercise ch03-quarter-point
+}
+//< quarter-point
 
 //> pursey-overshoot
 /// Pursey's parabola is monotonic over its span exactly when the depth ratio

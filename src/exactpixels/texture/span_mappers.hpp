@@ -78,14 +78,26 @@ inline int piece_target(int k0, int n, int count) {
 /// one divide (@eq:exact-divide). k may be any pixel of the row, inside the span or not.
 template <class Real> UV<Real> exact_at(const PerspectiveSpan<Real>& s, int k) {
     const Real t = static_cast<Real>(k);
-    //> exercise ch03-perspective-divide: u and v from u/w, v/w and 1/w at pixel k.
     const Real w = Real(1) / (s.one_w + t * s.done_w); // the depth at pixel k
     return {(s.u_w + t * s.du_w) * w, (s.v_w + t * s.dv_w) * w};
-    //| (void)t;
-    //| return {s.u_w, s.v_w}; // stub: no divide, u/w taken for u
-    //< exercise ch03-perspective-divide
 }
 //< exact-at
+
+//> pixel-of-u
+/// Where on the span's row the exact mapper reaches texture coordinate u (exercise
+/// ch03-pixel-of-u): the pixel position t, counted from pixel 0 and fractional in
+/// general, at which exact_at's u would be u, so that a renderer can cut a span where
+/// it crosses a texel edge. u must be a value the row reaches: a u at which
+/// du_w = u done_w (the row's u at infinity, or a u constant along it) has no t.
+template <class Real> Real pixel_of_u(const PerspectiveSpan<Real>& s, Real u) {
+    //> exercise ch03-pixel-of-u: u = (u/w)(t) / (1/w)(t); both are linear in t: solve.
+    // u (one_w + t done_w) = u_w + t du_w, linear in t: one division.
+    return (u * s.one_w - s.u_w) / (s.du_w - u * s.done_w);
+    //| (void)s, (void)u;
+    //| return Real(0); // stub: always the span's first pixel
+    //< exercise ch03-pixel-of-u
+}
+//< pixel-of-u
 
 //> map-span-exact
 /// The exact mapper: a divide at every pixel.
