@@ -147,11 +147,12 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
     no_depth.options.depth = DepthMode::off;
     for (const Scene* s : std::array<const Scene*, 2>{&scene, &no_depth}) {
         const RenderResult plain = render_scene(*s, nullptr, plain_paths);
-        for (int path = 0; path < 4; ++path) {
+        for (int path = 0; path < 5; ++path) {
             INFO("fast path " << path << (s == &scene ? ", depth on" : ", depth off"));
             FastPaths alone = plain_paths;
             bool* const flags[] = {&alone.screen_accept, &alone.masked_fetch,
-                                   &alone.unlit_geometry, &alone.lean_spans};
+                                   &alone.unlit_geometry, &alone.lean_spans,
+                                   &alone.exact_lanes};
             *flags[path] = true;
             const RenderResult fast = render_scene(*s, nullptr, alone);
             CHECK(fast.image == plain.image);
@@ -389,5 +390,5 @@ TEST_CASE("unlit_geometry stops a corner that is not finite as the plain path do
     INFO(plain);
     CHECK(plain.find("not finite in float") != std::string::npos);
     CHECK(message(FastPaths{}) == plain);
-    CHECK(message(FastPaths{false, false, true, false}) == plain); // unlit_geometry alone
+    CHECK(message(FastPaths{false, false, true, false, false}) == plain); // unlit_geometry alone
 }
