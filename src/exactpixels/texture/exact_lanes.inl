@@ -54,6 +54,7 @@ Ints floor_lanes(Doubles x) {
     return t + above; // a true comparison is -1 in every bit
 }
 
+//> exact-lanes
 /// u and v at the pixels t: one divide per lane, then two multiplications (exact_at).
 struct LaneUV {
     Doubles u, v;
@@ -62,6 +63,7 @@ LaneUV exact_lanes(const LaneSpan& s, Doubles t) {
     const Doubles w = 1.0 / (s.one_w + t * s.done_w);
     return {(s.u_w + t * s.du_w) * w, (s.v_w + t * s.dv_w) * w};
 }
+//< exact-lanes
 
 } // namespace
 

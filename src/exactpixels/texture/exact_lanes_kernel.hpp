@@ -17,8 +17,12 @@ namespace exactpixels {
 
 /// One span of the exact mapper in plain numbers: PerspectiveSpan<double>'s fields.
 struct LaneSpan {
-    double u_w, v_w, one_w;    ///< u/w, v/w, 1/w at pixel 0's centre
-    double du_w, dv_w, done_w; ///< their change per pixel to the right
+    double u_w;    ///< u/w at pixel 0's centre
+    double v_w;    ///< v/w at pixel 0's centre
+    double one_w;  ///< 1/w at pixel 0's centre (> 0)
+    double du_w;   ///< change of u/w per pixel to the right
+    double dv_w;   ///< change of v/w per pixel to the right
+    double done_w; ///< change of 1/w per pixel to the right
     int count;                 ///< pixels in the span, >= 1
 };
 
