@@ -69,6 +69,14 @@
 // differs, how many of those are a neighbouring texel, and pixels where the runs differ
 // from the teaching path. `--once=textured/VARIANT/AREA` works as above (--list leaves
 // the textured runs out: callgrind.sh counts the default run only).
+//
+// Vector instruction sets, only with `--simd` (chapters/09-fast-pixels/simd_run.sh):
+// textured/runs_SET/AREA/1 for every SET this CPU has (base/simd.hpp: portable, sse2,
+// avx2, avx512, neon), the runs forced to it, and textured/llvmpipe/AREA/1, at AREA 0
+// and 1000. `--once=textured/runs_SET/AREA` counts one. EXACTPIXELS_SIMD, if set, must
+// name an instruction set this CPU has (else exit 2, one line).
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/simd.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/tiled_rasterizer.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
@@ -408,8 +416,10 @@ void project(benchmark::State& state, Variant variant, bool with_depth) {
 
 enum class TexturedVariant { teaching, runs };
 
-/// Draws the textured set of `area` once with `variant`.
-void draw_textured_set(TexturedVariant variant, int area) {
+/// Draws the textured set of `area` once with `variant` (the runs in the instruction set
+/// `simd`).
+void draw_textured_set(TexturedVariant variant, int area,
+                       SimdVariant simd = chosen_simd()) {
     const auto& tris = textured_triangles(area);
     switch (variant) {
     case TexturedVariant::teaching: {
@@ -420,7 +430,7 @@ void draw_textured_set(TexturedVariant variant, int area) {
         break;
     }
     case TexturedVariant::runs:
-        draw_textured_runs(frame().target(false), tris, texture(), Wrap::repeat);
+        draw_textured_runs(frame().target(false), tris, texture(), Wrap::repeat, simd);
         break;
     }
 }
@@ -443,12 +453,13 @@ const std::vector<Rgba8>& textured_reference(int area) {
     return it->second;
 }
 
-void project_textured(benchmark::State& state, TexturedVariant variant) {
+void project_textured(benchmark::State& state, TexturedVariant variant,
+                      SimdVariant simd = chosen_simd()) {
     const int area = static_cast<int>(state.range(0));
     teaching_frame() = Framebuffer(frame_side, frame_side, transparent);
     std::fill(frame().colour.begin(), frame().colour.end(), transparent);
     for (auto _ : state) {
-        draw_textured_set(variant, area);
+        draw_textured_set(variant, area, simd);
         benchmark::ClobberMemory();
     }
     report(state, area);
@@ -703,6 +714,9 @@ int draw_once(const std::string& name) {
         if (variant == "llvmpipe" && peer().context != nullptr) {
             const GLsizei vertices = prepare_textured_peer(area);
             draw = [vertices] { peer_frame(vertices, false); };
+        } else if (variant.rfind("runs_", 0) == 0) { // runs_SET: forced, as --simd
+            const SimdVariant simd = simd_from_setting(variant.c_str() + 5);
+            draw = [=] { draw_textured_set(TexturedVariant::runs, area, simd); };
         } else if (variant == "teaching" || variant == "runs") {
             draw = [=] {
                 draw_textured_set(variant == "runs" ? TexturedVariant::runs
@@ -817,14 +831,42 @@ void register_textured() {
     }
 }
 
+/// The vector instruction sets (--simd), textured 1000 px triangles and the empty frame:
+/// the runs in every instruction set this CPU has, named textured/runs_SET, and
+/// llvmpipe, one core each, process CPU time.
+void register_simd() {
+    for (const SimdVariant v : available_simd()) {
+        for (const int area : {0, 1000}) {
+            benchmark::RegisterBenchmark(
+                (std::string("textured/runs_") + std::string(simd_name(v))).c_str(),
+                [v](benchmark::State& s) { project_textured(s, TexturedVariant::runs, v); })
+                ->Args({area, 1})
+                ->MeasureProcessCPUTime();
+        }
+    }
+    const char* lp = std::getenv("LP_NUM_THREADS");
+    const int peer_threads = lp != nullptr ? std::atoi(lp) : 1;
+    for (const int area : {0, 1000}) {
+        benchmark::RegisterBenchmark("textured/llvmpipe", llvmpipe_textured)
+            ->Args({area, peer_threads})
+            ->MeasureProcessCPUTime();
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
-    bool textured = false;
+    try { // EXACTPIXELS_SIMD must name an instruction set this CPU has
+        (void)chosen_simd();
+    } catch (const Error& error) {
+        std::fprintf(stderr, "bench_ch09_fast: %s\n", error.what());
+        return 2;
+    }
+    bool textured = false, simd = false;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
-        if (arg == "--textured") { // taken out of argv before Google Benchmark reads it
-            textured = true;
+        if (arg == "--textured" || arg == "--simd") { // taken out of argv before Google
+            (arg == "--simd" ? simd : textured) = true; // Benchmark reads it
             for (int j = i; j + 1 < argc; ++j) {
                 argv[j] = argv[j + 1];
             }
@@ -855,7 +897,9 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
         return 1;
     }
-    if (textured) {
+    if (simd) {
+        register_simd();
+    } else if (textured) {
         register_textured();
     } else {
         register_all();

@@ -159,10 +159,10 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
     no_depth.options.depth = DepthMode::off;
     for (const Scene* s : std::array<const Scene*, 2>{&scene, &no_depth}) {
         const RenderResult plain = render_scene(*s, nullptr, plain_paths);
-        for (int path = 0; path < 2; ++path) {
+        for (int path = 0; path < 3; ++path) {
             INFO("fast path " << path << (s == &scene ? ", depth on" : ", depth off"));
             FastPaths alone = plain_paths;
-            bool* const flags[] = {&alone.masked_fetch, &alone.lean_spans};
+            bool* const flags[] = {&alone.masked_fetch, &alone.lean_spans, &alone.exact_lanes};
             *flags[path] = true;
             const RenderResult fast = render_scene(*s, nullptr, alone);
             CHECK(fast.image == plain.image);

@@ -5,6 +5,8 @@
 #include "commands.hpp"
 
 #include "exactpixels/base/atomic_file.hpp"
+#include "exactpixels/base/error.hpp"
+#include "exactpixels/base/simd.hpp"
 
 #include <fmt/format.h>
 
@@ -21,6 +23,15 @@ int main(int argc, char** argv) {
     // Killed while a file is being written (Ctrl-C, kill, a closed pipe): its temporary
     // file goes too.
     exactpixels::remove_temporaries_on_signals();
+
+    // EXACTPIXELS_SIMD, when set, must name a vector instruction set this CPU has
+    // (base/simd.hpp): refused at once, before any command runs.
+    try {
+        (void)exactpixels::chosen_simd();
+    } catch (const exactpixels::Error& error) {
+        exactpixels::cli::print_error("", error.what());
+        return exactpixels::cli::exit_bad_input;
+    }
 
     CLI::App app{"Exact Pixels: the book's rasterizers and texture mappers from the "
                  "command line"};

@@ -18,7 +18,9 @@ set(commands # every command here is in CMake 3.0 unless noted
   find_package find_path foreach function if include list macro message option
   pkg_check_modules project return set set_property set_target_properties
   set_tests_properties string target_compile_definitions target_compile_options
-  target_include_directories target_link_libraries while)
+  target_include_directories target_link_libraries while
+  target_sources # 3.1
+  )
 set(keywords
   # arguments of commands
   AND APPEND CACHE COMMAND CONFIG DEPENDS FORCE GLOB IMPORTED IN INTERFACE IS_DIRECTORY
@@ -30,12 +32,13 @@ set(keywords
   IMPORTED_TARGET   # pkg_check_modules, 3.6
   USES_TERMINAL     # add_custom_target, 3.2
   GENERATE OUTPUT CONTENT # file(GENERATE ... CONTENT), 3.2
+  MATCHES OBJECT # if(... MATCHES ...), add_library(... OBJECT ...)
   # values and CMake's variables
   CXX ON OFF
   CMAKE_BUILD_TYPE CMAKE_CONFIGURATION_TYPES CMAKE_CXX_EXTENSIONS CMAKE_CXX_STANDARD
   CMAKE_CXX_STANDARD_REQUIRED
   CMAKE_EXPORT_COMPILE_COMMANDS # 3.5
-  CMAKE_RUNTIME_OUTPUT_DIRECTORY INTERFACE_INCLUDE_DIRECTORIES
+  CMAKE_RUNTIME_OUTPUT_DIRECTORY INTERFACE_INCLUDE_DIRECTORIES CMAKE_SYSTEM_PROCESSOR
   # the find modules' names, as find_package and pkg_check_modules take them
   PNG CLI11
   # the kit's own names: options, variables, prefixes, compile definitions
@@ -44,7 +47,7 @@ set(keywords
   EXACTPIXELS_LAYERS EXACTPIXELS_SCENES_DIR EXACTPIXELS_SOURCE_DIR EXACTPIXELS_VERSION
   EXACTPIXELS_WERROR EXAMPLE_SOURCES GLM_FORCE_CXX17 SUPPORT_SOURCES TEST_SOURCES
   STB_INCLUDE_DIR EXACTPIXELS_LIBCXX TINYOBJLOADER_USE_DOUBLE)
-set(generator_expressions BOOL TARGET_FILE)
+set(generator_expressions BOOL TARGET_FILE TARGET_OBJECTS)
 
 file(REMOVE_RECURSE ${WORK})
 execute_process(COMMAND ${MAKE_KIT} kit --source ${ROOT} --template ${ROOT}/src/kits/template

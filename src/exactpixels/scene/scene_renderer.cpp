@@ -92,6 +92,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
                       true};
         m.masked_fetch = fast.masked_fetch && m.texture != nullptr &&
                          can_fetch_masked(*m.texture, mesh.wrap);
+        m.lanes = fast.exact_lanes ? chosen_simd() : SimdVariant::portable;
         bool full_chain = mesh.texture && full_chains[*mesh.texture];
         m.full_chain = &full_chain;
         try {

@@ -65,10 +65,14 @@ struct FastPaths {
     /// each visible pixel straight to the frame instead of shading a row of pixels that
     /// later stages would change.
     bool lean_spans = true;
+    /// Texture: chapter 3's exact mapper in double divides 2, 4 or 8 pixels at once in
+    /// the vector instruction set chosen_simd picks (map_span_exact_lanes) instead of
+    /// one pixel at a time.
+    bool exact_lanes = true;
 };
 
 /// Every fast path off: the plain teaching path.
-inline constexpr FastPaths plain_paths{false, false};
+inline constexpr FastPaths plain_paths{false, false, false};
 //< fast-paths
 
 /// The stages a mesh runs in this scene: plan_mesh's, and under Gouraud lighting the

@@ -5,6 +5,7 @@
 #include "exactpixels/raster/screen_plane.hpp"
 #include "exactpixels/scene/camera.hpp"
 #include "exactpixels/scene/filter_stage.hpp"
+#include "exactpixels/texture/exact_lanes.hpp"
 #include "exactpixels/texture/perspective.hpp"
 #include "exactpixels/texture/rounding.hpp"
 
@@ -267,14 +268,34 @@ depth_stage(DepthBuffer& depth, const ScreenPlane& nearness, Span s, char* visib
 }
 //< depth-stage
 
+/// map_span, except the exact mapper in double under FastPaths::exact_lanes (`lanes` not
+/// portable): its divides 2, 4 or 8 pixels at once (exact_lanes.hpp), the same u and v,
+/// rounded to texels as map_span rounds them.
+template <class TexelOut>
+[[gnu::always_inline]] inline void
+map_texture_span(SimdVariant lanes, Mapper mapper, Precision precision, TexelRounding r,
+                 const PerspectiveSpan<double>& ps, const AffineSpan<double>& as,
+                 TexelOut&& texel) {
+    if (lanes != SimdVariant::portable && mapper.kind == MapperKind::exact &&
+        precision == Precision::float64) {
+        map_span_exact_lanes(lanes, ps, [&](int k, double u, double v) {
+            texel(k, real_texel_index(u, r.u_bias), real_texel_index(v, r.v_bias), u, v);
+        });
+        return;
+    }
+    map_span(mapper, precision, r, ps, as, texel);
+}
+
 //> texture-stage
 /// The texture stage on one span: the span's mapper maps each pixel k to the indices i, j
-/// of its texel and the coordinate u, v, which texel(k, i, j, u, v) takes. Returns the
+/// of its texel and the coordinate u, v, which texel(k, i, j, u, v) takes (the exact
+/// mapper in the instruction set `lanes`, portable on the plain path). Returns the
 /// mapper, for the report.
 template <class TexelOut>
 [[gnu::always_inline]] inline MappedSpan texture_stage(const RenderOptions& options,
                                                        const TextureSetup& texture,
-                                                       Span s, TexelOut&& texel) {
+                                                       Span s, SimdVariant lanes,
+                                                       TexelOut&& texel) {
     const PerspectiveSpan<double> ps = perspective_span(texture.planes, s);
     const MappedSpan mapped =
         span_mapper(options, texture, ps); // auto: within the budget
@@ -283,7 +304,7 @@ template <class TexelOut>
         affine ? texture.affine_rounding : texture.perspective_rounding;
     const AffineSpan<double> as =
         affine ? affine_span(texture.planes, s) : AffineSpan<double>{};
-    map_span(mapped.mapper, options.precision, r, ps, as, texel);
+    map_texture_span(lanes, mapped.mapper, options.precision, r, ps, as, texel);
     return mapped;
 }
 //< texture-stage
@@ -424,7 +445,7 @@ void count_depth(RenderReport& report, int count, int shown) {
     const bool masked = m.masked_fetch;
     double spent = 0.0;
     const MappedSpan mapped = timer.timed(spent, [&] {
-        return texture_stage(m.scene.options, texture, s,
+        return texture_stage(m.scene.options, texture, s, m.lanes,
                              [&](int k, int i, int j, double, double) {
                                  if (seen(visible, k)) {
                                      out[k] = texel_at(texels, masked, wrap, i, j);
@@ -447,7 +468,7 @@ void shaded_span(MeshContext& m, TrianglePlanes& planes, Filter filter, StageTim
         double spent = 0.0;
         const MappedSpan mapped = timer.timed(spent, [&] {
             return texture_stage(
-                m.scene.options, texture, s,
+                m.scene.options, texture, s, m.lanes,
                 [&](int k, int i, int j, double u, double v) {
                     row[k] = texel_at(*m.texture, m.masked_fetch, m.mesh.wrap, i, j);
                     if (m.coordinates != nullptr && seen(visible, k)) {

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
+#include "exactpixels/base/simd.hpp"
 #include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/render_report.hpp"
@@ -38,6 +39,8 @@ struct MeshContext {
     Rgba8 flat;                           ///< the mesh's colour, as written
     bool timed = true; ///< whether the triangle being drawn is one of the sampled ones
     bool masked_fetch = false; ///< FastPaths::masked_fetch, and the texture allows it
+    /// FastPaths::exact_lanes: the exact mapper's instruction set (portable: plain loop)
+    SimdVariant lanes = SimdVariant::portable;
 };
 
 /// Draws `triangles`, one mesh's, in order with the stages of `m` (each visible pixel

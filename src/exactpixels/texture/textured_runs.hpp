@@ -22,6 +22,7 @@
 // fast variants.
 #pragma once
 
+#include "exactpixels/base/simd.hpp"
 #include "exactpixels/raster/tiled_rasterizer.hpp"
 #include "exactpixels/texture/texture.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
@@ -45,5 +46,12 @@ inline constexpr double max_fast_texel_coordinate = 16777216.0; // 2^24 texels
 void draw_textured_runs(const RenderTarget& target,
                         std::span<const std::array<TexturedVertex, 3>> triangles,
                         const Texture& texture, Wrap wrap);
+
+/// The same with the runs of a power-of-two texture under repeat computed in the
+/// instruction set `variant` (exact_lanes.hpp; the overload above takes chosen_simd()),
+/// which must be available: the same pixels for every variant.
+void draw_textured_runs(const RenderTarget& target,
+                        std::span<const std::array<TexturedVertex, 3>> triangles,
+                        const Texture& texture, Wrap wrap, SimdVariant variant);
 
 } // namespace exactpixels

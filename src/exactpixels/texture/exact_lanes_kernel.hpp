@@ -1,0 +1,49 @@
+// exact_lanes_kernel.hpp: the vector kernels of chapter 3's exact mapper, one set per
+// instruction set, each in its own namespace (simd_sse2, simd_avx2, simd_avx512,
+// simd_neon). Use them through exact_lanes.hpp, which picks the set.
+//
+// Each set is exact_lanes.inl compiled with its own flags (src/CMakeLists.txt). Nothing
+// here is inline or a template: code compiled for AVX-512 must never be the copy of a
+// shared inline function that the linker keeps for every caller (on an older CPU that
+// copy would stop the program with an illegal instruction). The `one_definition_lanes`
+// test checks the compiled kernels for any symbol outside their own namespace.
+#pragma once
+
+#include "exactpixels/base/framebuffer.hpp"
+
+#include <cstdint>
+
+namespace exactpixels {
+
+/// One span of the exact mapper in plain numbers: PerspectiveSpan<double>'s fields.
+struct LaneSpan {
+    double u_w;    ///< u/w at pixel 0's centre
+    double v_w;    ///< v/w at pixel 0's centre
+    double one_w;  ///< 1/w at pixel 0's centre (> 0)
+    double du_w;   ///< change of u/w per pixel to the right
+    double dv_w;   ///< change of v/w per pixel to the right
+    double done_w; ///< change of 1/w per pixel to the right
+    int count;                 ///< pixels in the span, >= 1
+};
+
+/// A power-of-two texture that repeats: texel (i, j) is
+/// texels[(j & h_mask) << w_shift | (i & w_mask)].
+struct LaneTexels {
+    const Rgba8* texels; ///< row-major, width 1 << w_shift
+    int w_mask;          ///< width - 1
+    int h_mask;          ///< height - 1
+    int w_shift;         ///< log2(width)
+};
+
+#define EXACTPIXELS_DECLARE_LANES(set)                                                   \
+    namespace simd_##set {                                                               \
+    void textured_run(Rgba8* row, const LaneSpan& s, const LaneTexels& t);               \
+    void exact_uv(const LaneSpan& s, int k0, int n, double* u, double* v);               \
+    }
+EXACTPIXELS_DECLARE_LANES(sse2)
+EXACTPIXELS_DECLARE_LANES(avx2)
+EXACTPIXELS_DECLARE_LANES(avx512)
+EXACTPIXELS_DECLARE_LANES(neon)
+#undef EXACTPIXELS_DECLARE_LANES
+
+} // namespace exactpixels
