@@ -39,7 +39,8 @@ std::vector<std::string> expected_messages(const fs::path& path) {
 /// Renders every .toml file of `folder` from inside it, writing (it must not) into
 /// `scratch`, and returns one line per way a file was not refused as it expects; a
 /// folder without scene files is a failure too.
-std::vector<std::string> refusal_failures(const fs::path& folder, const fs::path& scratch) {
+std::vector<std::string> refusal_failures(const fs::path& folder,
+                                          const fs::path& scratch) {
     std::vector<fs::path> scenes;
     for (const auto& entry : fs::directory_iterator(folder)) {
         if (entry.path().extension() == ".toml") {
@@ -87,14 +88,16 @@ fs::path scratch_folder(const std::string& name) {
     return folder;
 }
 
-const fs::path bad_scenes = fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/bad_scenes";
+const fs::path bad_scenes =
+    fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/bad_scenes";
 
 } // namespace
 
 TEST_CASE("every scene of tests/fixtures/bad_scenes is refused with the message it "
           "expects") {
     // Some name a model of tests/fixtures/models/ as ../models/NAME.obj.
-    REQUIRE(fs::is_directory(fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/models/"));
+    REQUIRE(
+        fs::is_directory(fs::path(EXACTPIXELS_SOURCE_DIR) / "tests/fixtures/models/"));
     const fs::path scratch = scratch_folder("all");
     for (const std::string& failure : refusal_failures(bad_scenes, scratch)) {
         FAIL_CHECK(failure);
@@ -119,8 +122,10 @@ TEST_CASE("the bad-scene runner fails on a changed message and on an empty folde
     const std::vector<std::string> failures = refusal_failures(folder, scratch);
     REQUIRE(failures.size() == 1);
     CHECK(failures[0].rfind("nan.toml: printed ", 0) == 0);
-    // Without its expect line it fails too, and a scene that loads fails on its exit code.
-    std::ofstream(folder / "nan.toml", std::ios::binary) << "[[mesh]]\nprimitive = \"quad\"\n";
+    // Without its expect line it fails too, and a scene that loads fails on its exit
+    // code.
+    std::ofstream(folder / "nan.toml", std::ios::binary)
+        << "[[mesh]]\nprimitive = \"quad\"\n";
     CHECK(refusal_failures(folder, scratch).size() == 1);
     std::ofstream(folder / "nan.toml", std::ios::binary)
         << "# expect error: 1:1: mesh: x\n[[mesh]]\nprimitive = \"quad\"\n"

@@ -135,7 +135,8 @@ TEST_CASE("a scene number below the least normal double reads as the nearest on 
         "u.toml", ".");
     CHECK(utf8.meshes[0].triangles[0][0].position.z == 1e-320);
     // A number in a key's place, a syntax error after a tiny number and a number beyond
-    // the doubles are refused as the files tests/fixtures/bad_scenes/tiny_number_as_*.toml,
+    // the doubles are refused as the files
+    // tests/fixtures/bad_scenes/tiny_number_as_*.toml,
     // syntax_error_after_tiny_number.toml and number_beyond_doubles.toml show.
 }
 
