@@ -58,16 +58,16 @@ void place_and_check(const Context& c, const toml::table& table, const std::stri
 /// A model file as a scene holds it once: the model (its triangles in model space), the
 /// scene texture each part's map_Kd became, and its triangle count.
 struct LoadedModel {
-    Model model;
+    Model model; ///< its parts' triangles in model space
     std::vector<std::optional<std::size_t>> textures; ///< per part, into scene.textures
-    long long triangles = 0;
+    long long triangles = 0;                          ///< of all its parts
 };
 
 /// The model files a scene has read, by identity (device and inode), so that every
 /// reference to one file, however its path is spelled, reads and checks it once and
 /// shares its textures.
 struct ModelCache {
-    std::map<std::pair<dev_t, ino_t>, LoadedModel> models;
+    std::map<std::pair<dev_t, ino_t>, LoadedModel> models; ///< by device and inode
     long long bytes = 0; ///< the sizes of the model files read so far
 };
 

@@ -43,10 +43,10 @@ using TextPlace = std::pair<toml::source_index, toml::source_index>;
 /// Where a message points: the file, and the line and column in it; and the numbers of
 /// the scene that the loader read itself (parse_toml), by where they are.
 struct Context {
-    std::string file;
-    std::filesystem::path folder;
-    std::string_view text;
-    std::map<TextPlace, double> own_numbers;
+    std::string file;                        ///< the scene's name in messages
+    std::filesystem::path folder;            ///< where its textures and models are
+    std::string_view text;                   ///< the scene's text
+    std::map<TextPlace, double> own_numbers; ///< the loader's readings of tiny numbers
 
     /// Throws Error "FILE:LINE:COLUMN: PATH: MESSAGE" at the start of `where`.
     [[noreturn]] void fail(const toml::source_region& where, const std::string& path,
@@ -64,6 +64,7 @@ const char* type_name(const toml::node& node);
 /// keys nobody asked for, naming the allowed ones.
 class TableReader {
   public:
+    /// Reads `table`, at key path `path`, which may hold only the keys `allowed`.
     TableReader(const Context& context, const toml::table& table, std::string path,
                 std::vector<std::string> allowed)
         : context_(context), table_(table), path_(std::move(path)),
@@ -98,9 +99,9 @@ class TableReader {
     std::string child(const std::string& key) const {
         return path_.empty() ? key : path_ + "." + key;
     }
-    const Context& context() const { return context_; }
-    const toml::table& table() const { return table_; }
-    const std::string& path() const { return path_; }
+    const Context& context() const { return context_; } ///< where messages point
+    const toml::table& table() const { return table_; } ///< the table being read
+    const std::string& path() const { return path_; }   ///< its key path
 
   private:
     const Context& context_;
