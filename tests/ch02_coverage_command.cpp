@@ -150,7 +150,7 @@ TEST_CASE("float coverage far from the origin is correct or rejected, never sile
             const auto result = cover(far, rasterizer);
             CHECK(result.exit_code == 2);
             CHECK(result.out.empty());
-            CHECK(result.err.find("outside the float rasterizers' range") !=
+            CHECK(result.err.find("outside the exact range") !=
                   std::string::npos);
         }
     }
@@ -266,6 +266,6 @@ TEST_CASE("coverage: a value beyond float's range is named as read, not as inf")
         CHECK(result.out.empty());
         CHECK(result.err ==
               "exactpixels coverage: line 2: vertex 2: coordinate 1e+39 px is "
-              "outside the float rasterizers' range [-1048576, 1048576]\n");
+              "outside the exact range [-1048576, 1048576]\n");
     }
 }

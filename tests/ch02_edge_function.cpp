@@ -165,10 +165,10 @@ TEST_CASE("the fixed-point range: exact at its edge, an error beyond it") {
     CHECK_NOTHROW(check_fixed_range(corner));
     CHECK_NOTHROW(snap_in_range({max_fixed_coordinate_px, -max_fixed_coordinate_px}));
     // One unit beyond, and anything not finite, is refused with the value in the message.
-    CHECK_THROWS_WITH_AS(check_fixed_range({m + 1, 0}), doctest::Contains("268435457"),
-                         Error);
-    CHECK_THROWS_WITH_AS(check_fixed_range({0, -m - 1}), doctest::Contains("-268435457"),
-                         Error);
+    CHECK_THROWS_WITH_AS(check_fixed_range({m + 1, 0}),
+                         doctest::Contains("1048576.00390625"), Error);
+    CHECK_THROWS_WITH_AS(check_fixed_range({0, -m - 1}),
+                         doctest::Contains("-1048576.00390625"), Error);
     CHECK_THROWS_WITH_AS(snap_in_range({1048576.5, 0}), doctest::Contains("1048576.5"),
                          Error);
     CHECK_THROWS_AS(snap_in_range({std::nan(""), 0}), Error);

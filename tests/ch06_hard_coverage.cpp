@@ -8,8 +8,8 @@
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
-#include "support/printing.hpp"
 #include "support/measured_facts.hpp"
+#include "support/printing.hpp"
 
 #include <doctest/doctest.h>
 
@@ -243,6 +243,39 @@ TEST_CASE("NaN and infinite vertex input is rejected with an Error and draws not
             }
         }
     }
+}
+
+TEST_CASE("one function checks the exact range, with one message, for every rasterizer") {
+    // One sub-pixel step beyond 2^20 px. The five entries that check chapter 2's range
+    // worded it five ways (in 1/256 px, "not finite or beyond +-2^20 px", "the float
+    // rasterizers' range"...); each now calls check_pixel_range and adds only where.
+    const std::string message =
+        "coordinate 1048576.00390625 px is outside the exact range [-1048576, 1048576]";
+    const auto message_of = [](const auto& call) -> std::string {
+        try {
+            call();
+        } catch (const Error& error) {
+            return error.what();
+        }
+        return "no Error";
+    };
+    const Point2 past{max_fixed_coordinate_px + 1.0 / 256, 0.0};
+    const FixedPoint2 fixed_past{max_fixed_coordinate + 1, 0};
+    CHECK(message_of([&] { (void)snap_in_range(past); }) == message);
+    CHECK(message_of([&] { check_fixed_range(fixed_past); }) == message);
+    const std::array<FixedPoint2, 3> fixed{{{0, 0}, fixed_past, {0, 256}}};
+    CHECK(message_of([&] {
+              scanline_spans(fixed, Viewport{4, 4}, [](Span) {});
+          }) == "scanline_spans: vertex 1: " + message);
+    const std::array<Point2, 3> corners{{{0.0, 0.0}, past, {0.0, 1.0}}};
+    CHECK(message_of([&] { check_float_triangle(corners); }) == "vertex 1: " + message);
+    Framebuffer frame(4, 4);
+    const std::array<TexturedVertex, 3> textured{{{corners[0], 1.0, {0.0, 0.0}},
+                                                  {corners[1], 1.0, {1.0, 0.0}},
+                                                  {corners[2], 1.0, {0.0, 1.0}}}};
+    CHECK(message_of([&] {
+              draw_textured_triangle(frame, textured, f_texture(1), {});
+          }) == "textured triangle: vertex 1: " + message);
 }
 
 TEST_CASE("a triangle that snaps to zero area draws nothing and makes no NaN") {

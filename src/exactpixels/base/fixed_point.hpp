@@ -10,8 +10,8 @@
 // round up to the next integer), and a value that is not finite or too large for int64
 // is refused with an Error, never converted. Chapter 2 derives the coordinate range for
 // which rasterizing snapped triangles is exact (@eq:edge-range): |x|, |y| <=
-// max_fixed_coordinate (2^28 units = 2^20 px = 1048576 px). snap_in_range and
-// check_fixed_range reject anything outside with an Error naming the value; nothing is
+// max_fixed_coordinate (2^28 units = 2^20 px = 1048576 px). check_pixel_range rejects
+// anything outside with an Error naming the value, for every rasterizer; nothing is
 // ever wrapped around.
 #pragma once
 
@@ -73,27 +73,35 @@ inline constexpr double max_fixed_coordinate_px =
     static_cast<double>(max_fixed_coordinate) / subpixel_scale;
 //< fixed-range
 
-/// Throws Error naming the value unless |p.x| and |p.y| are at most max_fixed_coordinate.
-inline void check_fixed_range(FixedPoint2 p) {
-    for (const std::int64_t value : {p.x, p.y}) {
-        if (value < -max_fixed_coordinate || value > max_fixed_coordinate) {
-            throw Error(fmt::format("fixed-point coordinate {} (1/256 px) is outside the "
-                                    "exact range [-2^28, 2^28]",
-                                    value));
-        }
+/// Throws Error unless `value` (px) is finite and within +-max_fixed_coordinate_px: the
+/// one check of chapter 2's exact range, and its one message.
+inline void check_pixel_range(double value) {
+    if (!(std::abs(value) <= max_fixed_coordinate_px)) { // false for NaN too
+        throw Error(fmt::format("coordinate {} px is outside the exact range "
+                                "[-1048576, 1048576]",
+                                value));
     }
 }
 
-/// snap_to_subpixel(p) after checking p: throws Error naming the value when a
-/// coordinate is not finite or its magnitude exceeds max_fixed_coordinate_px.
+/// check_pixel_range for a fixed-point value (1/256 px), named in pixels: exact, as
+/// value / 256 rounds only beyond 2^53 units, far outside the range either way.
+inline void check_pixel_range(std::int64_t units) {
+    check_pixel_range(static_cast<double>(units) / subpixel_scale);
+}
+
+/// Throws Error (check_pixel_range) unless |p.x| and |p.y| are at most
+/// max_fixed_coordinate.
+inline void check_fixed_range(FixedPoint2 p) {
+    check_pixel_range(p.x);
+    check_pixel_range(p.y);
+}
+
+/// snap_to_subpixel(p) after checking p (check_pixel_range): throws Error naming the
+/// value when a coordinate is not finite or its magnitude exceeds
+/// max_fixed_coordinate_px.
 inline FixedPoint2 snap_in_range(Point2 p) {
-    for (const double value : {p.x, p.y}) {
-        if (!(std::abs(value) <= max_fixed_coordinate_px)) { // false for NaN too
-            throw Error(fmt::format("coordinate {} px is outside the exact fixed-point "
-                                    "range [-1048576, 1048576]",
-                                    value));
-        }
-    }
+    check_pixel_range(p.x);
+    check_pixel_range(p.y);
     return snap_to_subpixel(p);
 }
 

@@ -24,18 +24,13 @@ namespace {
 /// check_float_triangle for a triangle of either precision: the value named is the one
 /// given, so a double beyond float's range is named as it is, not as infinity.
 template <class Point> void check_float_range(const std::array<Point, 3>& v) {
+    static_assert(max_float_coordinate == max_fixed_coordinate_px);
     for (int i = 0; i < 3; ++i) {
-        for (const auto value : {v[i].x, v[i].y}) {
-            if (!std::isfinite(value)) {
-                throw Error(fmt::format(
-                    "vertex {}: coordinate {} px is not a finite number", i, value));
-            }
-            if (!(std::abs(value) <= max_float_coordinate)) {
-                throw Error(
-                    fmt::format("vertex {}: coordinate {} px is outside the float "
-                                "rasterizers' range [-{}, {}]",
-                                i, value, max_float_coordinate, max_float_coordinate));
-            }
+        try {
+            check_pixel_range(static_cast<double>(v[i].x));
+            check_pixel_range(static_cast<double>(v[i].y));
+        } catch (const Error& error) {
+            throw Error(fmt::format("vertex {}: {}", i, error.what()));
         }
     }
 }

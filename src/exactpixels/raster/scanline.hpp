@@ -153,17 +153,16 @@ void scanline_spans(const std::array<Point2, 3>& v, Viewport viewport, SpanFn&& 
 }
 //< scanline-spans
 
-/// Throws Error naming the function, the vertex and the value unless every coordinate
-/// of v is within +-max_fixed_coordinate (1/256 px).
+/// Throws Error naming the function and the vertex (and, by check_pixel_range, the
+/// value) unless every coordinate of v is within +-max_fixed_coordinate (1/256 px).
 inline void check_scanline_input(const std::array<FixedPoint2, 3>& v,
                                  const char* function) {
     for (int i = 0; i < 3; ++i) {
-        for (const std::int64_t value : {v[i].x, v[i].y}) {
-            if (value < -max_fixed_coordinate || value > max_fixed_coordinate) {
-                throw Error(std::string(function) + ": vertex " + std::to_string(i) +
-                            " has fixed-point coordinate " + std::to_string(value) +
-                            " (1/256 px), outside [-2^28, 2^28]");
-            }
+        try {
+            check_fixed_range(v[i]);
+        } catch (const Error& error) {
+            throw Error(std::string(function) + ": vertex " + std::to_string(i) + ": " +
+                        error.what());
         }
     }
 }

@@ -23,18 +23,15 @@ TexelMap::TexelMap(int width_, int height_)
 
 void check_textured_triangle(const std::array<TexturedVertex, 3>& v,
                              const MapperSettings& settings) {
-    const double position_limit = max_fixed_coordinate_px;
     const double uv_limit = settings.precision == Precision::fixed ? 16384.0 : 1e30;
     const int span = settings.mapper.span;
     for (int k = 0; k < 3; ++k) {
         const TexturedVertex& p = v[static_cast<std::size_t>(k)];
-        for (const double c : {p.position.x, p.position.y}) {
-            if (!std::isfinite(c) || std::abs(c) > position_limit) {
-                throw Error(
-                    fmt::format("textured triangle: vertex {} has position {} px, "
-                                "not finite or beyond +-2^20 px",
-                                k, c));
-            }
+        try {
+            check_pixel_range(p.position.x);
+            check_pixel_range(p.position.y);
+        } catch (const Error& error) {
+            throw Error(fmt::format("textured triangle: vertex {}: {}", k, error.what()));
         }
         if (!std::isfinite(p.w) || !(p.w > 0.0)) {
             throw Error(fmt::format("textured triangle: vertex {} has depth w = {} "
@@ -78,8 +75,8 @@ TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
                              bool affine) {
     // u/w, v/w and 1/w are linear in screen space (@eq:linear-in-screen); so are u and
     // v of the affine mapper, by assumption.
-    TexturePlanes planes{plane_through(corners, q.u_w), plane_through(corners, q.v_w),
-                         one_w, {}, {}};
+    TexturePlanes planes{
+        plane_through(corners, q.u_w), plane_through(corners, q.v_w), one_w, {}, {}};
     if (affine) {
         planes.u = plane_through(corners, {v[0].uv.x, v[1].uv.x, v[2].uv.x});
         planes.v = plane_through(corners, {v[0].uv.y, v[1].uv.y, v[2].uv.y});
