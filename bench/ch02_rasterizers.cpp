@@ -15,7 +15,7 @@
 // Every variant draws the same 1024 triangles per area into a 1024 x 1024 array of
 // 32-bit pixels, cycling through them: random shapes (no angle below about 25 degrees),
 // random orientation and position, scaled to the exact area before snapping
-// (triangle_sets.hpp, shared with chapter 9's benchmark). The
+// (triangle_sets.hpp, shared with chapter 10's benchmark). The
 // fixed-point variants get the vertices already snapped (snapping belongs to vertex
 // processing); the float and naive variants get them as float pixels.
 #include "exactpixels/raster/edge_rasterizer.hpp"

@@ -1,7 +1,7 @@
 #!/bin/sh
 # A repeated Google Benchmark run as if it were one run: the CSV header row and one row
 # per benchmark under the benchmark's own name, for readers that take one row per run
-# (read_benchmark_csv, fig_ch09_speed; fig_ch05_table reads the repetitions itself).
+# (read_benchmark_csv, fig_ch10_speed; fig_ch05_table reads the repetitions itself).
 # Which row:
 #   fastest  the repetition with the least cpu_time (least real_time for a run named
 #            .../real_time). For single-threaded work on a shared machine a slow spell

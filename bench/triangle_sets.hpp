@@ -1,4 +1,4 @@
-// triangle_sets.hpp: the benchmarks' triangles (chapters 2 and 9): for a given area,
+// triangle_sets.hpp: the benchmarks' triangles (chapters 2 and 10): for a given area,
 // `count` well-shaped random triangles (no angle below about 25 degrees), random
 // orientation and position inside a side x side frame, scaled to the exact area before
 // snapping; the same seed, so the same triangles, in every benchmark program.

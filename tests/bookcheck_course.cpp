@@ -141,7 +141,7 @@ std::string code_of(const std::string& line) {
 /// `//< exercise ID`, minus stub lines `//|`) in the code under src/, chapters/ and
 /// tests/, and every line of a gives-away block (`//> gives-away ID` to
 /// `//< gives-away ID`: code outside the region that states its answer, such as
-/// chapter 9's run_end, which divides out the same crossing), except a line whose code (comments aside) the source also holds outside every
+/// chapter 10's run_end, which divides out the same crossing), except a line whose code (comments aside) the source also holds outside every
 /// exercise region ("break;", "return choice;", a common loop head) or as a stub line:
 /// the students' kit holds that line anyway, and the course edition may print it in any
 /// other listing, or as the stub.
@@ -265,15 +265,15 @@ const GiveAway give_aways[] = {
     {"ch08-derivatives", "numeratoroverq^2"},
     {"ch08-derivatives", "dividedbyq2q^2"},
     {"ch08-derivatives", "|N_x|/q^2"},
-    {"ch09-run-of-row", "ceil_div(-w[i],step)"},
-    {"ch09-run-of-row", "floor_div(w[i],-step)+1"},
-    {"ch09-run-of-row", R"(k\ge\left\lceil\dfrac{-w}{s_x}\right\rceil)"},
-    {"ch09-run-of-row", R"(k=\lceil-w/s\rceil)"},
-    {"ch09-run-of-row", R"(\lfloorw/s\rfloor+1)"},
-    {"ch09-run-of-row", "k>=ceil(-w/step)"},
-    // run_end (chapter 9) divides out the same crossing, once per triangle.
-    {"ch09-run-of-row", "end.k=ceil_div(-w,end.s)"},
-    {"ch09-run-of-row", "end.k=floor_div(w,end.s)+1"},
+    {"ch10-run-of-row", "ceil_div(-w[i],step)"},
+    {"ch10-run-of-row", "floor_div(w[i],-step)+1"},
+    {"ch10-run-of-row", R"(k\ge\left\lceil\dfrac{-w}{s_x}\right\rceil)"},
+    {"ch10-run-of-row", R"(k=\lceil-w/s\rceil)"},
+    {"ch10-run-of-row", R"(\lfloorw/s\rfloor+1)"},
+    {"ch10-run-of-row", "k>=ceil(-w/step)"},
+    // run_end (chapter 10) divides out the same crossing, once per triangle.
+    {"ch10-run-of-row", "end.k=ceil_div(-w,end.s)"},
+    {"ch10-run-of-row", "end.k=floor_div(w,end.s)+1"},
 };
 
 /// The answers of the variant exercises: exercises set in place of ones whose answer a
@@ -371,7 +371,7 @@ TEST_CASE("the same search finds the exercises' solutions in the public book") {
 TEST_CASE("the search reads the API reference: the public book's prints solution lines") {
     // The API reference's source pages print each header whole in the public book; the
     // search must see them there, run_end's division included (a gives-away block of
-    // ch09-run-of-row, which the course edition's API reference once printed).
+    // ch10-run-of-row, which the course edition's API reference once printed).
     const fs::path api = fs::path(EXACTPIXELS_BINARY_DIR) / "book" / "api";
     REQUIRE(fs::exists(api / "index.html"));
     const auto printed = printed_solutions(api);
@@ -383,7 +383,7 @@ TEST_CASE("the search reads the API reference: the public book's prints solution
                            << " exercises are printed in the public book's API reference");
     CHECK(exercises.size() >= 10);
     CHECK(std::any_of(printed.begin(), printed.end(), [](const SolutionLine& line) {
-        return line.exercise == "ch09-run-of-row" &&
+        return line.exercise == "ch10-run-of-row" &&
                line.code == "end.k = ceil_div(-w, end.s);";
     }));
 }

@@ -1,8 +1,8 @@
-// Chapter 7's referee (@sec:scene-referee): every shipped scene drawn again by Mesa's
+// Chapter 9's referee (@sec:scene-referee): every shipped scene drawn again by Mesa's
 // llvmpipe through OSMesa, from the same snapped triangles, and compared pixel for pixel:
 // coverage, the triangle that wins each pixel, colours within the derived tolerances
 // (per-pixel lighting through a GLSL program, and a planted fault that it catches).
-// Not a ch07_*.cpp file (the chapter's kit does not link OSMesa); label ch07 all the
+// Not a ch09_*.cpp file (the chapter's kit does not link OSMesa); label ch09 all the
 // same.
 #include <doctest/doctest.h>
 

@@ -4,7 +4,7 @@
 // line, "x0 y0 x1 y1 x2 y2" (pixels, origin top-left, y down, decimal numbers). Blank
 // lines are skipped. Output: H lines of W space-separated counts, on standard output or,
 // with -o FILE, written all or nothing to FILE. Malformed input or a failed write: a
-// message naming the line and the value (or the file) on stderr, exit code 2. Chapter 9
+// message naming the line and the value (or the file) on stderr, exit code 2. Chapter 10
 // adds the fast traversals `runs` and `masks`, exact and therefore fixed point only.
 #include "commands.hpp"
 
@@ -26,12 +26,12 @@ namespace exactpixels::cli {
 
 namespace {
 
-/// Every rasterizer the command offers: chapters 1 and 2's, and chapter 9's two fast
+/// Every rasterizer the command offers: chapters 1 and 2's, and chapter 10's two fast
 /// traversals (covered runs per row, 8 x 8 masks).
 enum class CoverageRasterizer { scanline, edge, edge8x8, runs, masks };
 
 /// Adds 1 to counts[y * width + x] for every pixel the triangle v (pixels) covers, drawn
-/// by chapter 9's runs or masks (fixed point). Throws Error naming a vertex out of range.
+/// by chapter 10's runs or masks (fixed point). Throws Error naming a vertex out of range.
 void add_fast_coverage(std::vector<int>& counts, Viewport viewport,
                        const std::array<Point2, 3>& v, CoverageRasterizer kind) {
     std::array<FixedPoint2, 3> f;
@@ -62,7 +62,7 @@ void add_fast_coverage(std::vector<int>& counts, Viewport viewport,
     }
 }
 
-/// Chapters 1 and 2's rasterizer for one of theirs (runs and masks are chapter 9's).
+/// Chapters 1 and 2's rasterizer for one of theirs (runs and masks are chapter 10's).
 RasterizerKind chapter2_kind(CoverageRasterizer kind) {
     return kind == CoverageRasterizer::scanline ? RasterizerKind::scanline
            : kind == CoverageRasterizer::edge   ? RasterizerKind::edge
@@ -92,7 +92,7 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
     command
         ->add_option("--rasterizer", options->rasterizer,
                      "scanline (chapter 1), edge (bounding box), edge8x8 (8x8 blocks), "
-                     "runs or masks (chapter 9: covered runs, 8x8 masks; fixed only)")
+                     "runs or masks (chapter 10: covered runs, 8x8 masks; fixed only)")
         ->transform(CLI::CheckedTransformer(rasterizers, CLI::ignore_case))
         ->default_str("edge8x8");
     command

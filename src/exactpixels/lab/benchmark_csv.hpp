@@ -3,7 +3,7 @@
 // that check the book's sentences against committed measurements.
 //
 // Usage:
-//   const BenchmarkRuns runs = read_benchmark_csv("data/ch09_fast.csv");
+//   const BenchmarkRuns runs = read_benchmark_csv("data/ch10_fast.csv");
 //   double r = runs.value("flat/runs/1000/1/process_time", "tri_per_s");  // per second
 //   double n = runs.net_rate("flat/runs/1000/1/process_time",
 //   "flat/runs/0/1/process_time",

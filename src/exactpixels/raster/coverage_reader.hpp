@@ -58,7 +58,7 @@ std::vector<int> count_coverage(std::istream& in, RasterizerKind kind,
 using CoverageDraw = std::function<void(std::vector<int>& counts, Viewport viewport,
                                         const std::array<Point2, 3>& triangle)>;
 
-/// The same with any rasterizer: `draw` adds one triangle's coverage (chapter 9's fast
+/// The same with any rasterizer: `draw` adds one triangle's coverage (chapter 10's fast
 /// traversals use this).
 std::vector<int> count_coverage(std::istream& in, const CoverageDraw& draw,
                                 Viewport& viewport,

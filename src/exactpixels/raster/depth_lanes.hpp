@@ -7,7 +7,7 @@
 //   depth_mask_row(plane, red, y, x, bits, width, depth_row, colour_row); // 8 px, mask
 //
 // A pixel (x, y) is drawn when z = plane.at(x, y) is less than the stored depth (NaN
-// never is); then z and the colour are written, as chapter 9's plot does. Depths are
+// never is); then z and the colour are written, as chapter 10's plot does. Depths are
 // IEEE single floats; x and y are pixel columns and rows, |x|, |y| < 2^24 (far beyond
 // any framebuffer), so float(x) is exact. The lanes compute z as plot does, in the same
 // order and the same float operations: the row part z0 + float(y) dzdy once, then

@@ -9,7 +9,7 @@
 //
 // A triangle's fill work is the number of pixels of its bounding box inside the
 // viewport (pixel (x, y) covers [x, x+1) x [y, y+1)): whatever its shape, a rasterizer
-// of chapters 1, 2 and 9 visits no more than those (the 8 x 8 traversals round the box
+// of chapters 1, 2 and 10 visits no more than those (the 8 x 8 traversals round the box
 // out to whole blocks). The sum over an input's triangles bounds the time drawing it
 // takes, so a small input that asks for hours of drawing is refused in advance.
 #pragma once

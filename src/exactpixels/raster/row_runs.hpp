@@ -33,7 +33,7 @@ namespace exactpixels {
 /// every k or none.
 inline std::pair<std::int64_t, std::int64_t>
 run_of_row(const EdgeSetup<FixedEdge>& s, const std::array<std::int64_t, 3>& w, int n) {
-    //> exercise ch09-run-of-row: each edge bounds k from one side (@eq:fast-run).
+    //> exercise ch10-run-of-row: each edge bounds k from one side (@eq:fast-run).
     // w + k step >= 0 is k >= ceil(-w / step) for step > 0, k <= floor(w / -step) for
     // step < 0.
     std::int64_t k_begin = 0, k_end = n;
@@ -50,7 +50,7 @@ run_of_row(const EdgeSetup<FixedEdge>& s, const std::array<std::int64_t, 3>& w, 
     return {k_begin, k_end};
     //| (void)s, (void)w, (void)n;
     //| return {0, 0}; // stub: an empty run on every row, so nothing is drawn
-    //< exercise ch09-run-of-row
+    //< exercise ch10-run-of-row
 }
 //< run-of-row
 
@@ -177,7 +177,7 @@ inline RunEnd run_end(std::int64_t w, std::int64_t step_x, std::int64_t step_y) 
     end.s = step_x > 0 ? step_x : -step_x;
     end.q = floor_div(step_y, end.s);
     end.r = step_y - end.q * end.s;
-    //> gives-away ch09-run-of-row
+    //> gives-away ch10-run-of-row
     if (step_x > 0) {
         end.k = ceil_div(-w, end.s);
         end.e = w + end.k * end.s;
@@ -186,7 +186,7 @@ inline RunEnd run_end(std::int64_t w, std::int64_t step_x, std::int64_t step_y) 
         end.e = w - (end.k - 1) * end.s;
     }
     //| (void)w; // stub: k = e = 0, the end not found
-    //< gives-away ch09-run-of-row
+    //< gives-away ch10-run-of-row
     return end;
 }
 //< run-end

@@ -1,4 +1,4 @@
-// textured_runs.hpp: perspective-correct nearest texturing on chapter 9's fastest
+// textured_runs.hpp: perspective-correct nearest texturing on chapter 10's fastest
 // traversal: covered runs (row_runs.hpp) feeding chapter 3's exact mapper, one divide per
 // pixel, with the very texels of the teaching path.
 //

@@ -1,21 +1,21 @@
-// Chapter 9 figures and tables from the committed, dated benchmark run
-// (chapters/09-fast-pixels/data/ch09_fast.csv, bench_ch09_fast's CSV with a '#' header
-// naming machine and date): ch09_speed_flat.dat and ch09_speed_depth.dat (millions of
-// pixels per second against area, one column per variant, for ch09_speed.gp),
-// ch09_speed_textured.dat (the same for the textured run: teaching path, runs, llvmpipe),
-// ch09_table.md (the same numbers and the ratio to llvmpipe), ch09_fixed.md (the fixed
-// cost of an empty frame on each side, subtracted from every rate: chapter 9's
-// measurement protocol), ch09_speed_facts.txt (the main run's ratios for the
-// chapter's sentences), ch09_targets.md (each
+// Chapter 10 figures and tables from the committed, dated benchmark run
+// (chapters/10-fast-pixels/data/ch10_fast.csv, bench_ch10_fast's CSV with a '#' header
+// naming machine and date): ch10_speed_flat.dat and ch10_speed_depth.dat (millions of
+// pixels per second against area, one column per variant, for ch10_speed.gp),
+// ch10_speed_textured.dat (the same for the textured run: teaching path, runs, llvmpipe),
+// ch10_table.md (the same numbers and the ratio to llvmpipe), ch10_fixed.md (the fixed
+// cost of an empty frame on each side, subtracted from every rate: chapter 10's
+// measurement protocol), ch10_speed_facts.txt (the main run's ratios for the
+// chapter's sentences), ch10_targets.md (each
 // target of the chapter, met or not, with the numbers that decide it) and
-// ch09_instructions.md (instructions per triangle from data/ch09_instructions.csv),
-// ch09_textured.md (the textured run, data/ch09_textured.csv: the teaching path, the
-// textured runs and llvmpipe, with the ratios), ch09_textured.txt (the textured
-// section's facts, with data/ch09_textured_compare.csv's pixel counts), and
-// ch09_threads.txt (facts for Exercise 4's solution: the one-core ratio of the tiled
+// ch10_instructions.md (instructions per triangle from data/ch10_instructions.csv),
+// ch10_textured.md (the textured run, data/ch10_textured.csv: the teaching path, the
+// textured runs and llvmpipe, with the ratios), ch10_textured.txt (the textured
+// section's facts, with data/ch10_textured_compare.csv's pixel counts), and
+// ch10_threads.txt (facts for Exercise 4's solution: the one-core ratio of the tiled
 // renderer to llvmpipe, and what two threads gave on the machine of the committed run)
-// and ch09_threads.md (the wall-clock table of one and two threads, ours and llvmpipe's).
-// Usage: fig_ch09_speed FIGURE_DIR
+// and ch10_threads.md (the wall-clock table of one and two threads, ours and llvmpipe's).
+// Usage: fig_ch10_speed FIGURE_DIR
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/lab/benchmark_csv.hpp"
 #include "support/figure_file.hpp"
@@ -37,7 +37,7 @@ const int areas[] = {3, 15, 80, 1000, 65536};
 const char* const project_variants[] = {"walk", "blocks", "runs", "masks", "tiled"};
 
 /// `counter` of MODE/VARIANT/AREA (one core, process CPU time) net of the fixed cost of
-/// its frame: the same run at area 0, a frame with nothing in it (chapter 9's protocol).
+/// its frame: the same run at area 0, a frame with nothing in it (chapter 10's protocol).
 double net(const BenchmarkRuns& r, const std::string& mode, const std::string& variant,
            int area, const std::string& counter) {
     return r.net_rate(fmt::format("{}/{}/{}/1/process_time", mode, variant, area),
@@ -110,14 +110,14 @@ std::string table(const BenchmarkRuns& r) {
         }
         md += fmt::format(
             "\n: Millions of triangles per second on one core, {}, from the committed "
-            "run, and the fastest variant's rate over llvmpipe's. {{#tbl:ch09-{}}}\n\n",
+            "run, and the fastest variant's rate over llvmpipe's. {{#tbl:ch10-{}}}\n\n",
             mode == "flat" ? "flat colour" : "flat colour with a 32-bit depth test",
             mode);
     }
     return md;
 }
 
-/// ch09_speed_textured.dat: Mpix/s of the teaching path, the textured runs and llvmpipe
+/// ch10_speed_textured.dat: Mpix/s of the teaching path, the textured runs and llvmpipe
 /// against area in the textured run (one core).
 void write_textured_dat(const BenchmarkRuns& t, const std::filesystem::path& path) {
     std::ostringstream out;
@@ -160,20 +160,20 @@ std::string textured_table(const BenchmarkRuns& t) {
     md +=
         "\n: Perspective-correct nearest texturing on one core: millions of triangles "
         "per second (and of pixels for the runs and llvmpipe) in the committed textured "
-        "run (data/ch09_textured.csv), and the runs' rate over llvmpipe's and over the "
-        "teaching path's. {#tbl:ch09-textured}\n";
+        "run (data/ch10_textured.csv), and the runs' rate over llvmpipe's and over the "
+        "teaching path's. {#tbl:ch10-textured}\n";
     return md;
 }
 
 /// The textured section's facts, one "NAME VALUE" per line: the runs' rate over
 /// llvmpipe's and over the teaching path's at each area (textured run), and, summed over
-/// the areas of data/ch09_textured_compare.csv, the pixels drawn, those whose coverage
+/// the areas of data/ch10_textured_compare.csv, the pixels drawn, those whose coverage
 /// differs in llvmpipe's frame, those drawn with another texel and how many of those
 /// are a neighbouring texel, and the pixels where the runs differ from the teaching path;
-/// and the instructions per triangle of data/ch09_textured_instructions.csv.
+/// and the instructions per triangle of data/ch10_textured_instructions.csv.
 std::string textured_facts(const BenchmarkRuns& t, const BenchmarkRuns& compare,
                            const BenchmarkRuns& instructions) {
-    std::string facts = "# chapter 9, textured runs: the committed textured run\n";
+    std::string facts = "# chapter 10, textured runs: the committed textured run\n";
     for (const int area : areas) {
         const double runs = textured_rate(t, "runs", area);
         facts += fmt::format("runs_over_llvmpipe_{} {:.4f}\n", area,
@@ -272,8 +272,8 @@ std::string instruction_table(const BenchmarkRuns& r) {
         }
     }
     md += "\n: Instructions per triangle, counted by callgrind over one drawing of the "
-          "1024 triangles of each area (data/ch09_instructions.csv). "
-          "{#tbl:ch09-instructions}\n";
+          "1024 triangles of each area (data/ch10_instructions.csv). "
+          "{#tbl:ch10-instructions}\n";
     return md;
 }
 
@@ -282,7 +282,7 @@ std::string instruction_table(const BenchmarkRuns& r) {
 /// modes; the tiled renderer's wall-clock rate with two threads over one; and the
 /// instructions per triangle of runs, masks and llvmpipe at 1000 px (callgrind).
 std::string thread_facts(const BenchmarkRuns& r, const BenchmarkRuns& instructions) {
-    std::string facts = "# chapter 9, Exercise 4: what the committed runs can say\n";
+    std::string facts = "# chapter 10, Exercise 4: what the committed runs can say\n";
     for (const std::string mode : {"flat", "depth"}) {
         for (const int area : {80, 1000, 65536}) {
             facts += fmt::format("{}_tiled_over_llvmpipe_{} {:.4f}\n", mode, area,
@@ -336,7 +336,7 @@ std::string thread_table(const BenchmarkRuns& r) {
     md += "\n: Millions of triangles per second by the wall clock, flat colour, from the "
           "committed run: the kept tiled renderer and llvmpipe on one and two threads "
           "(llvmpipe's two-thread rows from a second process, as OSMesa reads "
-          "LP_NUM_THREADS once). {#tbl:ch09-threads}\n";
+          "LP_NUM_THREADS once). {#tbl:ch10-threads}\n";
     return md;
 }
 
@@ -350,7 +350,7 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 /// each side's 3 px frame, and llvmpipe's default (AVX) rate over its rate held to
 /// SSE4.1 at 80 and 1000 px. Every rate is net of the frame's fixed cost.
 std::string speed_facts(const BenchmarkRuns& r) {
-    std::string facts = "# chapter 9: the committed main run (net rates)\n";
+    std::string facts = "# chapter 10: the committed main run (net rates)\n";
     const auto frame_time = [&](const std::string& mode, const std::string& v, int area) {
         return r.value(fmt::format("{}/{}/{}/1/process_time", mode, v, area), "cpu_time");
     };
@@ -413,7 +413,7 @@ std::string fixed_table(const BenchmarkRuns& r, const BenchmarkRuns& t) {
           "with nothing in it (ours: the depth clear; llvmpipe: the depth clear and the "
           "copy of its frame into the caller's at glFinish), and its share of the frame "
           "of 1024 triangles of 3 px. Every rate in this chapter has it subtracted. "
-          "{#tbl:ch09-fixed}\n";
+          "{#tbl:ch10-fixed}\n";
     return md;
 }
 
@@ -424,34 +424,34 @@ int main(int argc, char** argv) {
     try {
         const BenchmarkRuns r =
             read_benchmark_csv(std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
-                               "chapters/09-fast-pixels/data/ch09_fast.csv");
-        write_dat(r, "flat", folder / "ch09_speed_flat.dat");
-        write_dat(r, "depth", folder / "ch09_speed_depth.dat");
-        write_text(folder / "ch09_table.md", table(r));
+                               "chapters/10-fast-pixels/data/ch10_fast.csv");
+        write_dat(r, "flat", folder / "ch10_speed_flat.dat");
+        write_dat(r, "depth", folder / "ch10_speed_depth.dat");
+        write_text(folder / "ch10_table.md", table(r));
         const BenchmarkRuns textured =
             read_benchmark_csv(std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
-                               "chapters/09-fast-pixels/data/ch09_textured.csv");
-        write_text(folder / "ch09_targets.md", targets(r, textured));
-        write_text(folder / "ch09_fixed.md", fixed_table(r, textured));
-        write_text(folder / "ch09_speed_facts.txt", speed_facts(r));
-        write_text(folder / "ch09_textured.md", textured_table(textured));
-        write_textured_dat(textured, folder / "ch09_speed_textured.dat");
+                               "chapters/10-fast-pixels/data/ch10_textured.csv");
+        write_text(folder / "ch10_targets.md", targets(r, textured));
+        write_text(folder / "ch10_fixed.md", fixed_table(r, textured));
+        write_text(folder / "ch10_speed_facts.txt", speed_facts(r));
+        write_text(folder / "ch10_textured.md", textured_table(textured));
+        write_textured_dat(textured, folder / "ch10_speed_textured.dat");
         const BenchmarkRuns compare =
             read_benchmark_csv(std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
-                               "chapters/09-fast-pixels/data/ch09_textured_compare.csv");
+                               "chapters/10-fast-pixels/data/ch10_textured_compare.csv");
         const BenchmarkRuns textured_instructions = read_benchmark_csv(
             std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
-            "chapters/09-fast-pixels/data/ch09_textured_instructions.csv");
-        write_text(folder / "ch09_textured.txt",
+            "chapters/10-fast-pixels/data/ch10_textured_instructions.csv");
+        write_text(folder / "ch10_textured.txt",
                    textured_facts(textured, compare, textured_instructions));
         const BenchmarkRuns instructions =
             read_benchmark_csv(std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
-                               "chapters/09-fast-pixels/data/ch09_instructions.csv");
-        write_text(folder / "ch09_instructions.md", instruction_table(instructions));
-        write_text(folder / "ch09_threads.txt", thread_facts(r, instructions));
-        write_text(folder / "ch09_threads.md", thread_table(r));
+                               "chapters/10-fast-pixels/data/ch10_instructions.csv");
+        write_text(folder / "ch10_instructions.md", instruction_table(instructions));
+        write_text(folder / "ch10_threads.txt", thread_facts(r, instructions));
+        write_text(folder / "ch10_threads.md", thread_table(r));
     } catch (const Error& error) {
-        std::fprintf(stderr, "fig_ch09_speed: %s\n", error.what());
+        std::fprintf(stderr, "fig_ch10_speed: %s\n", error.what());
         return 2;
     }
     return 0;

@@ -1,4 +1,4 @@
-// Chapter 7 tests: Wavefront OBJ models (@sec:scene-models). A model is read with its
+// Chapter 9 tests: Wavefront OBJ models (@sec:scene-models). A model is read with its
 // MTL materials, its polygons cut into fans, placed by its transform; every malformed
 // model is an Error naming the model's file, line and value, and the CLI exits with 2
 // and writes nothing.
@@ -574,35 +574,6 @@ TEST_CASE("more positions than allowed are refused before they are stored") {
               fmt::format("big.obj:{}: more than the {} positions allowed",
                           max_model_vertices + 1, max_model_vertices));
     }
-}
-
-TEST_CASE("a model named by several meshes is read once and its texture held once" *
-          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
-    // tests/fixtures/models/three_cubes.toml names cube.obj three times, spelled three
-    // ways, moved apart by its translate: three cubes of two materials each.
-    const Scene scene = load_scene(models / "three_cubes.toml");
-    REQUIRE(scene.meshes.size() == 6);
-    CHECK(scene.models.size() == 2);   // cube.obj and cube.mtl, each read once
-    CHECK(scene.textures.size() == 1); // the F of cube.mtl, held once
-    for (std::size_t k = 0; k < 2; ++k) {
-        const SceneMesh& middle = scene.meshes[k + 2];
-        for (const std::size_t other : {k, k + 4}) {
-            const SceneMesh& mesh = scene.meshes[other];
-            CHECK(mesh.texture == middle.texture);
-            REQUIRE(mesh.triangles.size() == middle.triangles.size());
-            const double dx = other < k + 2 ? -1.2 : 1.2; // each cube's translate
-            for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-                for (std::size_t v = 0; v < 3; ++v) {
-                    const glm::dvec3 moved =
-                        mesh.triangles[t][v].position - middle.triangles[t][v].position;
-                    CHECK(moved.x == doctest::Approx(dx));
-                    CHECK(moved.y == 0.0);
-                    CHECK(moved.z == 0.0);
-                }
-            }
-        }
-    }
-    CHECK(render_scene(scene).report.texture.pixels > 0); // the shared index is valid
 }
 
 TEST_CASE(

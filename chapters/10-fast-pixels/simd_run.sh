@@ -1,18 +1,18 @@
 #!/bin/sh
 # Chapter 9's vector instruction sets (@sec:fast-simd): the textured runs forced to each
 # set this CPU has, against llvmpipe, on the 1000 px textured set and the empty frame
-# (bench_ch09_fast --simd), one core each, interleaved in one run; then callgrind's
+# (bench_ch10_fast --simd), one core each, interleaved in one run; then callgrind's
 # instructions per triangle of the sets valgrind can run (it has no AVX-512).
-# Usage (from the repository root, after building bench_ch09_fast in BUILD_DIR, a
+# Usage (from the repository root, after building bench_ch10_fast in BUILD_DIR, a
 # Release build):
-#   chapters/09-fast-pixels/simd_run.sh BUILD_DIR
-# Writes chapters/09-fast-pixels/simd_results.md, whose table rows are the facts the
+#   chapters/10-fast-pixels/simd_run.sh BUILD_DIR
+# Writes chapters/10-fast-pixels/simd_results.md, whose table rows are the facts the
 # chapter quotes. Takes about three minutes.
 set -eu
 build=${1:?usage: simd_run.sh BUILD_DIR}
-out=chapters/09-fast-pixels/simd_results.md
-bench="$build/bin/bench_ch09_fast"
-[ -x "$bench" ] || { echo "simd_run.sh: no $bench: build bench_ch09_fast first" >&2; exit 2; }
+out=chapters/10-fast-pixels/simd_results.md
+bench="$build/bin/bench_ch10_fast"
+[ -x "$bench" ] || { echo "simd_run.sh: no $bench: build bench_ch10_fast first" >&2; exit 2; }
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 pin=""
@@ -40,7 +40,7 @@ count() {
 {
     echo "# Chapter 9: the textured runs in each vector instruction set against llvmpipe"
     echo
-    echo "Measured $start-$end UTC on $(uname -m) ($cpu, $(nproc --all) cores; load average $load_start at the start, $load_end at the end), compiler $(c++ --version | head -n 1), Mesa $mesa, $(valgrind --version). Regenerate with \`chapters/09-fast-pixels/simd_run.sh build\` (Release build). The set: 1024 textured triangles of 1000 px (bench_ch09_fast's textured set, perspective-correct, nearest texel, a 256 x 256 texture that repeats), drawn in order into a 1024 x 1024 frame; llvmpipe with LP_NUM_THREADS=1 draws the same triangles (clip-space w = the depth), pinned to one core, 5 repetitions interleaved at random, the median."
+    echo "Measured $start-$end UTC on $(uname -m) ($cpu, $(nproc --all) cores; load average $load_start at the start, $load_end at the end), compiler $(c++ --version | head -n 1), Mesa $mesa, $(valgrind --version). Regenerate with \`chapters/10-fast-pixels/simd_run.sh build\` (Release build). The set: 1024 textured triangles of 1000 px (bench_ch10_fast's textured set, perspective-correct, nearest texel, a 256 x 256 texture that repeats), drawn in order into a 1024 x 1024 frame; llvmpipe with LP_NUM_THREADS=1 draws the same triangles (clip-space w = the depth), pinned to one core, 5 repetitions interleaved at random, the median."
     echo
     echo "Milliseconds of process CPU time per frame; \"net\" is the frame less the empty frame of the same side (its fixed cost), \"over llvmpipe\" llvmpipe's net time over the variant's:"
     echo

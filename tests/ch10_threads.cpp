@@ -1,4 +1,4 @@
-// Chapter 9 tests of the threads: the worker pool runs a job once on every thread, the
+// Chapter 10 tests of the threads: the worker pool runs a job once on every thread, the
 // caller included, waits for all of them and hands a worker's exception to the caller;
 // the tiled renderer that keeps its pool and bins between draws, binning in parallel,
 // draws the teaching path's picture with 1, 2, 3 and 7 threads on the random, mesh and

@@ -1,4 +1,4 @@
-// Chapter 9 tests: every fast variant draws exactly the pixels of chapter 2's pixel walk
+// Chapter 10 tests: every fast variant draws exactly the pixels of chapter 2's pixel walk
 // (traverse_pixels), on the random, tie, mesh and fan sets of chapter 2 and the hard
 // cases of chapter 6 (slivers, the fixed-point limit); the SIMD lanes agree with the
 // portable ones; the tiled renderer's picture does not depend on the thread count; the
@@ -35,7 +35,7 @@ namespace {
 /// The fast traversals of this chapter, by name.
 enum class Fast { runs, runs_fast, runs_stepped, masks_portable, masks_sse2 };
 
-// The plain traversal_runs is the exercise ch09-run-of-row: its own test below.
+// The plain traversal_runs is the exercise ch10-run-of-row: its own test below.
 constexpr Fast all_fast[] = {Fast::runs_fast, Fast::runs_stepped, Fast::masks_portable,
                              Fast::masks_sse2};
 
@@ -172,7 +172,7 @@ TEST_CASE("runs and 8x8 masks are exact on slivers and at the fixed-point limit"
 }
 
 TEST_CASE("covered runs by exact division are the pixel walk's runs on every set" *
-          doctest::description("points: 20; exercise: ch09-run-of-row")) {
+          doctest::description("points: 20; exercise: ch10-run-of-row")) {
     std::mt19937_64 rng(95);
     std::uniform_real_distribution<double> wobble(-3.0, 3.0);
     const auto jittered = [&](int, int) { return Point2{wobble(rng), wobble(rng)}; };
@@ -235,7 +235,7 @@ TEST_CASE("a run end stepped by quotient, remainder and carry is the exact divis
 
 TEST_CASE(
     "the double estimate of a run's end is one column off below 2^52, two up to 2^60") {
-    // Exercise 2 of chapter 9: run_of_row_fast starts each edge's end from the double
+    // Exercise 2 of chapter 10: run_of_row_fast starts each edge's end from the double
     // estimate w * (1 / |s_x|), clamped to the row and truncated, as below. For
     // |w| < 2^52 the start is at most one column from the exact end (computed here in
     // exact integers); above, up to the 2^60 of @eq:edge-range, an edge with s_x > 0
@@ -654,7 +654,7 @@ TEST_CASE("the tiled renderer draws the teaching path's picture with 1 to 4 thre
 TEST_CASE("a depth tie goes to the triangle drawn first, as GL_LESS gives it") {
     // Two overlapping triangles on one depth plane: every pixel both cover is a tie.
     // The depth test here is "less" (plot's !(z < d) refuses a tie), OpenGL's default
-    // GL_LESS, which bench_ch09_fast sets for llvmpipe, so the earlier triangle keeps the
+    // GL_LESS, which bench_ch10_fast sets for llvmpipe, so the earlier triangle keeps the
     // pixel on every path; chapter 7's DepthBuffer gives a tie to the later one instead
     // (tests/ch07_scenes.cpp). Without a depth buffer the later triangle paints over.
     constexpr int width = 80, height = 60;

@@ -1,7 +1,7 @@
-// Chapter 9 benchmark: the fast paths against the teaching path and against Mesa's
+// Chapter 10 benchmark: the fast paths against the teaching path and against Mesa's
 // llvmpipe (through OSMesa) drawing the same triangles into the same kind of frame.
 //
-// Run:   bench_ch09_fast [--benchmark_min_time=0.05] [--benchmark_out=f.csv
+// Run:   bench_ch10_fast [--benchmark_min_time=0.05] [--benchmark_out=f.csv
 //                         --benchmark_out_format=csv]
 // Names: MODE/VARIANT/AREA/THREADS, MODE flat (one colour into RGBA8) or depth (the same
 //        with a 32-bit depth test, less), AREA 3, 15, 80, 1000 or 65536 px, VARIANT one
@@ -26,7 +26,7 @@
 // One iteration is one frame: the same 1024 triangles of one area (triangle_sets.hpp,
 // the set of chapter 2's benchmark) drawn into a 1024 x 1024 frame, each triangle with
 // its own colour, a 24-bit id (so that a compared frame shows order as well as
-// coverage), and its own depth plane. The measurement protocol of chapter 9
+// coverage), and its own depth plane. The measurement protocol of chapter 10
 // (@sec:fast-protocol) holds on both sides:
 //   the same input   both sides start every frame from the same vertex arrays: per
 //                    vertex x, y in pixels and window depth z as floats (x and y exact
@@ -40,20 +40,20 @@
 //   fixed costs      AREA 0 is a frame with no triangle in it (for llvmpipe one triangle
 //     apart          of zero area, so that glFinish still copies its frame to ours): the
 //                    clear, llvmpipe's frame copy, the tiled renderer's thread wake-up.
-//                    Readers of the run subtract it (net_rate in figures/ch09_speed.cpp).
+//                    Readers of the run subtract it (net_rate in figures/ch10_speed.cpp).
 //   checked after    after the timed loop each run compares its frame with the teaching
 //     timing         path's frame of the same set (counters coverage_differ: pixels
 //                    drawn in one frame only, colour_differ: pixels drawn in both with
 //                    another id); a project variant that differs at all is an error.
 // If OSMesa cannot make a context, the llvmpipe runs report an error and are skipped.
 //
-// Instruction counts (chapters/09-fast-pixels/callgrind.sh): `--once=MODE/VARIANT/AREA`
-// draws the set once untimed, then once more inside ch09_draw_once, the function that
-// valgrind --tool=callgrind --toggle-collect=ch09_draw_once counts; `--list` prints the
+// Instruction counts (chapters/10-fast-pixels/callgrind.sh): `--once=MODE/VARIANT/AREA`
+// draws the set once untimed, then once more inside ch10_draw_once, the function that
+// valgrind --tool=callgrind --toggle-collect=ch10_draw_once counts; `--list` prints the
 // names. Run it with LP_NUM_THREADS=0 so that llvmpipe rasterizes in the counted thread.
 //
 // Textured (issue 19's third target), only with `--textured`, so that the default run
-// (data/ch09_fast.csv) is unchanged: names textured/VARIANT/AREA/1, VARIANT one of
+// (data/ch10_fast.csv) is unchanged: names textured/VARIANT/AREA/1, VARIANT one of
 //          teaching  draw_textured_triangle per triangle (chapter 3's exact mapper in
 //                    double, nearest texel), the teaching path
 //          runs      draw_textured_runs (textured_runs.hpp): covered runs, one divide
@@ -70,7 +70,7 @@
 // from the teaching path. `--once=textured/VARIANT/AREA` works as above (--list leaves
 // the textured runs out: callgrind.sh counts the default run only).
 //
-// Vector instruction sets, only with `--simd` (chapters/09-fast-pixels/simd_run.sh):
+// Vector instruction sets, only with `--simd` (chapters/10-fast-pixels/simd_run.sh):
 // textured/runs_SET/AREA/1 for every SET this CPU has (base/simd.hpp: portable, sse2,
 // avx2, avx512, neon), the runs forced to it, and textured/llvmpipe/AREA/1, at AREA 0
 // and 1000. `--once=textured/runs_SET/AREA` counts one. EXACTPIXELS_SIMD, if set, must
@@ -645,7 +645,7 @@ void llvmpipe(benchmark::State& state, bool with_depth) {
 
 /// The one drawing callgrind counts (see the top of the file).
 extern "C" __attribute__((noinline)) void
-ch09_draw_once(const std::function<void()>& draw) {
+ch10_draw_once(const std::function<void()>& draw) {
     draw();
 }
 
@@ -658,7 +658,7 @@ ch09_draw_once(const std::function<void()>& draw) {
 int compare_textured(int area) {
     if (std::find(std::begin(areas), std::end(areas), area) == std::end(areas) ||
         peer().context == nullptr) {
-        std::fprintf(stderr, "bench_ch09_fast: cannot compare area %d\n", area);
+        std::fprintf(stderr, "bench_ch10_fast: cannot compare area %d\n", area);
         return 2;
     }
     teaching_frame() = Framebuffer(frame_side, frame_side, rgba(0, 0, 0, 0));
@@ -692,12 +692,12 @@ int compare_textured(int area) {
     return 0;
 }
 
-/// --once=MODE/VARIANT/AREA: draws the set once, then once more inside ch09_draw_once.
+/// --once=MODE/VARIANT/AREA: draws the set once, then once more inside ch10_draw_once.
 /// Returns the exit code (2 for a name it does not know).
 int draw_once(const std::string& name) {
     const auto first = name.find('/'), second = name.rfind('/');
     if (first == std::string::npos || second == first) {
-        std::fprintf(stderr, "bench_ch09_fast: --once=%s is not MODE/VARIANT/AREA\n",
+        std::fprintf(stderr, "bench_ch10_fast: --once=%s is not MODE/VARIANT/AREA\n",
                      name.c_str());
         return 2;
     }
@@ -726,7 +726,7 @@ int draw_once(const std::string& name) {
         }
     } else if (variant == "llvmpipe") {
         if (peer().context == nullptr) {
-            std::fprintf(stderr, "bench_ch09_fast: %s\n", peer().problem.c_str());
+            std::fprintf(stderr, "bench_ch10_fast: %s\n", peer().problem.c_str());
             return 2;
         }
         const GLsizei vertices = prepare_peer(area, with_depth);
@@ -739,11 +739,11 @@ int draw_once(const std::string& name) {
     if (!draw || (mode != "flat" && mode != "depth" && mode != "textured") ||
         std::find(std::begin(timed_areas), std::end(timed_areas), area) ==
             std::end(timed_areas)) {
-        std::fprintf(stderr, "bench_ch09_fast: unknown run %s\n", name.c_str());
+        std::fprintf(stderr, "bench_ch10_fast: unknown run %s\n", name.c_str());
         return 2;
     }
     draw(); // the first frame compiles llvmpipe's code
-    ch09_draw_once(draw);
+    ch10_draw_once(draw);
     return 0;
 }
 
@@ -859,7 +859,7 @@ int main(int argc, char** argv) {
     try { // EXACTPIXELS_SIMD must name an instruction set this CPU has
         (void)chosen_simd();
     } catch (const Error& error) {
-        std::fprintf(stderr, "bench_ch09_fast: %s\n", error.what());
+        std::fprintf(stderr, "bench_ch10_fast: %s\n", error.what());
         return 2;
     }
     bool textured = false, simd = false;

@@ -1,7 +1,7 @@
-// Chapter 9 example: 2000 overlapping, depth-tested triangles of every size drawn by the
+// Chapter 10 example: 2000 overlapping, depth-tested triangles of every size drawn by the
 // tiled renderer with 1, 2 and 4 threads and by the teaching path (pixel by pixel); the
 // four pictures must be identical, bit for bit, and the example checks it.
-// Usage: ch09-example [OUTPUT_DIR]   (writes OUTPUT_DIR/ch09_tiles.png; default: .)
+// Usage: ch10-example [OUTPUT_DIR]   (writes OUTPUT_DIR/ch10_tiles.png; default: .)
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/framebuffer.hpp"
 #include "exactpixels/base/png.hpp"
@@ -58,13 +58,13 @@ int main(int argc, char** argv) {
         differing += draw(threads) != reference;
     }
     try {
-        write_png(folder / "ch09_tiles.png", reference);
+        write_png(folder / "ch10_tiles.png", reference);
     } catch (const Error& error) {
-        std::fprintf(stderr, "ch09-example: %s\n", error.what());
+        std::fprintf(stderr, "ch10-example: %s\n", error.what());
         return 1;
     }
     std::printf("wrote %s; thread counts whose picture differs: %d\n",
-                (folder / "ch09_tiles.png").c_str(), differing);
+                (folder / "ch10_tiles.png").c_str(), differing);
     return differing == 0 ? 0 : 1;
 }
 //< example-main

@@ -1,7 +1,7 @@
-// Chapter 9 tests: every comparison the chapter's text states about speed, checked
-// against the committed, dated run (chapters/09-fast-pixels/data/ch09_fast.csv) and the
-// committed instruction counts (data/ch09_instructions.csv), and the textured run with
-// its comparison of pixels (data/ch09_textured.csv, data/ch09_textured_compare.csv). A
+// Chapter 10 tests: every comparison the chapter's text states about speed, checked
+// against the committed, dated run (chapters/10-fast-pixels/data/ch10_fast.csv) and the
+// committed instruction counts (data/ch10_instructions.csv), and the textured run with
+// its comparison of pixels (data/ch10_textured.csv, data/ch10_textured_compare.csv). A
 // new run that changes a comparison makes the matching test fail, and the sentence must
 // change with it. Every rate is net of its frame's fixed cost (the run at area 0, a frame
 // with nothing in it), as the chapter's measurement protocol says.
@@ -20,10 +20,10 @@ using namespace exactpixels;
 namespace {
 
 const std::filesystem::path data =
-    std::filesystem::path(EXACTPIXELS_SOURCE_DIR) / "chapters/09-fast-pixels/data";
+    std::filesystem::path(EXACTPIXELS_SOURCE_DIR) / "chapters/10-fast-pixels/data";
 
 const BenchmarkRuns& timed() {
-    static const BenchmarkRuns r = read_benchmark_csv(data / "ch09_fast.csv");
+    static const BenchmarkRuns r = read_benchmark_csv(data / "ch10_fast.csv");
     return r;
 }
 
@@ -52,13 +52,13 @@ double best(const std::string& mode, int area) {
 
 /// Instructions per triangle of MODE/VARIANT/AREA (callgrind).
 double instructions(const std::string& name) {
-    static const BenchmarkRuns r = read_benchmark_csv(data / "ch09_instructions.csv");
+    static const BenchmarkRuns r = read_benchmark_csv(data / "ch10_instructions.csv");
     return r.value(name, "instructions_per_triangle");
 }
 
 /// Triangles per second of textured/VARIANT/AREA in the committed textured run.
 const BenchmarkRuns& textured_runs() {
-    static const BenchmarkRuns r = read_benchmark_csv(data / "ch09_textured.csv");
+    static const BenchmarkRuns r = read_benchmark_csv(data / "ch10_textured.csv");
     return r;
 }
 
@@ -268,7 +268,7 @@ TEST_CASE("net_rate takes the empty frame's time out of a rate") {
 }
 
 TEST_CASE("claim: llvmpipe covers the textured sets exactly; texels differ next door") {
-    const BenchmarkRuns r = read_benchmark_csv(data / "ch09_textured_compare.csv");
+    const BenchmarkRuns r = read_benchmark_csv(data / "ch10_textured_compare.csv");
     for (const int area : {3, 15, 80, 1000, 65536}) {
         const std::string name = fmt::format("textured/{}", area);
         INFO(name);
@@ -306,7 +306,7 @@ TEST_CASE("claim: textured runs gain on the teaching path mostly from 80 px up")
 }
 
 TEST_CASE("claim: at 1000 px textured runs execute about two thirds of llvmpipe's") {
-    const BenchmarkRuns r = read_benchmark_csv(data / "ch09_textured_instructions.csv");
+    const BenchmarkRuns r = read_benchmark_csv(data / "ch10_textured_instructions.csv");
     const auto per_triangle = [&](const char* name) {
         return r.value(name, "instructions_per_triangle");
     };

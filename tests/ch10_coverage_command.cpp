@@ -1,4 +1,4 @@
-// Chapter 9 tests: `exactpixels coverage --rasterizer runs|masks` count the same pixels
+// Chapter 10 tests: `exactpixels coverage --rasterizer runs|masks` count the same pixels
 // as chapter 2's rasterizers, refuse float precision, and report bad input like them.
 #include "support/process.hpp"
 

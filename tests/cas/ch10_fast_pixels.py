@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Chapter 9, re-derived with SymPy (run by CTest, label book): a row's covered run
+"""Chapter 10, re-derived with SymPy (run by CTest, label book): a row's covered run
 (eq:fast-run), its ends stepped by quotient, remainder and carry (eq:fast-step, with the
 branchless step of RunEnd), the sign-OR coverage test (eq:fast-or) and Exercise 3's
 AND and XOR, the int32 bound for tiny triangles (eq:tiny-bound) with the columns and rows
@@ -205,4 +205,4 @@ holds("8 L^2 + 2^14 L < 2^52 for L = 2^24", 8 * L**2 + 2**14 * L < 2**52)
 holds("3 2^-53 2^20 lies between 2^-32 and 2^-31",
       sp.Rational(1, 2**32) < 3 * sp.Rational(2**20, 2**53) < sp.Rational(1, 2**31))
 
-finish("ch09_fast_pixels.py")
+finish("ch10_fast_pixels.py")

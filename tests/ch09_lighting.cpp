@@ -1,6 +1,7 @@
-// Chapter 7 tests of the lighting stage: it runs only when a scene has lights; Lambert
-// and Blinn-Phong give the closed-form values the chapter derives; Gouraud and Phong
-// agree where the lit colour is constant; computed normals are the surface's own.
+// Chapter 9 tests of the lighting stage: Lambert and Blinn-Phong give the closed-form
+// values the chapter derives; Gouraud and Phong agree where the lit colour is constant;
+// computed normals are the surface's own. That it runs only when a scene has lights is
+// chapter 7's stage plan (tests/ch07_stage_plan.cpp).
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
@@ -54,31 +55,6 @@ Scene with_shading(Scene scene, Shading shading) {
 }
 
 } // namespace
-
-// A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
-TEST_CASE("without a light no lighting stage runs and the shipped scenes are unchanged" *
-          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
-    // The references were rendered by the renderer before it had a lighting stage.
-    std::vector<std::filesystem::path> scenes = shipped_scenes();
-    scenes.push_back(shipped_scene_folder() / "horizon_filtered.toml");
-    for (const auto& path : scenes) {
-        const Scene scene = load_scene(path);
-        if (!scene.lights.empty()) {
-            continue;
-        }
-        INFO(path.string());
-        const RenderResult result = render_scene(scene);
-        CHECK_FALSE(result.report.lighting_on);
-        CHECK(result.report.lighting.triangles == 0);
-        CHECK(result.report.lighting.pixels == 0);
-        CHECK(format_report(result.report).find("lighting stage: off") !=
-              std::string::npos);
-        const Framebuffer before =
-            read_png(std::filesystem::path(EXACTPIXELS_SOURCE_DIR) /
-                     ("tests/fixtures/ch07_unlit/" + path.stem().string() + ".png"));
-        CHECK(result.image == before);
-    }
-}
 
 TEST_CASE("a directional light head-on gives exactly the diffuse colour") {
     const Colour diffuse{153 / 255.0, 51 / 255.0, 204 / 255.0};

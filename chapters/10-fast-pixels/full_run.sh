@@ -1,19 +1,19 @@
 #!/bin/sh
-# Chapter 9's committed, dated full run: every benchmark of bench_ch09_fast repeated
+# Chapter 10's committed, dated full run: every benchmark of bench_ch10_fast repeated
 # three times in random order (so that a slow spell of a shared machine falls on every
 # variant alike, not on whichever ran during it), and the median of each kept under the
-# run's own name, so that chapters/09-fast-pixels/data/ch09_fast.csv reads like a single
-# run for fig_ch09_speed and tests/ch09_claims.cpp. The median, not the fastest
+# run's own name, so that chapters/10-fast-pixels/data/ch10_fast.csv reads like a single
+# run for fig_ch10_speed and tests/ch10_claims.cpp. The median, not the fastest
 # (bench/repeated_csv.sh says why): llvmpipe's process time and the two-thread wall clock
 # depend on what the other core does, so their fastest repetition is not their truest.
-# Usage (from the repository root, after building bench_ch09_fast in BUILD_DIR):
-#   chapters/09-fast-pixels/full_run.sh BUILD_DIR [OUTPUT.csv] ["note on the machine"]
+# Usage (from the repository root, after building bench_ch10_fast in BUILD_DIR):
+#   chapters/10-fast-pixels/full_run.sh BUILD_DIR [OUTPUT.csv] ["note on the machine"]
 # Takes about five minutes.
 set -eu
 build=${1:?usage: full_run.sh BUILD_DIR [OUTPUT.csv] [NOTE]}
-out=${2:-chapters/09-fast-pixels/data/ch09_fast.csv}
+out=${2:-chapters/10-fast-pixels/data/ch10_fast.csv}
 note=${3:-}
-bench="$build/bin/bench_ch09_fast"
+bench="$build/bin/bench_ch10_fast"
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 started=$(date -u '+%Y-%m-%d %H:%M')
@@ -37,12 +37,12 @@ LP_NUM_THREADS=1 GALLIUM_OVERRIDE_CPU_CAPS=sse4.1 "$bench" \
     --benchmark_out="$scratch/narrow.csv" --benchmark_out_format=csv >/dev/null 2>&1
 cat "$scratch/narrow.csv" >> "$scratch/run.csv"
 {
-    echo "# bench_ch09_fast full run, measured $started to $(date -u '+%H:%M') UTC: every benchmark"
+    echo "# bench_ch10_fast full run, measured $started to $(date -u '+%H:%M') UTC: every benchmark"
     echo "# repeated three times in random order, the median of each kept under the run's name,"
     echo "# with the spread of the three in time_cv (their times' coefficient of variation)"
     echo "# machine: $(nproc) CPUs ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')), load average $load_start at the start, $(cut -d' ' -f1-3 /proc/loadavg) at the end${note:+; $note}"
     echo "# software: $(c++ --version | head -n 1), $(dpkg-query -W -f 'Mesa ${Version}' libosmesa6 2>/dev/null || echo 'Mesa') llvmpipe via OSMesa, Release build, commit $(git rev-parse --short HEAD)"
-    echo "# command: chapters/09-fast-pixels/full_run.sh build"
+    echo "# command: chapters/10-fast-pixels/full_run.sh build"
     echo "# rates are per second of process CPU time (all threads) except wall/* (wall clock)"
     bench/repeated_csv.sh median "$scratch/run.csv"
 } > "$out.tmp"

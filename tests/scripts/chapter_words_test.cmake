@@ -1,0 +1,55 @@
+# No chapter over MAX words (default 9000): every chapters/NN-slug/chapter.md counted as
+# `wc -w` counts, a word being a run of characters between blanks, tabs and newlines
+# (markup included). A chapter over the limit fails the test, naming it and its count,
+# so that a chapter that grows past a reader's sitting is split or trimmed.
+# Run: cmake -DCHAPTERS=chapters [-DMAX=9000] [-DOVER=NN:COUNT,...] -P chapter_words_test.cmake
+# OVER lists the chapters still over the limit while they wait to be trimmed, each with
+# the count it may not grow past: a listed chapter must really be over MAX (one trimmed
+# below it must leave the list), so the list only shrinks.
+if(NOT CHAPTERS)
+  message(FATAL_ERROR "chapter_words_test: CHAPTERS (the chapters folder) is required")
+endif()
+if(NOT MAX)
+  set(MAX 9000)
+endif()
+file(GLOB files ${CHAPTERS}/[0-9][0-9]-*/chapter.md)
+list(SORT files)
+if(NOT files)
+  message(FATAL_ERROR "chapter_words_test: no chapters/NN-slug/chapter.md under ${CHAPTERS}")
+endif()
+string(REPLACE "," ";" over_list "${OVER}")
+set(failures 0)
+foreach(file IN LISTS files)
+  file(READ ${file} text)
+  # Each word becomes one letter and the blanks between go: the length is the count (no
+  # CMake list, whose brackets and semicolons the text holds).
+  string(REGEX REPLACE "[^ \t\r\n]+" "w" text "${text}")
+  string(REGEX REPLACE "[ \t\r\n]+" "" text "${text}")
+  string(LENGTH "${text}" count)
+  get_filename_component(dir ${file} DIRECTORY)
+  get_filename_component(dir ${dir} NAME)
+  string(SUBSTRING ${dir} 0 2 number)
+  set(allowed "")
+  foreach(entry IN LISTS over_list)
+    if(entry MATCHES "^${number}:([0-9]+)$")
+      set(allowed ${CMAKE_MATCH_1})
+    endif()
+  endforeach()
+  if(allowed AND NOT count GREATER MAX)
+    message("${dir}/chapter.md: ${count} words, no longer over ${MAX}: take ${number} out of OVER")
+    math(EXPR failures "${failures} + 1")
+  elseif(allowed AND count GREATER allowed)
+    message("${dir}/chapter.md: ${count} words, over the limit of ${MAX} and grown past ${allowed}")
+    math(EXPR failures "${failures} + 1")
+  elseif(allowed)
+    message("${dir}/chapter.md: ${count} words, over the limit of ${MAX} (listed in OVER, at most ${allowed})")
+  elseif(count GREATER MAX)
+    message("${dir}/chapter.md: ${count} words, over the limit of ${MAX}")
+    math(EXPR failures "${failures} + 1")
+  else()
+    message("${dir}/chapter.md: ${count} words")
+  endif()
+endforeach()
+if(failures GREATER 0)
+  message(FATAL_ERROR "${failures} chapter(s) fail the limit of ${MAX} words: split or trim them")
+endif()
