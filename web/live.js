@@ -34,10 +34,11 @@
   // The module needs no system: its WASI imports (left over from the C library's
   // start-up code) are never called by the figures' functions, except the clock, which
   // chapter 7's renderer reads to time its stages (render_report.hpp): it is given
-  // performance.now(). Every other call fails loudly.
+  // performance.now(); and the environment, which the renderer reads once for
+  // EXACTPIXELS_SIMD (base/simd.hpp): it is given an empty one, so the module takes its
+  // only variant, portable. Every other call fails loudly.
   function wasiStubs(memory) {
-    const names = ["environ_get", "environ_sizes_get", "fd_close", "fd_seek", "fd_write",
-                   "proc_exit"];
+    const names = ["fd_close", "fd_seek", "fd_write", "proc_exit"];
     const stubs = {};
     for (const name of names) {
       stubs[name] = () => { throw new Error("live figures: unexpected WASI call " + name); };
@@ -47,6 +48,13 @@
         out, BigInt(Math.round(performance.now() * 1e6)), true);
       return 0; // success
     };
+    stubs.environ_sizes_get = (count, bytes) => {
+      const view = new DataView(memory().buffer);
+      view.setUint32(count, 0, true); // no variables
+      view.setUint32(bytes, 0, true); // of no bytes
+      return 0;
+    };
+    stubs.environ_get = () => 0; // nothing to write
     return new Proxy(stubs, {
       get: (target, name) => target[name] ||
         (() => { throw new Error("live figures: unexpected WASI call " + String(name)); }),
