@@ -141,12 +141,42 @@ std::vector<fs::path> kit_files(const fs::path& root, const std::string& number)
             code += read_text(root / header);
         }
     }
-    // A fixture the chapter's code names by path ("tests/fixtures/NAME") comes along.
+    // A fixture the chapter's code names by path ("tests/fixtures/NAME") comes along, and
+    // a fixture folder those fixtures name beside them ("../NAME/", as an MTL file names
+    // its textures); so does another chapter's folder the code names by path (chapter
+    // 9's tests draw chapter 7's scenes).
+    const auto names_folder = [](const std::string& text, const std::string& path) {
+        return text.find(path + "/") != std::string::npos ||
+               text.find(path + "\"") != std::string::npos;
+    };
     if (fs::is_directory(root / "tests/fixtures")) {
-        for (const auto& entry : fs::directory_iterator(root / "tests/fixtures")) {
+        std::string fixture_text;
+        for (int pass = 0; pass < 2; ++pass) {
+            for (const auto& entry : fs::directory_iterator(root / "tests/fixtures")) {
+                const std::string name = entry.path().filename().string();
+                const fs::path rel = fs::relative(entry.path(), root);
+                const bool named = pass == 0
+                                       ? names_folder(code, "tests/fixtures/" + name)
+                                       : fixture_text.find("../" + name + "/") !=
+                                             std::string::npos;
+                if (!named) {
+                    continue;
+                }
+                const std::size_t before = files.size();
+                add_tree(rel, everything);
+                for (std::size_t i = before; i < files.size(); ++i) {
+                    const std::string ext = files[i].extension().string();
+                    if (ext == ".mtl" || ext == ".obj" || ext == ".toml") {
+                        fixture_text += read_text(root / files[i]);
+                    }
+                }
+            }
+        }
+    }
+    if (fs::is_directory(root / "chapters")) {
+        for (const auto& entry : fs::directory_iterator(root / "chapters")) {
             const std::string name = entry.path().filename().string();
-            if (code.find("tests/fixtures/" + name + "/") != std::string::npos ||
-                code.find("tests/fixtures/" + name + "\"") != std::string::npos) {
+            if (entry.is_directory() && names_folder(code, "chapters/" + name)) {
                 add_tree(fs::relative(entry.path(), root), everything);
             }
         }
