@@ -145,7 +145,64 @@ struct CheckedMaterial {
     std::optional<SceneTexture> texture; ///< its map_Kd
 };
 
-//> mtl-check
+/// Starts the material a `newmtl` statement names: checked for its one blank, for a
+/// name used before and for the limit on materials.
+CheckedMaterial& start_material(const Place& at,
+                                const std::vector<std::string_view>& words,
+                                std::map<std::string, CheckedMaterial>& materials) {
+    expect_fields(at, words, 1, 1);
+    const std::string name(words[1]);
+    if (words[1].data() != words[0].data() + 7) { // tinyobjloader would keep them
+        at.fail(
+            fmt::format("material '{}': one blank between newmtl and the name", name));
+    }
+    if (materials.count(name) != 0) {
+        at.fail(fmt::format("material '{}' is defined twice (first at {}:{})", name,
+                            materials.at(name).place.file,
+                            materials.at(name).place.line));
+    }
+    if (materials.size() >= static_cast<std::size_t>(max_model_materials)) {
+        at.fail(fmt::format("material '{}' is more than the {} allowed", name,
+                            max_model_materials));
+    }
+    CheckedMaterial& material = materials[name];
+    material.place = at;
+    return material;
+}
+
+/// The texture a `map_Kd` statement names, read from beside the MTL file, its size
+/// checked before its texels are kept and added to the scene's `texture_bytes`.
+SceneTexture read_map_kd(const Place& at, const std::vector<std::string_view>& words,
+                         const std::filesystem::path& folder, long long& texture_bytes) {
+    expect_fields(at, words, 1, 1);
+    if (words[1][0] == '-') {
+        at.fail(fmt::format("map_Kd option '{}' is not supported", words[1]));
+    }
+    const std::filesystem::path path = folder / std::string(words[1]);
+    try {
+        Texture texture = load_texture(path, [&](int width, int height) {
+            if (width > max_texture_side || height > max_texture_side) {
+                at.fail(
+                    fmt::format("{}: {}x{} texels is larger than the {} allowed per side",
+                                path.string(), width, height, max_texture_side));
+            }
+            texture_bytes += 4LL * width * height;
+            if (texture_bytes > max_scene_texture_bytes) {
+                at.fail(fmt::format("{}: the scene's textures take more than the "
+                                    "{} bytes allowed",
+                                    path.string(), max_scene_texture_bytes));
+            }
+        });
+        return SceneTexture{"", std::move(texture), path};
+    } catch (const Error& error) {
+        const std::string message = error.what();
+        if (message.rfind(at.file + ":", 0) == 0) {
+            throw; // already names this line
+        }
+        at.fail(message);
+    }
+}
+
 /// Checks every statement of an MTL file and reads each map_Kd texture.
 void check_mtl(std::string_view text, const std::string& file,
                const std::filesystem::path& folder,
@@ -155,23 +212,7 @@ void check_mtl(std::string_view text, const std::string& file,
     for_each_statement(text, file, [&](const Place& at, const auto& words) {
         const std::string_view key = words[0];
         if (key == "newmtl") {
-            expect_fields(at, words, 1, 1);
-            const std::string name(words[1]);
-            if (words[1].data() != words[0].data() + 7) { // tinyobjloader would keep them
-                at.fail(fmt::format(
-                    "material '{}': one blank between newmtl and the name", name));
-            }
-            if (materials.count(name) != 0) {
-                at.fail(fmt::format("material '{}' is defined twice (first at {}:{})",
-                                    name, materials.at(name).place.file,
-                                    materials.at(name).place.line));
-            }
-            if (materials.size() >= static_cast<std::size_t>(max_model_materials)) {
-                at.fail(fmt::format("material '{}' is more than the {} allowed", name,
-                                    max_model_materials));
-            }
-            current = &materials[name];
-            current->place = at;
+            current = &start_material(at, words, materials);
             return;
         }
         if (current == nullptr) {
@@ -190,33 +231,7 @@ void check_mtl(std::string_view text, const std::string& file,
             }
             current->kd = kd;
         } else if (key == "map_Kd") {
-            expect_fields(at, words, 1, 1);
-            if (words[1][0] == '-') {
-                at.fail(fmt::format("map_Kd option '{}' is not supported", words[1]));
-            }
-            const std::filesystem::path path = folder / std::string(words[1]);
-            try {
-                Texture texture = load_texture(path, [&](int width, int height) {
-                    if (width > max_texture_side || height > max_texture_side) {
-                        at.fail(fmt::format(
-                            "{}: {}x{} texels is larger than the {} allowed per side",
-                            path.string(), width, height, max_texture_side));
-                    }
-                    texture_bytes += 4LL * width * height;
-                    if (texture_bytes > max_scene_texture_bytes) {
-                        at.fail(fmt::format("{}: the scene's textures take more than the "
-                                            "{} bytes allowed",
-                                            path.string(), max_scene_texture_bytes));
-                    }
-                });
-                current->texture = SceneTexture{"", std::move(texture), path};
-            } catch (const Error& error) {
-                const std::string message = error.what();
-                if (message.rfind(file + ":", 0) == 0) {
-                    throw; // already names this line
-                }
-                at.fail(message);
-            }
+            current->texture = read_map_kd(at, words, folder, texture_bytes);
         } else if (key == "Ka" || key == "Ks" || key == "Ke" || key == "Tf") {
             expect_fields(at, words, 3, 3);
             for (std::size_t k = 1; k <= 3; ++k) {
@@ -234,7 +249,6 @@ void check_mtl(std::string_view text, const std::string& file,
         }
     });
 }
-//< mtl-check
 
 /// Whether `word` could be the name of an OBJ statement (`v`, `curv`, `usemap`...):
 /// a letter, then at most 15 letters, digits or underscores.
@@ -290,13 +304,85 @@ void check_index(const Place& at, std::string_view corner, std::string_view word
     }
 }
 
+/// How many of each element an OBJ file has declared so far, each within its limit.
+struct ObjCounts {
+    long long positions = 0, texcoords = 0, normals = 0, triangles = 0;
+};
+
+/// Checks an `f` statement: 3 to max_face_corners corners, the triangles of its fan
+/// within the limit, and every corner's v/vt/vn indices against the counts so far.
+void check_face(const Place& at, const std::vector<std::string_view>& words,
+                ObjCounts& counts) {
+    const std::size_t corners = words.size() - 1;
+    if (corners < 3 || corners > static_cast<std::size_t>(max_face_corners)) {
+        at.fail(fmt::format("a face of {} corners (allowed: 3 to {})", corners,
+                            max_face_corners));
+    }
+    counts.triangles += static_cast<long long>(corners) - 2;
+    if (counts.triangles > max_model_triangles) {
+        at.fail(fmt::format("the faces make more than the {} triangles allowed",
+                            max_model_triangles));
+    }
+    for (std::size_t k = 1; k <= corners; ++k) {
+        const std::string_view corner = words[k];
+        std::vector<std::string_view> parts;
+        std::size_t start = 0;
+        for (std::size_t slash;
+             (slash = corner.find('/', start)) != std::string_view::npos;
+             start = slash + 1) {
+            parts.push_back(corner.substr(start, slash - start));
+        }
+        parts.push_back(corner.substr(start));
+        if (parts.size() > 3) {
+            at.fail(fmt::format("face corner '{}' has more than 3 parts", corner));
+        }
+        check_index(at, corner, parts[0], counts.positions, "positions");
+        if (parts.size() >= 2 && !(parts.size() == 3 && parts[1].empty())) {
+            check_index(at, corner, parts[1], counts.texcoords, "texture coordinates");
+        }
+        if (parts.size() == 3) {
+            check_index(at, corner, parts[2], counts.normals, "normals");
+        }
+    }
+}
+
+/// Reads and checks the material file an `mtllib` statement names, once per name.
+void read_mtllib(const Place& at, const std::vector<std::string_view>& words,
+                 const std::filesystem::path& folder, CheckedObj& checked,
+                 long long& texture_bytes) {
+    expect_fields(at, words, 1, 1);
+    // tinyobjloader reads the names after "mtllib" split at spaces only, with a
+    // backslash escaping the next character: without tabs and backslashes on the
+    // line it reads this one name, as the check does.
+    if (at.text.find_first_of("\t\\") != std::string_view::npos) {
+        at.fail("mtllib: the line holds a tab or a backslash; write the file "
+                "name after a space, with neither");
+    }
+    const std::string name(words[1]);
+    const std::filesystem::path path = folder / name;
+    std::string mtl;
+    try {
+        mtl = read_input_file(path, "material", max_material_file_bytes,
+                              InputKind::regular_file);
+    } catch (const Error& error) {
+        at.fail(error.what());
+    }
+    if (checked.mtl_texts.count(name) != 0) {
+        at.fail(fmt::format("mtllib '{}' is named twice", name));
+    }
+    mtl = std::string(without_bom(mtl));
+    check_mtl(mtl, path.string(), path.parent_path(), checked.materials, texture_bytes);
+    checked.mtl_texts[name] = std::move(mtl);
+    checked.files.push_back(path);
+}
+
 //> obj-check
 /// Checks every statement of the OBJ text and reads its MTL files, before
 /// tinyobjloader sees it: the limits, the numbers, the indices, the materials.
 CheckedObj check_obj(std::string_view text, const std::string& file,
                      const std::filesystem::path& folder, long long& texture_bytes) {
     CheckedObj checked;
-    long long positions = 0, texcoords = 0, normals = 0, triangles = 0;
+    ObjCounts counts;
     const auto count = [&](const Place& at, long long& n, const char* what) {
         if (++n > max_model_vertices) {
             at.fail(fmt::format("more than the {} {} allowed", max_model_vertices, what));
@@ -306,83 +392,28 @@ CheckedObj check_obj(std::string_view text, const std::string& file,
         const std::string_view key = words[0];
         if (key == "v") {
             expect_fields(at, words, 3, 3);
-            count(at, positions, "positions");
+            count(at, counts.positions, "positions");
             checked.positions.push_back(read_vector<3>(at, words, max_model_coordinate));
         } else if (key == "vt") {
             expect_fields(at, words, 2, 3);
-            count(at, texcoords, "texture coordinates");
+            count(at, counts.texcoords, "texture coordinates");
             checked.texcoords.push_back(read_vector<2>(at, words, max_model_texcoord));
             if (words.size() == 4) {
                 (void)read_number(at, words[3], max_model_texcoord);
             }
         } else if (key == "vn") {
             expect_fields(at, words, 3, 3);
-            count(at, normals, "normals");
+            count(at, counts.normals, "normals");
             const glm::dvec3 n = read_vector<3>(at, words, max_model_coordinate);
             if (n == glm::dvec3{0.0}) {
                 at.fail("a normal of length 0 has no direction");
             }
             checked.normals.push_back(n);
         } else if (key == "f") {
-            const std::size_t corners = words.size() - 1;
-            if (corners < 3 || corners > static_cast<std::size_t>(max_face_corners)) {
-                at.fail(fmt::format("a face of {} corners (allowed: 3 to {})", corners,
-                                    max_face_corners));
-            }
-            triangles += static_cast<long long>(corners) - 2;
-            if (triangles > max_model_triangles) {
-                at.fail(fmt::format("the faces make more than the {} triangles allowed",
-                                    max_model_triangles));
-            }
-            for (std::size_t k = 1; k <= corners; ++k) {
-                const std::string_view corner = words[k];
-                std::vector<std::string_view> parts;
-                std::size_t start = 0;
-                for (std::size_t slash;
-                     (slash = corner.find('/', start)) != std::string_view::npos;
-                     start = slash + 1) {
-                    parts.push_back(corner.substr(start, slash - start));
-                }
-                parts.push_back(corner.substr(start));
-                if (parts.size() > 3) {
-                    at.fail(
-                        fmt::format("face corner '{}' has more than 3 parts", corner));
-                }
-                check_index(at, corner, parts[0], positions, "positions");
-                if (parts.size() >= 2 && !(parts.size() == 3 && parts[1].empty())) {
-                    check_index(at, corner, parts[1], texcoords, "texture coordinates");
-                }
-                if (parts.size() == 3) {
-                    check_index(at, corner, parts[2], normals, "normals");
-                }
-            }
+            check_face(at, words, counts);
             checked.face_lines.push_back(at.line);
         } else if (key == "mtllib") {
-            expect_fields(at, words, 1, 1);
-            // tinyobjloader reads the names after "mtllib" split at spaces only, with a
-            // backslash escaping the next character: without tabs and backslashes on the
-            // line it reads this one name, as the check does.
-            if (at.text.find_first_of("\t\\") != std::string_view::npos) {
-                at.fail("mtllib: the line holds a tab or a backslash; write the file "
-                        "name after a space, with neither");
-            }
-            const std::string name(words[1]);
-            const std::filesystem::path path = folder / name;
-            std::string mtl;
-            try {
-                mtl = read_input_file(path, "material", max_material_file_bytes,
-                                      InputKind::regular_file);
-            } catch (const Error& error) {
-                at.fail(error.what());
-            }
-            if (checked.mtl_texts.count(name) != 0) {
-                at.fail(fmt::format("mtllib '{}' is named twice", name));
-            }
-            mtl = std::string(without_bom(mtl));
-            check_mtl(mtl, path.string(), path.parent_path(), checked.materials,
-                      texture_bytes);
-            checked.mtl_texts[name] = std::move(mtl);
-            checked.files.push_back(path);
+            read_mtllib(at, words, folder, checked, texture_bytes);
         } else if (key == "usemtl") {
             expect_fields(at, words, 1, 1);
             if (checked.materials.count(std::string(words[1])) == 0) {
@@ -479,9 +510,70 @@ void check_convex(const Place& at, const std::vector<glm::dvec3>& p) {
 }
 //< fan
 
+/// The part of `model` that faces of material `id` go into, made on its first face
+/// with the colour and texture the check read for that material.
+ModelPart& part_for(int id, Model& model, std::map<int, std::size_t>& part_of,
+                    const std::vector<tinyobj::material_t>& materials,
+                    const CheckedObj& checked, const std::string& name) {
+    if (part_of.count(id) == 0) {
+        part_of[id] = model.parts.size();
+        ModelPart part;
+        if (id >= 0) {
+            const tinyobj::material_t& m = materials[static_cast<std::size_t>(id)];
+            part.material = m.name;
+            const CheckedMaterial& checked_material = checked.materials.at(m.name);
+            // Without a Kd, tinyobjloader's default (0, or 0.6 for a material with a
+            // map_Kd before any Kd): a constant, not a number it read.
+            part.colour = checked_material.kd.value_or(
+                Colour{m.diffuse[0], m.diffuse[1], m.diffuse[2]});
+            part.texture = checked_material.texture;
+            if (part.texture) {
+                part.texture->name = name + ":" + m.name;
+            }
+        }
+        model.parts.push_back(std::move(part));
+    }
+    return model.parts[part_of[id]];
+}
+
+/// Adds the face whose `n` corners tinyobjloader gives at `indices` to `part`: each
+/// corner's numbers as the check read them, z flipped, the face checked convex and
+/// cut into its fan. Clears `model.normals` at the first corner without a normal.
+void add_face(const Place& at, const tinyobj::index_t* indices, std::size_t n,
+              const CheckedObj& checked, ModelPart& part, Model& model) {
+    const glm::dvec2 texels = part.texture ? glm::dvec2{part.texture->texture.width(),
+                                                        part.texture->texture.height()}
+                                           : glm::dvec2{0.0};
+    std::vector<SceneVertex> corners(n);
+    std::vector<glm::dvec3> positions(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        // tinyobjloader gives the structure (which v, vt and vn each corner names);
+        // the numbers are the check's own.
+        const tinyobj::index_t index = indices[k];
+        SceneVertex& v = corners[k];
+        v.position = positions[k] =
+            flip_z(element(at, checked.positions, index.vertex_index));
+        if (index.texcoord_index >= 0) {
+            const glm::dvec2 uv = element(at, checked.texcoords, index.texcoord_index);
+            v.uv = {uv.x * texels.x, (1.0 - uv.y) * texels.y};
+        }
+        if (index.normal_index >= 0) {
+            v.normal =
+                unit_normal(flip_z(element(at, checked.normals, index.normal_index)));
+        } else if (model.normals) {
+            model.normals = false;
+            model.line_without_normal = at.line;
+        }
+    }
+    check_convex(at, positions);
+    for (std::size_t k = 1; k + 1 < n; ++k) { // the fan from corner 0
+        part.triangles.push_back({corners[0], corners[k], corners[k + 1]});
+        part.lines.push_back(at.line);
+    }
+}
+
 } // namespace
 
-//> parse-obj
 Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
                       const std::filesystem::path& folder, long long& texture_bytes) {
     const std::string name = file.string();
@@ -508,61 +600,11 @@ Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
         for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
             assert(face < checked.face_lines.size());
             const Place at{name, checked.face_lines[face++]};
-            const int id = shape.mesh.material_ids[f];
-            if (part_of.count(id) == 0) {
-                part_of[id] = model.parts.size();
-                ModelPart part;
-                if (id >= 0) {
-                    const tinyobj::material_t& m =
-                        materials[static_cast<std::size_t>(id)];
-                    part.material = m.name;
-                    const CheckedMaterial& checked_material =
-                        checked.materials.at(m.name);
-                    // Without a Kd, tinyobjloader's default (0, or 0.6 for a material
-                    // with a map_Kd before any Kd): a constant, not a number it read.
-                    part.colour = checked_material.kd.value_or(
-                        Colour{m.diffuse[0], m.diffuse[1], m.diffuse[2]});
-                    part.texture = checked_material.texture;
-                    if (part.texture) {
-                        part.texture->name = name + ":" + m.name;
-                    }
-                }
-                model.parts.push_back(std::move(part));
-            }
-            ModelPart& part = model.parts[part_of[id]];
-            const glm::dvec2 texels = part.texture
-                                          ? glm::dvec2{part.texture->texture.width(),
-                                                       part.texture->texture.height()}
-                                          : glm::dvec2{0.0};
+            ModelPart& part = part_for(shape.mesh.material_ids[f], model, part_of,
+                                       materials, checked, name);
             const std::size_t n = shape.mesh.num_face_vertices[f];
-            std::vector<SceneVertex> corners(n);
-            std::vector<glm::dvec3> positions(n);
-            for (std::size_t k = 0; k < n; ++k) {
-                // tinyobjloader gives the structure (which v, vt and vn each corner
-                // names); the numbers are the check's own.
-                const tinyobj::index_t index = shape.mesh.indices[offset + k];
-                SceneVertex& v = corners[k];
-                v.position = positions[k] =
-                    flip_z(element(at, checked.positions, index.vertex_index));
-                if (index.texcoord_index >= 0) {
-                    const glm::dvec2 uv =
-                        element(at, checked.texcoords, index.texcoord_index);
-                    v.uv = {uv.x * texels.x, (1.0 - uv.y) * texels.y};
-                }
-                if (index.normal_index >= 0) {
-                    v.normal = unit_normal(
-                        flip_z(element(at, checked.normals, index.normal_index)));
-                } else if (model.normals) {
-                    model.normals = false;
-                    model.line_without_normal = at.line;
-                }
-            }
+            add_face(at, &shape.mesh.indices[offset], n, checked, part, model);
             offset += n;
-            check_convex(at, positions);
-            for (std::size_t k = 1; k + 1 < n; ++k) { // the fan from corner 0
-                part.triangles.push_back({corners[0], corners[k], corners[k + 1]});
-                part.lines.push_back(at.line);
-            }
         }
     }
     assert(face == checked.face_lines.size()); // tinyobjloader kept every face
@@ -571,7 +613,6 @@ Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
     }
     return model;
 }
-//< parse-obj
 
 Model read_obj_model(const std::filesystem::path& path, long long& texture_bytes) {
     const std::string text =
