@@ -134,7 +134,7 @@ endforeach()
 
 # Pages that are not chapters (book/NAME.md): HTML pages of their own, and appendices of
 # the PDF in this order.
-set(pages build-and-run input-limits teaching assessment glossary CHANGELOG)
+set(pages build-and-run input-limits measuring teaching assessment glossary CHANGELOG)
 
 # The contents page: every chapter with its numbered sections (the filter reads them from
 # the chapters), then the appendix pages.

@@ -1,5 +1,5 @@
 #!/bin/sh
-# Chapter 9's vector instruction sets (@sec:fast-simd): the textured runs forced to each
+# Chapter 10's vector instruction sets (@sec:fast-simd): the textured runs forced to each
 # set this CPU has, against llvmpipe, on the 1000 px textured set and the empty frame
 # (bench_ch10_fast --simd), one core each, interleaved in one run; then callgrind's
 # instructions per triangle of the sets valgrind can run (it has no AVX-512).
@@ -38,7 +38,7 @@ count() {
     sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$scratch/vg.log"
 }
 {
-    echo "# Chapter 9: the textured runs in each vector instruction set against llvmpipe"
+    echo "# Chapter 10: the textured runs in each vector instruction set against llvmpipe"
     echo
     echo "Measured $start-$end UTC on $(uname -m) ($cpu, $(nproc --all) cores; load average $load_start at the start, $load_end at the end), compiler $(c++ --version | head -n 1), Mesa $mesa, $(valgrind --version). Regenerate with \`chapters/10-fast-pixels/simd_run.sh build\` (Release build). The set: 1024 textured triangles of 1000 px (bench_ch10_fast's textured set, perspective-correct, nearest texel, a 256 x 256 texture that repeats), drawn in order into a 1024 x 1024 frame; llvmpipe with LP_NUM_THREADS=1 draws the same triangles (clip-space w = the depth), pinned to one core, 5 repetitions interleaved at random, the median."
     echo
