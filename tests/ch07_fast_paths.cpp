@@ -415,8 +415,8 @@ TEST_CASE("texture planes and rounding from shared quotients are those of the co
         check_same_plane(shared.v, plane_through(p, {v[0].uv.y, v[1].uv.y, v[2].uv.y}));
         const TexelRounding alone = choose_rounding(v, MapperKind::exact);
         const TexelRounding from_q = choose_rounding(v, q);
-        CHECK(from_q.u_bias == alone.u_bias);
-        CHECK(from_q.v_bias == alone.v_bias);
+        CHECK(from_q.u_modifier == alone.u_modifier);
+        CHECK(from_q.v_modifier == alone.v_modifier);
     }
 }
 
