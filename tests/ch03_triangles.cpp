@@ -393,7 +393,7 @@ TEST_CASE("bad triangles and settings fail naming the value, and draw nothing") 
         doctest::Contains("20000"), Error);
     CHECK_THROWS_WITH_AS(
         draw_textured_triangle(frame, good, t, {.mapper = {MapperKind::exact, 1}}),
-        doctest::Contains("span = 1"), Error);
+        doctest::Contains("piece = 1"), Error);
     CHECK(frame == before); // nothing drawn by any failed call
     draw_textured_triangle(frame, good, t, {});
     CHECK(frame != before); // and the good triangle does draw

@@ -200,11 +200,11 @@ void map_span(Mapper mapper, Precision precision, TexelRounding r,
         case MapperKind::affine:
             return map_span_affine(a, emit);
         case MapperKind::subdivided:
-            return map_span_subdivided(p, mapper.span, emit);
+            return map_span_subdivided(p, mapper.piece, emit);
         case MapperKind::quadratic:
             return map_span_quadratic(p, emit);
         case MapperKind::quadratic_subdivided:
-            return map_span_quadratic_subdivided(p, mapper.span, emit);
+            return map_span_quadratic_subdivided(p, mapper.piece, emit);
         }
     };
     switch (precision) {
@@ -219,11 +219,11 @@ void map_span(Mapper mapper, Precision precision, TexelRounding r,
         case MapperKind::affine:
             return map_span_affine_fixed(as, fixed);
         case MapperKind::subdivided:
-            return map_span_subdivided_fixed(ps, mapper.span, fixed);
+            return map_span_subdivided_fixed(ps, mapper.piece, fixed);
         case MapperKind::quadratic:
             return map_span_quadratic_fixed(ps, fixed);
         case MapperKind::quadratic_subdivided:
-            return map_span_quadratic_subdivided_fixed(ps, mapper.span, fixed);
+            return map_span_quadratic_subdivided_fixed(ps, mapper.piece, fixed);
         }
     }
 }
