@@ -289,7 +289,7 @@ map_texture_span(SimdVariant lanes, Mapper mapper, Precision precision, TexelRou
 //> texture-stage
 /// The texture stage on one span: the span's mapper maps each pixel k to the indices i, j
 /// of its texel and the coordinate u, v, which texel(k, i, j, u, v) takes (the exact
-/// mapper in the instruction set `lanes`, portable on the plain path). Returns the
+/// mapper in the instruction set `lanes`, portable on the teaching path). Returns the
 /// mapper, for the report.
 template <class TexelOut>
 [[gnu::always_inline]] inline MappedSpan texture_stage(const RenderOptions& options,
