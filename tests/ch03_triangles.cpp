@@ -206,8 +206,10 @@ TEST_CASE("with constant w every mapper picks the exact texels, pixel for pixel"
                             const double v = c.b * (x + 0.5) - c.a * (y + 0.5) + 80.0;
                             CAPTURE(int(kind));
                             CAPTURE(int(precision));
-                            REQUIRE(map.i[at] == real_texel_index(u, rounding.u_modifier));
-                            REQUIRE(map.j[at] == real_texel_index(v, rounding.v_modifier));
+                            REQUIRE(map.i[at] ==
+                                    real_texel_index(u, rounding.u_modifier));
+                            REQUIRE(map.j[at] ==
+                                    real_texel_index(v, rounding.v_modifier));
                         }
                     }
                     CHECK(pixels > 300);

@@ -253,8 +253,9 @@ TEST_CASE("the chosen rule can differ between rows of one perspective triangle" 
             continue;
         }
         CHECK(secant_sign == (centre_y < 42.5 ? -1 : 1));
-        CHECK(row.v_modifier == texel_modifier(secant_sign > 0 ? RoundingRule::ties_up
-                                                       : RoundingRule::ties_down));
+        CHECK(row.v_modifier == texel_modifier(secant_sign > 0
+                                                   ? RoundingRule::ties_up
+                                                   : RoundingRule::ties_down));
         rows_differing_from_triangle += row.v_modifier != whole.v_modifier;
         ++rows_checked;
     }
@@ -299,8 +300,8 @@ TEST_CASE("with rounding per row, every row samples with its own rule") {
         }
     }
     CHECK(pixels > 1000);
-    CHECK(std::count(modifiers.begin(), modifiers.end(), texel_modifier(RoundingRule::ties_up)) >
-          0);
-    CHECK(std::count(modifiers.begin(), modifiers.end(), texel_modifier(RoundingRule::ties_down)) >
-          0);
+    CHECK(std::count(modifiers.begin(), modifiers.end(),
+                     texel_modifier(RoundingRule::ties_up)) > 0);
+    CHECK(std::count(modifiers.begin(), modifiers.end(),
+                     texel_modifier(RoundingRule::ties_down)) > 0);
 }

@@ -1,5 +1,5 @@
-// Every vector instruction set this machine runs (base/simd.hpp) gives the teaching path's
-// pixels bit for bit: the exact mapper's u and v, the textured runs and the scene
+// Every vector instruction set this machine runs (base/simd.hpp) gives the teaching
+// path's pixels bit for bit: the exact mapper's u and v, the textured runs and the scene
 // renderer's shipped scenes, each variant forced in turn. And EXACTPIXELS_SIMD refuses
 // a value that names no variant, or one this CPU lacks, with exit 2 and one line.
 #include "exactpixels/base/error.hpp"

@@ -279,7 +279,8 @@ map_texture_span(SimdVariant lanes, Mapper mapper, Precision precision, TexelRou
     if (lanes != SimdVariant::portable && mapper.kind == MapperKind::exact &&
         precision == Precision::float64) {
         map_span_exact_lanes(lanes, ps, [&](int k, double u, double v) {
-            texel(k, real_texel_index(u, r.u_modifier), real_texel_index(v, r.v_modifier), u, v);
+            texel(k, real_texel_index(u, r.u_modifier), real_texel_index(v, r.v_modifier),
+                  u, v);
         });
         return;
     }

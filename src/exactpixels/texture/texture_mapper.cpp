@@ -48,8 +48,9 @@ void check_textured_triangle(const std::array<TexturedVertex, 3>& v,
         }
     }
     if (piece < min_mapper_piece || piece > max_mapper_piece) {
-        throw Error(fmt::format("mapper settings: piece = {} pixels (must be in [{}, {}])",
-                                piece, min_mapper_piece, max_mapper_piece));
+        throw Error(
+            fmt::format("mapper settings: piece = {} pixels (must be in [{}, {}])", piece,
+                        min_mapper_piece, max_mapper_piece));
     }
 }
 

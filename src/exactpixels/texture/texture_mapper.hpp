@@ -81,17 +81,19 @@ struct MapperSettings {
     RowRounding row_rounding = nullptr;
 };
 
-/// The texel index a mapper picks from a 16.16 coordinate U: floor((U + modifier - D/2) / D).
+/// The texel index a mapper picks from a 16.16 coordinate U:
+/// floor((U + modifier - D/2) / D).
 constexpr int fixed_texel_index(std::int32_t U, std::int32_t modifier) {
     const std::int64_t shifted = std::int64_t{U} + modifier - texel_scale / 2;
     return static_cast<int>(shifted >> texel_fraction_bits); // >> floors (C++20)
 }
 
-/// The texel index for a real coordinate u under the same modifier: floor(u) for modifier = D/2,
-/// ceil(u) - 1 for rule 2's modifier. Agrees with fixed_texel_index(u * D, modifier) whenever
-/// u * D is an integer. Every real mapper calls it for every pixel, twice: within
-/// |u| < 2^30 it rounds with floor_to_int and ceil_to_int (base/floor_to_int.hpp), which
-/// are exact and need no call into the maths library; beyond, std::floor and std::ceil.
+/// The texel index for a real coordinate u under the same modifier: floor(u) for
+/// modifier = D/2, ceil(u) - 1 for rule 2's modifier. Agrees with
+/// fixed_texel_index(u * D, modifier) whenever u * D is an integer. Every real mapper
+/// calls it for every pixel, twice: within |u| < 2^30 it rounds with floor_to_int and
+/// ceil_to_int (base/floor_to_int.hpp), which are exact and need no call into the maths
+/// library; beyond, std::floor and std::ceil.
 /// Always inlined: where a file instantiates the mappers twice (chapter 7's renderer
 /// with its lean drawing path), GCC otherwise calls it, two calls per pixel.
 [[gnu::always_inline]] inline int real_texel_index(double u, std::int32_t modifier) {
@@ -101,8 +103,8 @@ constexpr int fixed_texel_index(std::int32_t U, std::int32_t modifier) {
         const double x = u + double(offset) / texel_scale;
         return small ? floor_to_int(x) : static_cast<int>(std::floor(x));
     }
-    // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1: with rule 2's modifier
-    // this is ceil(u) - 1.
+    // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1: with rule 2's
+    // modifier this is ceil(u) - 1.
     const double x = u + double(offset + 1) / texel_scale;
     return (small ? ceil_to_int(x) : static_cast<int>(std::ceil(x))) - 1;
 }
@@ -186,8 +188,8 @@ void map_span(Mapper mapper, Precision precision, TexelRounding r,
               const PerspectiveSpan<double>& ps, const AffineSpan<double>& as,
               TexelFn&& texel) {
     const auto real = [&](int k, auto u, auto v) {
-        texel(k, real_texel_index(u, r.u_modifier), real_texel_index(v, r.v_modifier), double(u),
-              double(v));
+        texel(k, real_texel_index(u, r.u_modifier), real_texel_index(v, r.v_modifier),
+              double(u), double(v));
     };
     const auto fixed = [&](int k, std::int32_t U, std::int32_t V) {
         texel(k, fixed_texel_index(U, r.u_modifier), fixed_texel_index(V, r.v_modifier),
