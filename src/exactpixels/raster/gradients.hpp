@@ -153,8 +153,8 @@ template <class T> T edge_slope_from_gradient(Gradient<T> g, T xa, T ya, T xb, T
 }
 //< edge-slopes
 
-/// The closed-form gradient (@eq:closed-form) of c over the triangle p. Zero area: {0,
-/// 0}.
+/// The closed-form gradient (@eq:closed-form) of c over the triangle p.
+/// Zero area: {0, 0}.
 template <class Real>
 Gradient<Real> closed_form_gradient(const std::array<glm::vec<2, Real>, 3>& p,
                                     const std::array<Real, 3>& c) {
