@@ -145,7 +145,6 @@ struct CheckedMaterial {
     std::optional<SceneTexture> texture; ///< its map_Kd
 };
 
-//> mtl-check
 /// Checks every statement of an MTL file and reads each map_Kd texture.
 void check_mtl(std::string_view text, const std::string& file,
                const std::filesystem::path& folder,
@@ -234,7 +233,6 @@ void check_mtl(std::string_view text, const std::string& file,
         }
     });
 }
-//< mtl-check
 
 /// Whether `word` could be the name of an OBJ statement (`v`, `curv`, `usemap`...):
 /// a letter, then at most 15 letters, digits or underscores.
@@ -481,7 +479,6 @@ void check_convex(const Place& at, const std::vector<glm::dvec3>& p) {
 
 } // namespace
 
-//> parse-obj
 Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
                       const std::filesystem::path& folder, long long& texture_bytes) {
     const std::string name = file.string();
@@ -571,7 +568,6 @@ Model parse_obj_model(std::string_view text, const std::filesystem::path& file,
     }
     return model;
 }
-//< parse-obj
 
 Model read_obj_model(const std::filesystem::path& path, long long& texture_bytes) {
     const std::string text =

@@ -177,7 +177,6 @@ PerspectiveSpan<double> perspective_span(const TexturePlanes& planes, Span s);
 /// The same for the affine mapper.
 AffineSpan<double> affine_span(const TexturePlanes& planes, Span s);
 
-//> map-span
 /// Runs `mapper` on one span in the inner-loop arithmetic `precision` and calls
 /// texel(k, i, j, u, v) for its pixel k = 0, 1, ...: the texel indices picked with the
 /// rounding `r` (before wrapping) and the coordinate computed there, texels. The one
@@ -229,7 +228,6 @@ void map_span(Mapper mapper, Precision precision, TexelRounding r,
         }
     }
 }
-//< map-span
 
 /// Draws the triangle into `target`, each covered pixel taking the colour of the texel
 /// the mapper picks (wrapped by settings.wrap). Checks its input first: on Error nothing
