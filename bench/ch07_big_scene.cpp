@@ -71,7 +71,7 @@
 // drawn RUN; `--png=FILE` writes our render of the full scene. `--fast=NAMES` (before
 // --once, --report or --png) makes our side use only the named fast paths (FastPaths,
 // scene_renderer.hpp), a comma-separated list of masked_fetch and lean_spans, or
-// `none` for the plain path: the instruction count of each fast path is the difference
+// `none` for the teaching path: the instruction count of each fast path is the difference
 // it makes.
 #define GL_GLEXT_PROTOTYPES 1
 #include "exactpixels/base/atomic_file.hpp"
@@ -118,7 +118,7 @@ FastPaths fast_paths{};
 
 /// Reads --fast=NAMES into fast_paths; false for a name it does not know.
 bool read_fast_paths(const std::string& names) {
-    fast_paths = plain_paths;
+    fast_paths = teaching_path;
     std::size_t at = 0;
     while (at <= names.size()) {
         const std::size_t comma = std::min(names.find(',', at), names.size());

@@ -7,7 +7,7 @@
 //        with a 32-bit depth test, less), AREA 3, 15, 80, 1000 or 65536 px, VARIANT one
 //        of
 //          walk      chapter 2's pixel walk (traverse_pixels), the teaching path
-//          blocks    chapter 2's 8x8 blocks (traverse_blocks_fast), per-pixel output
+//          blocks    chapter 2's 8x8 blocks (traverse_blocks_stepped), per-pixel output
 //          runs      covered runs per row (row_runs.hpp), one triangle at a time
 //          masks     8x8 masks, SSE2 lanes (block_masks.hpp), one triangle at a time
 //          tiled     a kept TiledRenderer: 64x64 tiles, binning, runs; THREADS threads
@@ -363,7 +363,7 @@ void draw_set(Variant variant, const RenderTarget& target, int area, int threads
                 }
                 target.colour[i] = t.colour;
             };
-            traverse_blocks_fast(s, pixel_bounds(t.v, vp), plot);
+            traverse_blocks_stepped(s, pixel_bounds(t.v, vp), plot);
         }
         break;
     case Variant::runs:

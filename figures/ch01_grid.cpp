@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     }
     d.text(p4 + Point2{-0.35, 0.1}, "4", 13, SvgAnchor::end, "#b03030");
     // The gradient (dc/dx, dc/dy), drawn from the centroid, scaled to be visible.
-    const Gradient<double> g = gradient_closed_form<double>(v, c);
+    const Gradient<double> g = closed_form_gradient<double>(v, c);
     const Point2 centroid = (v[0] + v[1] + v[2]) / 3.0;
     const double scale = 3.0 / std::hypot(g.dx, g.dy);
     d.arrow(centroid, centroid + scale * Point2{g.dx, 0},

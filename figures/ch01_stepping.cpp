@@ -89,7 +89,7 @@ SizeError stepping_error(int leg, int triangles, SplitMix& random) {
                                               {random.uniform(-1.0, 1.0)},
                                               {random.uniform(-1.0, 1.0)}}};
         const Gradient<double> g =
-            gradient_closed_form<double>(v, {c[0][0], c[1][0], c[2][0]});
+            closed_form_gradient<double>(v, {c[0][0], c[1][0], c[2][0]});
         // S of @sec:stepping: bounds every term of the sum (X = Y = x0 + leg at most).
         const double size =
             std::max({std::abs(c[0][0]), std::abs(c[1][0]), std::abs(c[2][0])}) +

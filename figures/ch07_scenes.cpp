@@ -164,7 +164,6 @@ int main(int argc, char** argv) {
             }
         }
         write_figure_file(folder / "ch07_colours.md", colours);
-        //> scene-filters-figure
         // The filter stage on the horizon: each filter against an 8 x 8 supersampled
         // reference, its cost, and nearest beside auto.
         {
@@ -215,8 +214,6 @@ int main(int argc, char** argv) {
             write_figure_file(folder / "ch07_scene_filters.txt", facts);
             write_png(folder / "ch07_horizon_filters.png", pair);
         }
-        //< scene-filters-figure
-        //> lighting-cost-figure
         // What lighting costs on the lit scene: without its lights, every mesh per
         // vertex, as shipped, every mesh per pixel.
         {
@@ -254,7 +251,6 @@ int main(int argc, char** argv) {
                     "(this build's quick figures, ms). {#tbl:lighting-cost}\n";
             write_figure_file(folder / "ch07_lighting_cost.md", cost);
         }
-        //< lighting-cost-figure
         write_figure_file(folder / "ch07_reports.md", reports);
         write_figure_file(folder / "ch07_auto_vs_exact.md", table);
         write_figure_file(folder / "ch07_auto_facts.txt",

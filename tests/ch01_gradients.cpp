@@ -274,21 +274,21 @@ TEST_CASE("flat-top and flat-bottom triangles need no special case") {
     for (const auto& p : triangles) {
         const std::array<double, 3> c{plane(p[0].x, p[0].y), plane(p[1].x, p[1].y),
                                       plane(p[2].x, p[2].y)};
-        const Gradient<double> closed = gradient_closed_form(p, c);
+        const Gradient<double> closed = closed_form_gradient(p, c);
         CHECK(closed.dx == 2.0);
         CHECK(closed.dy == 3.0);
-        const Gradient<double> split = gradient_split_edge(p, c);
+        const Gradient<double> split = split_edge_gradient(p, c);
         CHECK(split.dx == 2.0);
         CHECK(std::abs(split.dy - 3.0) <= 4 * std::numeric_limits<double>::epsilon() * 3);
         const std::array<glm::vec2, 3> pf{glm::vec2(p[0]), glm::vec2(p[1]),
                                           glm::vec2(p[2])};
         const std::array<float, 3> cf{float(c[0]), float(c[1]), float(c[2])};
-        const Gradient<float> closed_f = gradient_closed_form(pf, cf);
+        const Gradient<float> closed_f = closed_form_gradient(pf, cf);
         CHECK(closed_f.dx == 2.0f); // integer products, one division: exact
         CHECK(closed_f.dy == 3.0f);
         // The split edge's dc/dy subtracts two rounded quotients (c3 - c1)/(y3 - y1)
         // and dc/dx (x3 - x1)/(y3 - y1): within a few float ulps of 3, not exactly 3.
-        const Gradient<float> split_f = gradient_split_edge(pf, cf);
+        const Gradient<float> split_f = split_edge_gradient(pf, cf);
         CHECK(split_f.dx == 2.0f);
         CHECK(std::abs(split_f.dy - 3.0f) <=
               4 * std::numeric_limits<float>::epsilon() * 3);
@@ -306,7 +306,7 @@ TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
     const std::array<double, 3> c{0.25, 1.0, -3.0};
     for (const auto& p : degenerate) {
         for (const Gradient<double> g :
-             {gradient_closed_form(p, c), gradient_split_edge(p, c)}) {
+             {closed_form_gradient(p, c), split_edge_gradient(p, c)}) {
             CHECK(g.dx == 0.0);
             CHECK(g.dy == 0.0);
         }
@@ -314,7 +314,7 @@ TEST_CASE("zero-area triangles have a zero gradient and no NaN") {
                                           glm::vec2(p[2])};
         const std::array<float, 3> cf{0.25f, 1.0f, -3.0f};
         for (const Gradient<float> g :
-             {gradient_closed_form(pf, cf), gradient_split_edge(pf, cf)}) {
+             {closed_form_gradient(pf, cf), split_edge_gradient(pf, cf)}) {
             CHECK(g.dx == 0.0f);
             CHECK(g.dy == 0.0f);
         }

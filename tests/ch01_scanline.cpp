@@ -551,7 +551,7 @@ TEST_CASE("stepped attributes lie on the plane at every pixel centre") {
         }
         std::array<Gradient<double>, 3> g{};
         for (int k = 0; k < 3; ++k) {
-            g[k] = gradient_closed_form<double>(v, {c[0][k], c[1][k], c[2][k]});
+            g[k] = closed_form_gradient<double>(v, {c[0][k], c[1][k], c[2][k]});
         }
         Counts spans(w, h), shaded(w, h);
         scanline_spans(v, Viewport{w, h}, spans.span_counter());

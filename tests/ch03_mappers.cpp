@@ -265,9 +265,9 @@ TEST_CASE("fixed-point inner loops agree with double within their rounding") {
 }
 
 TEST_CASE("rule 1 floors, rule 2 takes ceil - 1, and they differ only at ties") {
-    // Rule 2's bias is chapter 4's modifier (@eq:modifier), which chapter 4 derives and
+    // Rule 2's modifier is chapter 4's m (@eq:modifier), which chapter 4 derives and
     // its kit grades (chapter 3's kit holds that exercise as its stub). Here it is found
-    // by trying the biases below rule 1's: the first that sends the tie at u = 3 to
+    // by trying the modifiers below rule 1's: the first that sends the tie at u = 3 to
     // texel 2, which must then give ceil(u) - 1 at every U.
     const std::int32_t D = texel_scale, rule1 = D / 2;
     std::int32_t rule2 = rule1;
@@ -290,10 +290,10 @@ TEST_CASE("rule 1 floors, rule 2 takes ceil - 1, and they differ only at ties") 
         REQUIRE(real_texel_index(u, rule2) == fixed_texel_index(U, rule2));
     }
     std::mt19937 random(17);
-    std::uniform_int_distribution<std::int32_t> bias(0, D - 1),
+    std::uniform_int_distribution<std::int32_t> modifier(0, D - 1),
         coordinate(-1 << 22, 1 << 22);
     for (int trial = 0; trial < 100000; ++trial) {
-        const std::int32_t b = bias(random), U = coordinate(random);
+        const std::int32_t b = modifier(random), U = coordinate(random);
         REQUIRE(real_texel_index(U / double(D), b) == fixed_texel_index(U, b));
     }
 }

@@ -206,8 +206,10 @@ TEST_CASE("with constant w every mapper picks the exact texels, pixel for pixel"
                             const double v = c.b * (x + 0.5) - c.a * (y + 0.5) + 80.0;
                             CAPTURE(int(kind));
                             CAPTURE(int(precision));
-                            REQUIRE(map.i[at] == real_texel_index(u, rounding.u_bias));
-                            REQUIRE(map.j[at] == real_texel_index(v, rounding.v_bias));
+                            REQUIRE(map.i[at] ==
+                                    real_texel_index(u, rounding.u_modifier));
+                            REQUIRE(map.j[at] ==
+                                    real_texel_index(v, rounding.v_modifier));
                         }
                     }
                     CHECK(pixels > 300);
@@ -393,7 +395,7 @@ TEST_CASE("bad triangles and settings fail naming the value, and draw nothing") 
         doctest::Contains("20000"), Error);
     CHECK_THROWS_WITH_AS(
         draw_textured_triangle(frame, good, t, {.mapper = {MapperKind::exact, 1}}),
-        doctest::Contains("span = 1"), Error);
+        doctest::Contains("piece = 1"), Error);
     CHECK(frame == before); // nothing drawn by any failed call
     draw_textured_triangle(frame, good, t, {});
     CHECK(frame != before); // and the good triangle does draw

@@ -249,13 +249,14 @@ TEST_CASE("the chosen rule can differ between rows of one perspective triangle" 
             // The horizon row: v is 32 all along it, dv/dx = 0, and v grows downwards.
             CHECK(secant_sign == 0);
             CHECK(v_at(Rational(12), yc) == Rational(32));
-            CHECK(row.v_bias == texel_bias(RoundingRule::ties_up));
+            CHECK(row.v_modifier == texel_modifier(RoundingRule::ties_up));
             continue;
         }
         CHECK(secant_sign == (centre_y < 42.5 ? -1 : 1));
-        CHECK(row.v_bias == texel_bias(secant_sign > 0 ? RoundingRule::ties_up
-                                                       : RoundingRule::ties_down));
-        rows_differing_from_triangle += row.v_bias != whole.v_bias;
+        CHECK(row.v_modifier == texel_modifier(secant_sign > 0
+                                                   ? RoundingRule::ties_up
+                                                   : RoundingRule::ties_down));
+        rows_differing_from_triangle += row.v_modifier != whole.v_modifier;
         ++rows_checked;
     }
     MESSAGE(rows_differing_from_triangle
@@ -279,7 +280,7 @@ TEST_CASE("with rounding per row, every row samples with its own rule") {
     TexelMap map(96, 96);
     map_textured_triangle(map, wall, settings);
     int pixels = 0;
-    std::vector<std::int32_t> biases;
+    std::vector<std::int32_t> modifiers;
     for (int y = 0; y < map.height; ++y) {
         const TexelRounding row = choose_rounding_on_row(wall, y + 0.5);
         bool row_covered = false;
@@ -290,17 +291,17 @@ TEST_CASE("with rounding per row, every row samples with its own rule") {
             }
             const auto V = static_cast<std::int32_t>(std::lround(map.v[k] * texel_scale));
             INFO("pixel (" << x << ", " << y << ")");
-            CHECK(map.j[k] == fixed_texel_index(V, row.v_bias));
+            CHECK(map.j[k] == fixed_texel_index(V, row.v_modifier));
             row_covered = true;
             ++pixels;
         }
         if (row_covered) {
-            biases.push_back(row.v_bias);
+            modifiers.push_back(row.v_modifier);
         }
     }
     CHECK(pixels > 1000);
-    CHECK(std::count(biases.begin(), biases.end(), texel_bias(RoundingRule::ties_up)) >
-          0);
-    CHECK(std::count(biases.begin(), biases.end(), texel_bias(RoundingRule::ties_down)) >
-          0);
+    CHECK(std::count(modifiers.begin(), modifiers.end(),
+                     texel_modifier(RoundingRule::ties_up)) > 0);
+    CHECK(std::count(modifiers.begin(), modifiers.end(),
+                     texel_modifier(RoundingRule::ties_down)) > 0);
 }

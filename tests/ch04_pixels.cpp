@@ -45,7 +45,7 @@ MapperSettings settings_for(MapperKind kind, Precision precision,
     MapperSettings s;
     s.mapper.kind = kind;
     s.precision = precision;
-    s.mapper.span =
+    s.mapper.piece =
         4; // short pieces: the subdivided mappers really subdivide these quads
     s.wrap = wrap;
     return s;

@@ -150,18 +150,19 @@ TEST_CASE("a modifier for an unusable fraction width is an Error naming k") {
                          doctest::Contains("k = 31"), Error);
 }
 
-TEST_CASE("the modifiers are chapter 3's 16.16 biases" *
+TEST_CASE("chapter 3's 16.16 loops take the modifiers as they are" *
           doctest::description("points: 2; exercise: ch04-modifier")) {
-    // Chapter 3 indexes with floor((U + bias - D/2) / D), U = u * D = C + D/2: the bias
-    // is the modifier, so rule 1 gives floor(u) and rule 2 gives ceil(u) - 1.
-    CHECK(texel_bias(RoundingRule::ties_up) == texel_scale / 2);
-    CHECK(texel_bias(RoundingRule::ties_down) == texel_scale / 2 - 1);
-    CHECK(TexelRounding{}.u_bias == texel_bias(RoundingRule::ties_up));
+    // Chapter 3 indexes with floor((U + modifier - D/2) / D), U = u * D = C + D/2: the
+    // modifier is the modifier, so rule 1 gives floor(u) and rule 2 gives ceil(u) - 1.
+    CHECK(texel_modifier(RoundingRule::ties_up) == texel_scale / 2);
+    CHECK(texel_modifier(RoundingRule::ties_down) == texel_scale / 2 - 1);
+    CHECK(TexelRounding{}.u_modifier == texel_modifier(RoundingRule::ties_up));
     for (std::int32_t U = -3 * texel_scale; U <= 3 * texel_scale; U += texel_scale / 8) {
         INFO("U = " << U);
         const double u = static_cast<double>(U) / texel_scale; // exact
-        CHECK(fixed_texel_index(U, texel_bias(RoundingRule::ties_up)) == std::floor(u));
-        CHECK(fixed_texel_index(U, texel_bias(RoundingRule::ties_down)) ==
+        CHECK(fixed_texel_index(U, texel_modifier(RoundingRule::ties_up)) ==
+              std::floor(u));
+        CHECK(fixed_texel_index(U, texel_modifier(RoundingRule::ties_down)) ==
               std::ceil(u) - 1);
     }
 }

@@ -277,8 +277,8 @@ TEST_CASE("the masked wrap equals wrap_index on every power-of-two size") {
 namespace {
 
 /// real_texel_index as chapter 4 states it, with the maths library's floor and ceil.
-int texel_index_by_library(double u, std::int32_t bias) {
-    const std::int32_t offset = bias - texel_scale / 2;
+int texel_index_by_library(double u, std::int32_t modifier) {
+    const std::int32_t offset = modifier - texel_scale / 2;
     return offset >= 0
                ? static_cast<int>(std::floor(u + double(offset) / texel_scale))
                : static_cast<int>(std::ceil(u + double(offset + 1) / texel_scale)) - 1;
@@ -326,9 +326,9 @@ TEST_CASE("floor_to_int, ceil_to_int, round_to_int and the texel index equal lib
             round_differs += round_to_int(x) != static_cast<int>(std::lround(x));
         }
         if (std::abs(x) < 0x1p31 - 2) { // the index fits in an int
-            for (const std::int32_t bias : {texel_scale / 2, texel_scale / 2 - 1}) {
+            for (const std::int32_t modifier : {texel_scale / 2, texel_scale / 2 - 1}) {
                 index_differs +=
-                    real_texel_index(x, bias) != texel_index_by_library(x, bias);
+                    real_texel_index(x, modifier) != texel_index_by_library(x, modifier);
                 ++indices;
             }
         }

@@ -135,10 +135,10 @@ TEST_CASE("a tiny far triangle: float loses it, relative coordinates keep it") {
     const std::array<glm::vec2, 3> rf{glm::vec2(v[0] - v[0]), glm::vec2(v[1] - v[0]),
                                       glm::vec2(v[2] - v[0])};
     const std::array<float, 3> cf{0.0f, 1.0f, 0.5f};
-    const Gradient<double> gd = gradient_closed_form<double>(v, c);
-    const Gradient<double> gs = gradient_closed_form<double>(snapped, c);
-    const Gradient<float> gf = gradient_closed_form<float>(vf, cf);
-    const Gradient<float> gr = gradient_closed_form<float>(rf, cf);
+    const Gradient<double> gd = closed_form_gradient<double>(v, c);
+    const Gradient<double> gs = closed_form_gradient<double>(snapped, c);
+    const Gradient<float> gf = closed_form_gradient<float>(vf, cf);
+    const Gradient<float> gr = closed_form_gradient<float>(rf, cf);
     const ExactPlane plane(v, c), plane_snapped(snapped, c);
     double e_float = 0, e_relative = 0, e_double = 0, e_fixed = 0;
     for (int j = 0; j < 3; ++j) {

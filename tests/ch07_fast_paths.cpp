@@ -73,13 +73,13 @@ void check_same_report(const RenderReport& a, const RenderReport& b) {
     CHECK(a.colour_bound == b.colour_bound);
 }
 
-/// Renders the scene with every fast path and on the plain path and checks that the
+/// Renders the scene with every fast path and on the teaching path and checks that the
 /// pixels, the texel coordinates and the counts are the same: once recording the texel
 /// coordinates, and once without, as a plain render runs (lean_spans draws only then).
-void check_fast_is_plain(const Scene& scene) {
+void check_fast_is_teaching(const Scene& scene) {
     TexelMap fast_map(scene.width, scene.height), plain_map(scene.width, scene.height);
     const RenderResult fast = render_scene(scene, &fast_map);
-    const RenderResult plain = render_scene(scene, &plain_map, plain_paths);
+    const RenderResult plain = render_scene(scene, &plain_map, teaching_path);
     CHECK(fast.image == plain.image);
     CHECK(fast_map.covered == plain_map.covered);
     CHECK(fast_map.i == plain_map.i);
@@ -99,7 +99,7 @@ std::string number(double x) {
 
 } // namespace
 
-TEST_CASE("the fast paths draw every shipped scene as the plain path does") {
+TEST_CASE("the fast paths draw every shipped scene as the teaching path does") {
     const std::filesystem::path folder = shipped_scene_folder();
     int scenes = 0;
     for (const auto& entry : std::filesystem::directory_iterator(folder)) {
@@ -107,7 +107,7 @@ TEST_CASE("the fast paths draw every shipped scene as the plain path does") {
             continue;
         }
         INFO(entry.path().string());
-        check_fast_is_plain(load_scene(entry.path()));
+        check_fast_is_teaching(load_scene(entry.path()));
         scenes += 1;
     }
     CHECK(scenes >= 7); // shipped_scenes() and the model scenes
@@ -115,13 +115,13 @@ TEST_CASE("the fast paths draw every shipped scene as the plain path does") {
     // that cuts: the undecided triangles go the plain way.
     Scene narrow = load_scene(folder / "horizon.toml");
     narrow.camera.fov_degrees = 5.0;
-    check_fast_is_plain(narrow);
+    check_fast_is_teaching(narrow);
     Scene cut = load_scene(folder / "corridor.toml");
     cut.camera.far = 0.5 * (cut.camera.near + 20.0);
-    check_fast_is_plain(cut);
+    check_fast_is_teaching(cut);
 }
 
-TEST_CASE("the fast paths draw the big torus as the plain path does") {
+TEST_CASE("the fast paths draw the big torus as the teaching path does") {
     const std::filesystem::path folder =
         std::filesystem::temp_directory_path() /
         ("exactpixels-test-fast-paths-" + std::to_string(::getpid()));
@@ -135,7 +135,7 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
     // A closed grid of 400 x 128 quads: each position is shared by six corners, and
     // the geometry stage moves each once.
     CHECK(scene.meshes[0].positions.size() == 400 * 128);
-    check_fast_is_plain(scene);
+    check_fast_is_teaching(scene);
     // Corners changed after loading, the index made again: the picture changes, and is
     // the one the stage draws from a mesh without an index, which it indexes itself.
     Scene changed = scene;
@@ -144,7 +144,7 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
         p = p * 1.001;
     }
     share_positions(changed.meshes[0]);
-    check_fast_is_plain(changed);
+    check_fast_is_teaching(changed);
     Scene unindexed = changed;
     unindexed.meshes[0].positions.clear();
     unindexed.meshes[0].corner_positions.clear();
@@ -154,14 +154,14 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
     check_same_report(render_scene(unindexed).report, from_index.report);
     // Each fast path alone (as big_scene.sh counts their instructions), on the torus and
     // on it without depth, where every pixel a triangle covers is written: the same
-    // pixels and counts as the plain path. All of them together is the check above.
+    // pixels and counts as the teaching path. All of them together is the check above.
     Scene no_depth = scene;
     no_depth.options.depth = DepthMode::off;
     for (const Scene* s : std::array<const Scene*, 2>{&scene, &no_depth}) {
-        const RenderResult plain = render_scene(*s, nullptr, plain_paths);
+        const RenderResult plain = render_scene(*s, nullptr, teaching_path);
         for (int path = 0; path < 3; ++path) {
             INFO("fast path " << path << (s == &scene ? ", depth on" : ", depth off"));
-            FastPaths alone = plain_paths;
+            FastPaths alone = teaching_path;
             bool* const flags[] = {&alone.masked_fetch, &alone.lean_spans, &alone.exact_lanes};
             *flags[path] = true;
             const RenderResult fast = render_scene(*s, nullptr, alone);
@@ -287,7 +287,7 @@ TEST_CASE(
             width, height, projection, number(height / f), number(near), number(far),
             positions, uvs);
         const Scene scene = parse_scene(toml, "edges.toml", ".");
-        check_fast_is_plain(scene);
+        check_fast_is_teaching(scene);
         // The counts the view volume's plane tests give, corner by corner, triangle by
         // triangle (outside_one, then any_outside), as chapter 6 states them.
         const CameraFrame frame = camera_frame(scene.camera);
@@ -415,8 +415,8 @@ TEST_CASE("texture planes and rounding from shared quotients are those of the co
         check_same_plane(shared.v, plane_through(p, {v[0].uv.y, v[1].uv.y, v[2].uv.y}));
         const TexelRounding alone = choose_rounding(v, MapperKind::exact);
         const TexelRounding from_q = choose_rounding(v, q);
-        CHECK(from_q.u_bias == alone.u_bias);
-        CHECK(from_q.v_bias == alone.v_bias);
+        CHECK(from_q.u_modifier == alone.u_modifier);
+        CHECK(from_q.v_modifier == alone.v_modifier);
     }
 }
 
@@ -442,7 +442,7 @@ TEST_CASE("the geometry stage stops a corner that is not finite, naming the tria
         }
         return std::string("no error");
     };
-    const std::string plain = message(plain_paths);
+    const std::string plain = message(teaching_path);
     INFO(plain);
     CHECK(plain.find("not finite in float") != std::string::npos);
     CHECK(plain.find(mesh.origin + ": triangle ") == 0);

@@ -335,7 +335,7 @@ TEST_CASE("auto picks the cheapest mapper whose bound is within the budget" *
     const PerspectiveSpan<double> flat{10.0, 5.0, 0.5, 0.25, 0.0, 0.0, 100};
     const AutoChoice c = choose_span_mapper(flat, 0.5);
     CHECK(c.mapper.kind == MapperKind::subdivided);
-    CHECK(c.mapper.span >= 100);
+    CHECK(c.mapper.piece >= 100);
     CHECK(mapper_divides(c.mapper, 100) == 4);
     // A steep span: depth 1 to 40 over 200 pixels, 500 texels. A larger budget never
     // costs more divides, and whatever is chosen is within its budget.
@@ -355,7 +355,7 @@ TEST_CASE("auto picks the cheapest mapper whose bound is within the budget" *
         };
         switch (choice.mapper.kind) {
         case MapperKind::subdivided:
-            map_span_subdivided(steep, choice.mapper.span, measure);
+            map_span_subdivided(steep, choice.mapper.piece, measure);
             break;
         case MapperKind::quadratic:
             map_span_quadratic(steep, measure);

@@ -363,8 +363,8 @@ void check_scanline(Page& page) {
         CHECK(shown == spans);
         CHECK(static_cast<int>(s["covered"].number) == covered);
         const std::array<double, 3> c = {0.0, 1.0, 0.5};
-        const Gradient<double> closed = gradient_closed_form<double>(v, c);
-        const Gradient<double> split = gradient_split_edge<double>(v, c);
+        const Gradient<double> closed = closed_form_gradient<double>(v, c);
+        const Gradient<double> split = split_edge_gradient<double>(v, c);
         CHECK(s["closedForm"].array.at(0).number == closed.dx);
         CHECK(s["closedForm"].array.at(1).number == closed.dy);
         CHECK(s["splitEdge"].array.at(0).number == split.dx);

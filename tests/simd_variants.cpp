@@ -1,5 +1,5 @@
-// Every vector instruction set this machine runs (base/simd.hpp) gives the plain path's
-// pixels bit for bit: the exact mapper's u and v, the textured runs and the scene
+// Every vector instruction set this machine runs (base/simd.hpp) gives the teaching
+// path's pixels bit for bit: the exact mapper's u and v, the textured runs and the scene
 // renderer's shipped scenes, each variant forced in turn. And EXACTPIXELS_SIMD refuses
 // a value that names no variant, or one this CPU lacks, with exit 2 and one line.
 #include "exactpixels/base/error.hpp"
@@ -213,7 +213,7 @@ TEST_CASE("every variant's textured runs draw the teaching path's texels") {
     }
 }
 
-TEST_CASE("every variant draws every shipped scene as the plain path does") {
+TEST_CASE("every variant draws every shipped scene as the teaching path does") {
     KeepChoice keep;
     int scenes = 0;
     long long exact_pixels = 0;
@@ -226,12 +226,12 @@ TEST_CASE("every variant draws every shipped scene as the plain path does") {
         exact.options.mapper = MapperChoice{false, Mapper{MapperKind::exact}};
         exact.options.precision = Precision::float64;
         for (const Scene* s : {&scene, &exact}) {
-            const RenderResult plain = render_scene(*s, nullptr, plain_paths);
+            const RenderResult plain = render_scene(*s, nullptr, teaching_path);
             exact_pixels += plain.report.mappers[static_cast<std::size_t>(MapperKind::exact)].pixels;
             for (const SimdVariant v : available_simd()) {
                 INFO(std::string(simd_name(v)));
                 choose_simd(v);
-                FastPaths lanes_only = plain_paths;
+                FastPaths lanes_only = teaching_path;
                 lanes_only.exact_lanes = true;
                 CHECK((render_scene(*s, nullptr, lanes_only).image == plain.image));
                 CHECK((render_scene(*s, nullptr, FastPaths{}).image == plain.image));

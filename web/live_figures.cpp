@@ -125,7 +125,7 @@ EXPORT("ep_span_mappers") int ep_span_mappers(double ratio) {
 /// 1/2 at its vertices. Its spans by scanline_spans fill cells 2y and 2y + 1 with the
 /// row's first and one-past-last column (-1, -1 for a row without pixels), for the rows
 /// 0 to height - 1; values[0], values[1] are the closed-form gradient (dc/dx, dc/dy),
-/// values[2], values[3] the split-edge one (gradient_closed_form, gradient_split_edge).
+/// values[2], values[3] the split-edge one (closed_form_gradient, split_edge_gradient).
 /// Returns the number of covered pixels, or -1 for inputs outside the figure.
 EXPORT("ep_scanline")
 int ep_scanline(double x0, double y0, double x1, double y1, double x2, double y2,
@@ -144,8 +144,8 @@ int ep_scanline(double x0, double y0, double x1, double y1, double x2, double y2
         covered += s.x_end - s.x_begin;
     });
     const std::array<double, 3> c = {0.0, 1.0, 0.5};
-    const Gradient<double> closed = gradient_closed_form<double>(v, c);
-    const Gradient<double> split = gradient_split_edge<double>(v, c);
+    const Gradient<double> closed = closed_form_gradient<double>(v, c);
+    const Gradient<double> split = split_edge_gradient<double>(v, c);
     values[0] = closed.dx;
     values[1] = closed.dy;
     values[2] = split.dx;

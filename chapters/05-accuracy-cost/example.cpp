@@ -11,7 +11,6 @@
 
 using namespace exactpixels;
 
-//> example-main
 int main(int argc, char** argv) try {
     const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
     const AccuracyScene floor = grazing_floor_scene();
@@ -33,4 +32,3 @@ int main(int argc, char** argv) try {
     std::fprintf(stderr, "ch05-example: %s\n", error.what());
     return 1;
 }
-//< example-main

@@ -176,7 +176,7 @@ instructions() {
     echo "| instruction ratio full less empty |" \
          "$(ratio "($ours_full - $ours_empty)" "($lp_full - $lp_empty)") |"
     echo
-    echo "Ours on the full scene with only some fast paths (FastPaths): none (the plain" \
+    echo "Ours on the full scene with only some fast paths (FastPaths): none (the teaching" \
          "path), each one alone; all of them is \"ours full\" above:"
     echo
     echo "| run | instructions |"

@@ -29,7 +29,6 @@ void paste(Framebuffer& sheet, const Framebuffer& frame, int x0, int y0) {
 
 } // namespace
 
-//> example-main
 int main(int argc, char** argv) try {
     const std::filesystem::path folder = argc > 1 ? argv[1] : ".";
     const AccuracyScene horizon = horizon_floor_scene();
@@ -57,4 +56,3 @@ int main(int argc, char** argv) try {
     std::fprintf(stderr, "ch08-example: %s\n", error.what());
     return 1;
 }
-//< example-main

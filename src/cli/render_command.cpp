@@ -15,7 +15,6 @@
 
 namespace exactpixels::cli {
 
-//> render-command
 void add_render_command(CLI::App& app, int& exit_code) {
     struct Options {
         std::string scene;  // empty: the first shipped scene
@@ -73,6 +72,5 @@ void add_render_command(CLI::App& app, int& exit_code) {
         });
     });
 }
-//< render-command
 
 } // namespace exactpixels::cli

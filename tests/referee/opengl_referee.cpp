@@ -534,7 +534,6 @@ float probed(const std::vector<Rgba8>& pass, std::size_t at) {
     return value;
 }
 
-//> referee-lit-bound
 /// How far GL's single precision can move a lit pixel's colour, levels, before the two
 /// roundings (@eq:scene-referee-lit): the colour the renderer's light_colour gives at the
 /// point and normal GL interpolated (read from the probe passes) against at its own,
@@ -577,7 +576,6 @@ double lit_float_levels(const Scene& scene, const SceneGeometry& geometry,
     // A probe that did not hold a number (NaN) must not pass as a small bound.
     return std::isfinite(levels) ? levels : std::numeric_limits<double>::infinity();
 }
-//< referee-lit-bound
 
 } // namespace
 

@@ -45,7 +45,7 @@ template <class F> void for_each_span_ratio(const AccuracyScene& scene, F&& f) {
         const std::array<FixedPoint2, 3> s = snapped(t);
         const std::array<Point2, 3> p{to_pixels(s[0]), to_pixels(s[1]), to_pixels(s[2])};
         const std::array<double, 3> q{1.0 / t[0].w, 1.0 / t[1].w, 1.0 / t[2].w};
-        const Gradient<double> g = gradient_closed_form<double>(p, q);
+        const Gradient<double> g = closed_form_gradient<double>(p, q);
         const auto one_w = [&](double x, double y) {
             return q[0] + g.dx * (x - p[0].x) + g.dy * (y - p[0].y);
         };

@@ -6,7 +6,7 @@
 //   const BenchmarkRuns runs = read_benchmark_csv("data/ch10_fast.csv");
 //   double r = runs.value("flat/runs/1000/1/process_time", "tri_per_s");  // per second
 //   double n = runs.net_rate("flat/runs/1000/1/process_time",
-//   "flat/runs/0/1/process_time",
+//                            "flat/runs/0/1/process_time", // the empty frame's run
 //                            "tri_per_s", "cpu_time");  // less the empty frame's time
 //
 // Lines before the header row (Google Benchmark writes none; committed files may carry

@@ -34,7 +34,6 @@ AccuracyScene horizon_floor_scene() {
 }
 //< horizon-scene
 
-//> oblique-wall-scene
 AccuracyScene oblique_wall_scene() {
     constexpr int width = 320, height = 240;
     const Pinhole eye{0.625 * width, {0.5 * width, 0.5 * height}};
@@ -59,7 +58,6 @@ AccuracyScene oblique_wall_scene() {
             {{a, b, c}, {a, c, d}},
             checkerboard_texture(256, 256, 2)};
 }
-//< oblique-wall-scene
 
 std::vector<AccuracyScene> filter_scenes() {
     std::vector<AccuracyScene> scenes = accuracy_scenes();

@@ -148,7 +148,6 @@ void depth_run(DepthPlane plane, Rgba8 colour, int y, int x_begin, int x_end,
 }
 //< depth-run
 
-//> depth-mask-row
 /// Depth-tests and draws the pixels x + i of row y whose bit i of `bits` is set (a
 /// row of an 8 x 8 mask): two steps of four, each only when some bit is set; a step
 /// that would reach past column width - 1 goes pixel by pixel (no load beyond the row).
@@ -172,6 +171,5 @@ void depth_mask_row(DepthPlane plane, Rgba8 colour, int y, int x, std::uint8_t b
         }
     }
 }
-//< depth-mask-row
 
 } // namespace exactpixels

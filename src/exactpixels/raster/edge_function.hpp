@@ -112,12 +112,10 @@ template <class Edge> struct EdgeSetup {
     bool empty = true;        ///< zero area (or no pixel can be inside): draw nothing
 };
 
-//> fixed-covers
 /// Whether a pixel whose value for one edge is w passes that edge's test (@eq:edge-bias).
 inline bool covers(const FixedEdge&, std::int64_t w) {
     return w >= 0;
 }
-//< fixed-covers
 
 /// Whether a pixel whose value for one float edge is w passes that edge's test: inside
 /// strictly, or exactly on a top or left edge.

@@ -246,14 +246,14 @@ void traverse_blocks(const EdgeSetup<Edge>& s, PixelRect r, EmitFn& emit) {
 }
 //< traverse-blocks
 
-//> traverse-blocks-fast
-/// The fast variant of traverse_blocks (same pixels in fixed point; tested): for a
+//> traverse-blocks-stepped
+/// The stepped variant of traverse_blocks (same pixels in fixed point; tested): for a
 /// whole 8 x 8 block the offsets from its top-left centre to its largest and smallest
 /// corner are the same for every block, so they are computed once per edge, and the
 /// top-left values are stepped from block to block (+8 step_x) instead of evaluated.
 /// Blocks clipped by `r` go through classify_block.
 template <class Edge, class EmitFn>
-void traverse_blocks_fast(const EdgeSetup<Edge>& s, PixelRect r, EmitFn& emit) {
+void traverse_blocks_stepped(const EdgeSetup<Edge>& s, PixelRect r, EmitFn& emit) {
     if (r.x_end - r.x_begin <= block_size && r.y_end - r.y_begin <= block_size) {
         traverse_pixels(s, r, emit);
         return;
@@ -300,7 +300,7 @@ void traverse_blocks_fast(const EdgeSetup<Edge>& s, PixelRect r, EmitFn& emit) {
         }
     }
 }
-//< traverse-blocks-fast
+//< traverse-blocks-stepped
 
 //> edge-rasterize
 /// Emits emit(x, y) for every pixel of the viewport whose centre the snapped triangle v
@@ -324,7 +324,7 @@ void edge_rasterize_blocks(const std::array<FixedPoint2, 3>& v, Viewport viewpor
     check_fixed_triangle(v);
     const EdgeSetup<FixedEdge> s = setup_edges(v);
     if (!s.empty) {
-        traverse_blocks_fast(s, pixel_bounds(v, viewport), emit);
+        traverse_blocks_stepped(s, pixel_bounds(v, viewport), emit);
     }
 }
 
@@ -347,7 +347,7 @@ void edge_rasterize_blocks(const std::array<Point2f, 3>& v, Viewport viewport,
     check_float_triangle(v);
     const EdgeSetup<FloatEdge> s = setup_edges(v);
     if (!s.empty) {
-        traverse_blocks_fast(s, pixel_bounds(v, viewport), emit);
+        traverse_blocks_stepped(s, pixel_bounds(v, viewport), emit);
     }
 }
 

@@ -3,17 +3,17 @@
 // Usage:
 //   std::array<glm::dvec2, 3> p{{{0.5, 0.5}, {8.5, 2.5}, {3.5, 6.5}}};  // pixels
 //   std::array<double, 3> c{0.0, 1.0, 0.25};                              // c at p[i]
-//   Gradient<double> g = gradient_closed_form(p, c);   // c grows g.dx per pixel right
+//   Gradient<double> g = closed_form_gradient(p, c);   // c grows g.dx per pixel right
 //   double s = edge_slope_from_gradient(g, p[0], p[2]); // c per pixel down edge p0-p2
 //
 // c stands for anything a rasterizer interpolates linearly in screen space: a colour
 // channel, u and v of an affine texture mapper, 1/w, u/w and v/w of a perspective one.
 // Coordinates are in pixels (origin top-left, y down); a gradient is "units of c per
 // pixel". Chapter 1 derives both methods:
-//   - gradient_split_edge: sort by y, find the point on the long edge at the middle
+//   - split_edge_gradient: sort by y, find the point on the long edge at the middle
 //     vertex's height, dc/dx between it and the middle vertex (@eq:split-point to
 //     @eq:split-dcdy);
-//   - gradient_closed_form: the ratio of two cross products, any vertex order
+//   - closed_form_gradient: the ratio of two cross products, any vertex order
 //   (@eq:closed-form).
 // Every function is a template on the number type: float and double for rasterizers,
 // the exact Rational of exactpixels/base/exact.hpp in the chapter's tests (any type with
@@ -153,10 +153,10 @@ template <class T> T edge_slope_from_gradient(Gradient<T> g, T xa, T ya, T xb, T
 }
 //< edge-slopes
 
-/// The closed-form gradient (@eq:closed-form) of c over the triangle p. Zero area: {0,
-/// 0}.
+/// The closed-form gradient (@eq:closed-form) of c over the triangle p.
+/// Zero area: {0, 0}.
 template <class Real>
-Gradient<Real> gradient_closed_form(const std::array<glm::vec<2, Real>, 3>& p,
+Gradient<Real> closed_form_gradient(const std::array<glm::vec<2, Real>, 3>& p,
                                     const std::array<Real, 3>& c) {
     return closed_form_gradient(
         PlaneSamples<Real>{{p[0].x, p[1].x, p[2].x}, {p[0].y, p[1].y, p[2].y}, c});
@@ -165,7 +165,7 @@ Gradient<Real> gradient_closed_form(const std::array<glm::vec<2, Real>, 3>& p,
 /// The split-edge gradient (@eq:split-point to @eq:split-dcdy) of c over the triangle p,
 /// any vertex order (it sorts by y itself). Zero area: {0, 0}.
 template <class Real>
-Gradient<Real> gradient_split_edge(const std::array<glm::vec<2, Real>, 3>& p,
+Gradient<Real> split_edge_gradient(const std::array<glm::vec<2, Real>, 3>& p,
                                    const std::array<Real, 3>& c) {
     return split_edge_gradient(
         PlaneSamples<Real>{{p[0].x, p[1].x, p[2].x}, {p[0].y, p[1].y, p[2].y}, c});

@@ -94,7 +94,6 @@ run_of_row_fast(const EdgeSetup<FixedEdge>& s, const std::array<std::int64_t, 3>
 }
 //< run-of-row-fast
 
-//> traverse-runs
 /// Hands emit(Span) the covered run of every row of r that has one, top to bottom.
 /// Each edge value is evaluated once at r's top-left pixel and stepped down the rows.
 template <class SpanFn>
@@ -118,7 +117,6 @@ void traverse_runs(const EdgeSetup<FixedEdge>& s, PixelRect r, SpanFn&& emit) {
         }
     }
 }
-//< traverse-runs
 
 /// The fast variant of traverse_runs (the same runs; tested): run_of_row_fast, with
 /// the reciprocals of the three steps computed once.

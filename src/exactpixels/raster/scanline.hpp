@@ -302,7 +302,7 @@ void scanline_interpolate(const std::array<Point2, 3>& v,
     // triangle.
     std::array<Gradient<double>, N> g{};
     for (std::size_t k = 0; k < N; ++k) {
-        g[k] = gradient_closed_form<double>(v, {c[0][k], c[1][k], c[2][k]});
+        g[k] = closed_form_gradient<double>(v, {c[0][k], c[1][k], c[2][k]});
     }
     // A left edge carries the attributes' values where it crosses the current row.
     struct LeftEdge {

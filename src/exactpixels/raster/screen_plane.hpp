@@ -33,7 +33,7 @@ struct ScreenPlane {
 /// The plane through the values c[k] at the corners p[k] (chapter 1's closed form).
 inline ScreenPlane plane_through(const std::array<Point2, 3>& p,
                                  const std::array<double, 3>& c) {
-    return {p[0], c[0], gradient_closed_form<double>(p, c)};
+    return {p[0], c[0], closed_form_gradient<double>(p, c)};
 }
 
 } // namespace exactpixels

@@ -2,8 +2,7 @@
 //
 // Usage:
 //   Lanes8 w = Lanes8::broadcast(e.at(x, y)) + Lanes8::ramp(e.step_x()); // x .. x + 7
-//   std::uint8_t inside = (w0 | w1 | w2).nonnegative_bits(); // bit i: pixel x + i
-//   covered
+//   std::uint8_t inside = (w0 | w1 | w2).nonnegative_bits(); // bit i: x + i covered
 //
 // Values are the exact fixed-point edge values of chapter 2 (1/65536 px^2, int64); the
 // lanes only add and OR them, so every result is the integer the scalar loop computes.

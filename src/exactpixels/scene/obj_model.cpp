@@ -91,7 +91,7 @@ void for_each_statement(std::string_view text, const std::string& file, Each eac
 /// optional sign, digits with an optional point (or a point and digits), an optional
 /// exponent. This is the only reading of a number: the model is built from the values
 /// it returns, never from tinyobjloader's (see parse_obj_model).
-double read_number(const Place& at, std::string_view word, double limit) {
+double read_obj_number(const Place& at, std::string_view word, double limit) {
     std::string_view digits = word;
     if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') {
         digits.remove_prefix(1); // from_chars takes '-' but not '+'
@@ -116,13 +116,13 @@ double read_number(const Place& at, std::string_view word, double limit) {
 }
 //< obj-number
 
-/// The N numbers after a statement's keyword, each read by read_number.
+/// The N numbers after a statement's keyword, each read by read_obj_number.
 template <int N>
 glm::vec<N, double>
 read_vector(const Place& at, const std::vector<std::string_view>& words, double limit) {
     glm::vec<N, double> v;
     for (int k = 0; k < N; ++k) {
-        v[k] = read_number(at, words[static_cast<std::size_t>(k) + 1], limit);
+        v[k] = read_obj_number(at, words[static_cast<std::size_t>(k) + 1], limit);
     }
     return v;
 }
@@ -141,7 +141,7 @@ void expect_fields(const Place& at, const std::vector<std::string_view>& words,
 /// One MTL file's materials as the check saw them: name, line, colour, texture.
 struct CheckedMaterial {
     Place place;                         ///< where `newmtl` named it
-    std::optional<Colour> kd;            ///< its last Kd, as read_number read it
+    std::optional<Colour> kd;            ///< its last Kd, as read_obj_number read it
     std::optional<SceneTexture> texture; ///< its map_Kd
 };
 
@@ -235,12 +235,12 @@ void check_mtl(std::string_view text, const std::string& file,
         } else if (key == "Ka" || key == "Ks" || key == "Ke" || key == "Tf") {
             expect_fields(at, words, 3, 3);
             for (std::size_t k = 1; k <= 3; ++k) {
-                (void)read_number(at, words[k], max_model_coordinate);
+                (void)read_obj_number(at, words[k], max_model_coordinate);
             }
         } else if (key == "Ns" || key == "Ni" || key == "d" || key == "Tr" ||
                    key == "illum") {
             expect_fields(at, words, 1, 1);
-            (void)read_number(at, words[1], max_model_coordinate);
+            (void)read_obj_number(at, words[1], max_model_coordinate);
         } else {
             at.fail(
                 fmt::format("'{}' is not supported in a material file (supported: "
@@ -268,7 +268,7 @@ bool is_statement_name(std::string_view word) {
 }
 
 /// What the check of an OBJ file found: the MTL texts for tinyobjloader, each
-/// material's colour and texture, every v, vt and vn as read_number read it, and the
+/// material's colour and texture, every v, vt and vn as read_obj_number read it, and the
 /// line of every face in file order.
 struct CheckedObj {
     std::map<std::string, std::string> mtl_texts;
@@ -399,7 +399,7 @@ CheckedObj check_obj(std::string_view text, const std::string& file,
             count(at, counts.texcoords, "texture coordinates");
             checked.texcoords.push_back(read_vector<2>(at, words, max_model_texcoord));
             if (words.size() == 4) {
-                (void)read_number(at, words[3], max_model_texcoord);
+                (void)read_obj_number(at, words[3], max_model_texcoord);
             }
         } else if (key == "vn") {
             expect_fields(at, words, 3, 3);

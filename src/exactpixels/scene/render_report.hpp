@@ -81,10 +81,8 @@ inline double seconds_since(Clock::time_point start) {
 }
 
 /// About this many triangles of each mesh have their stages timed span by span (every
-/// triangle of a smaller mesh): reading the clock is not free. Here it costs 24 ns, more
-/// than shading a small span, and at one triangle in 16 the big torus's frame spent about
-/// 0.8 ms of its 20 reading it (bench_ch07_big_scene); 512 evenly spread triangles split
-/// a mesh's time among its stages as well, for almost nothing.
+/// triangle of a smaller mesh): reading the clock costs more than shading a small span,
+/// and 512 evenly spread triangles split a mesh's time among its stages as well.
 inline constexpr std::size_t timed_triangles_per_mesh = 512;
 
 /// Which triangles of a mesh of `count` are timed: one in every this many.

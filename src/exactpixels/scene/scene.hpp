@@ -1,9 +1,8 @@
 // scene.hpp: a scene as the renderer sees it, after loading and checking (chapter 7).
 //
 // Usage:
-//   Scene scene = load_scene("chapters/07-scenes/scenes/corridor.toml"); //
-//   scene_loader.hpp RenderResult result = render_scene(scene);                     //
-//   scene_renderer.hpp
+//   Scene scene = load_scene("chapters/07-scenes/scenes/corridor.toml"); // scene_loader
+//   RenderResult result = render_scene(scene);                        // scene_renderer
 //
 // World space: x right, y up, z forward (away from a camera at the default pose), the
 // same handedness as view space. The camera looks from `position` at `target`; view
@@ -101,8 +100,7 @@ struct RenderOptions {
     double budget = 0.5;  ///< auto: the largest texel error allowed, texels, > 0
     bool rounding = true; ///< chapter 4's rounding modifier (false: rule 1 everywhere)
     DepthMode depth = DepthMode::automatic; ///< `depth = true | false | "auto"`
-    /// `colours = "screen" | "perspective" | "auto"`; auto spends `budget` in 8-bit
-    /// levels
+    /// `colours = "screen" | "perspective" | "auto"` (auto: `budget` in 8-bit levels)
     ColourInterpolation colours = ColourInterpolation::screen;
     /// `filter = "nearest" | "bilinear" | "trilinear" | "anisotropic" | "auto"`
     SceneFilter filter = SceneFilter::nearest;
@@ -185,7 +183,7 @@ struct Scene {
     int height = 240;                    ///< image height, pixels, [1, 8192]
     Colour background = {0.0, 0.0, 0.0}; ///< RGB (sRGB code / 255) of uncovered pixels
     SceneCamera camera = {};             ///< how the scene is seen
-    RenderOptions options = {};          ///< precision, mapper, budget, rounding
+    RenderOptions options = {};          ///< the [render] table's options
     std::vector<SceneTexture> textures;  ///< named textures
     std::vector<SceneMesh> meshes;       ///< drawn in order (later meshes on top)
     std::vector<SceneLight> lights;      ///< none: no lighting stage

@@ -126,7 +126,7 @@ AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget) {
 
 //> mapper-divides
 long long mapper_divides(Mapper mapper, int count) {
-    const long long pieces = (count + mapper.span - 1) / mapper.span;
+    const long long pieces = (count + mapper.piece - 1) / mapper.piece;
     switch (mapper.kind) {
     case MapperKind::exact:
         return count; // one per pixel

@@ -55,7 +55,7 @@ inline constexpr double guard_band_px = 524288.0; // 2^19
 //> fast-paths
 /// The renderer's speed tricks: each a named fast variant beside a plain step of the
 /// pipeline, giving the same pixels and the same report counts on every scene
-/// (tests/ch07_fast_paths.cpp). All on by default; all off is the plain teaching path.
+/// (tests/ch07_fast_paths.cpp). All on by default; all off is the teaching path.
 struct FastPaths {
     /// Texture: a power-of-two texture under `repeat` is read inline with the indices
     /// wrapped by a bit mask (fetch_texel_masked) instead of two integer remainders.
@@ -71,8 +71,8 @@ struct FastPaths {
     bool exact_lanes = true;
 };
 
-/// Every fast path off: the plain teaching path.
-inline constexpr FastPaths plain_paths{false, false, false};
+/// Every fast path off: the teaching path.
+inline constexpr FastPaths teaching_path{false, false, false};
 //< fast-paths
 
 /// The stages a mesh runs in this scene: plan_mesh's, and under Gouraud lighting the

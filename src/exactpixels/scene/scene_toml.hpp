@@ -4,8 +4,10 @@
 //
 // Usage (inside a section reader):
 //   const TableReader t(c, table, "camera", {"fov", "near"});
-//   if (const auto* n = t.find("fov")) { fov = read_positive(c, *n, t.child("fov"), 0,
-//   179); } t.finish();                                   // an Error for any other key
+//   if (const auto* n = t.find("fov")) {
+//       fov = read_positive(c, *n, t.child("fov"), 0, 179);
+//   }
+//   t.finish(); // an Error for any other key
 //
 // Every reader throws Error through Context::fail: "FILE:LINE:COLUMN: KEY.PATH: what".
 #pragma once

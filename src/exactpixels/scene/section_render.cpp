@@ -17,10 +17,11 @@ MapperChoice read_mapper(const Context& c, const toml::node& node,
     }
     for (const char* prefix : {"subdivided:", "quadratic:"}) {
         if (word.rfind(prefix, 0) == 0) {
-            c.fail(node.source(), path,
-                   fmt::format("'{}': the span after '{}' must be a whole number of "
-                               "pixels from {} to {}",
-                               word, prefix, min_mapper_span, max_mapper_span));
+            c.fail(
+                node.source(), path,
+                fmt::format("'{}': the piece length after '{}' must be a whole number of "
+                            "pixels from {} to {}",
+                            word, prefix, min_mapper_piece, max_mapper_piece));
         }
     }
     c.fail(node.source(), path,

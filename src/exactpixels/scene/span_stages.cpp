@@ -279,7 +279,8 @@ map_texture_span(SimdVariant lanes, Mapper mapper, Precision precision, TexelRou
     if (lanes != SimdVariant::portable && mapper.kind == MapperKind::exact &&
         precision == Precision::float64) {
         map_span_exact_lanes(lanes, ps, [&](int k, double u, double v) {
-            texel(k, real_texel_index(u, r.u_bias), real_texel_index(v, r.v_bias), u, v);
+            texel(k, real_texel_index(u, r.u_modifier), real_texel_index(v, r.v_modifier),
+                  u, v);
         });
         return;
     }
@@ -289,7 +290,7 @@ map_texture_span(SimdVariant lanes, Mapper mapper, Precision precision, TexelRou
 //> texture-stage
 /// The texture stage on one span: the span's mapper maps each pixel k to the indices i, j
 /// of its texel and the coordinate u, v, which texel(k, i, j, u, v) takes (the exact
-/// mapper in the instruction set `lanes`, portable on the plain path). Returns the
+/// mapper in the instruction set `lanes`, portable on the teaching path). Returns the
 /// mapper, for the report.
 template <class TexelOut>
 [[gnu::always_inline]] inline MappedSpan texture_stage(const RenderOptions& options,

@@ -6,8 +6,7 @@
 //                                {{1.0, -1.0, -2.0}, {64.0, 0.0}},     // behind the eye
 //                                {{0.0, 1.0, 4.0}, {32.0, 64.0}}}};
 //   ClippedTriangles c = clip_near(t, 0.5);              // 0, 1 or 2 triangles
-//   draw_view_triangle(frame, camera, t, 0.5, texture, settings);   // clip, project,
-//   draw
+//   draw_view_triangle(frame, camera, t, 0.5, texture, settings); // clip, project, draw
 //
 // View space is perspective.hpp's: the eye at the origin looking along +z, x right, y
 // up; z is the depth that becomes the mapper's w. The near plane is z = near (near > 0,

@@ -59,7 +59,6 @@ double isotropic_level(const TexelDerivatives& d) {
 }
 //< isotropic-level
 
-//> anisotropy
 Anisotropy anisotropy(const TexelDerivatives& d, int max_probes) {
     assert(max_probes >= 1);
     const auto [side_x, side_y] = footprint_sides(d);
@@ -73,6 +72,5 @@ Anisotropy anisotropy(const TexelDerivatives& d, int max_probes) {
         side_x >= side_y ? glm::dvec2{d.du_dx, d.dv_dx} : glm::dvec2{d.du_dy, d.dv_dy};
     return {n, std::log2(longer / n), axis};
 }
-//< anisotropy
 
 } // namespace exactpixels

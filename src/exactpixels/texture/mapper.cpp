@@ -11,11 +11,11 @@ std::string mapper_name(Mapper mapper) {
     case MapperKind::affine:
         return "affine";
     case MapperKind::subdivided:
-        return "subdivided:" + std::to_string(mapper.span);
+        return "subdivided:" + std::to_string(mapper.piece);
     case MapperKind::quadratic:
         return "quadratic";
     case MapperKind::quadratic_subdivided:
-        return "quadratic:" + std::to_string(mapper.span);
+        return "quadratic:" + std::to_string(mapper.piece);
     }
     return "?";
 }
@@ -73,14 +73,14 @@ std::optional<Mapper> parse_mapper(std::string_view text) {
     if (kind == MapperKind::exact || digits.empty() || digits.size() > 4) {
         return std::nullopt;
     }
-    int span = 0;
+    int piece = 0;
     const auto [end, error] =
-        std::from_chars(digits.data(), digits.data() + digits.size(), span);
+        std::from_chars(digits.data(), digits.data() + digits.size(), piece);
     if (error != std::errc{} || end != digits.data() + digits.size() ||
-        span < min_mapper_span || span > max_mapper_span) {
+        piece < min_mapper_piece || piece > max_mapper_piece) {
         return std::nullopt;
     }
-    return Mapper{kind, span};
+    return Mapper{kind, piece};
 }
 
 } // namespace exactpixels

@@ -9,7 +9,7 @@
 //
 // The spellings, one for each kind: exact, affine, subdivided:N, quadratic, quadratic:N,
 // where N (2 to 4096) is the piece length in pixels; "subdivided" alone means
-// subdivided:16. A Mapper's `span` matters only for the two subdivided kinds.
+// subdivided:16. A Mapper's `piece` matters only for the two subdivided kinds.
 #pragma once
 
 #include <optional>
@@ -22,9 +22,9 @@ namespace exactpixels {
 enum class MapperKind {
     exact,               ///< u = (u/w) / (1/w) at every pixel
     affine,              ///< u interpolated linearly in screen space
-    subdivided,          ///< exact every `span` pixels, affine in between
+    subdivided,          ///< exact every `piece` pixels, affine in between
     quadratic,           ///< Pursey's parabola over each whole row span
-    quadratic_subdivided ///< Pursey's parabola over pieces of `span` pixels
+    quadratic_subdivided ///< Pursey's parabola over pieces of `piece` pixels
 };
 
 /// The arithmetic of a mapper's inner loop.
@@ -37,18 +37,18 @@ enum class Precision {
 /// One of chapter 3's mappers: its kind and, for the subdivided kinds, its piece length.
 struct Mapper {
     MapperKind kind = MapperKind::exact; ///< which mapper
-    int span = 16; ///< pixels per piece (subdivided kinds), in [2, 4096]
+    int piece = 16; ///< pixels per piece (subdivided kinds), in [2, 4096]
     /// Mappers are equal when kind and piece length are.
     friend bool operator==(const Mapper&, const Mapper&) = default;
 };
 
-/// The shortest and longest piece a subdivided mapper takes, pixels.
-inline constexpr int min_mapper_span = 2;
+/// The shortest piece a subdivided mapper takes, pixels.
+inline constexpr int min_mapper_piece = 2;
 /// The longest piece a subdivided mapper takes, pixels.
-inline constexpr int max_mapper_span = 4096;
+inline constexpr int max_mapper_piece = 4096;
 
 /// The mapper's name: "exact", "affine", "subdivided:N", "quadratic", "quadratic:N" with
-/// N its span. parse_mapper reads it back.
+/// N its piece length. parse_mapper reads it back.
 std::string mapper_name(Mapper mapper);
 
 /// The kind's name, with "N" for the piece length: "exact", "affine", "subdivided",
@@ -59,7 +59,7 @@ const char* mapper_kind_name(MapperKind kind);
 const char* precision_name(Precision precision);
 
 /// Reads a mapper name as mapper_name writes it (and "subdivided" for subdivided:16);
-/// nothing when `text` is not one, or its span is outside [2, 4096].
+/// nothing when `text` is not one, or its piece length is outside [2, 4096].
 std::optional<Mapper> parse_mapper(std::string_view text);
 
 } // namespace exactpixels

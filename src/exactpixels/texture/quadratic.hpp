@@ -24,13 +24,11 @@ template <class T> struct Quadratic {
     T u0; ///< texels at t = 0
 };
 
-//> perspective-midpoint
 /// The exact u at the screen midpoint of a span from (u0, depth w0) to (u2, depth w2):
 /// u0 + w0 (u2 - u0) / (w0 + w2) (@eq:midpoint).
 template <class T> T perspective_midpoint(T u0, T w0, T u2, T w2) {
     return u0 + w0 * (u2 - u0) / (w0 + w2);
 }
-//< perspective-midpoint
 
 //> pursey
 /// Pursey's parabola through (0, u0), (n/2, u1), (n, u2), u1 the exact midpoint value

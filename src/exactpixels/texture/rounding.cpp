@@ -14,8 +14,8 @@ struct ProjectedPlanes {
 ProjectedPlanes projected_planes(const std::array<TexturedVertex, 3>& v,
                                  const CornerQuotients& q) {
     const std::array<glm::dvec2, 3> p{v[0].position, v[1].position, v[2].position};
-    return {q, gradient_closed_form(p, q.one_w), gradient_closed_form(p, q.u_w),
-            gradient_closed_form(p, q.v_w)};
+    return {q, closed_form_gradient(p, q.one_w), closed_form_gradient(p, q.u_w),
+            closed_form_gradient(p, q.v_w)};
 }
 
 /// The two coordinates at the screen point `at` from the planes.
@@ -66,9 +66,9 @@ TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v, MapperKind
     }
     const std::array<glm::dvec2, 3> p{v[0].position, v[1].position, v[2].position};
     const Gradient<double> du =
-        gradient_closed_form(p, {v[0].uv.x, v[1].uv.x, v[2].uv.x});
+        closed_form_gradient(p, {v[0].uv.x, v[1].uv.x, v[2].uv.x});
     const Gradient<double> dv =
-        gradient_closed_form(p, {v[0].uv.y, v[1].uv.y, v[2].uv.y});
+        closed_form_gradient(p, {v[0].uv.y, v[1].uv.y, v[2].uv.y});
     return choose_rounding(du, dv);
 }
 //< choose-rounding

@@ -14,7 +14,7 @@
 // In fixed point a coordinate is an integer C = c * D with D = 2^k, 1 <= k <= 30, and
 // |C| <= 2^61; both rules are one floor, floor((C + m) / D), each with its own modifier
 // m (@eq:modifier; m = D/2 for rule 1). chapter 3's 16.16 inner loops
-// hold U = u * D = C + D/2, so their TexelRounding bias is exactly this modifier.
+// hold U = u * D = C + D/2, so TexelRounding holds exactly this modifier.
 //
 // The rule is chosen like the top-left fill rule: a sample on the boundary between two
 // texels belongs to the texel on its right on screen (+x), or, where the boundary is
@@ -87,14 +87,14 @@ constexpr std::int64_t round_with_modifier(std::int64_t C, std::int64_t m, int k
 }
 //< modifier
 
-/// The TexelRounding bias of chapter 3's 16.16 loops for `rule` (the modifier, k = 16).
-constexpr std::int32_t texel_bias(RoundingRule rule) {
+/// The modifier of chapter 3's 16.16 loops for `rule` (rounding_modifier with k = 16).
+constexpr std::int32_t texel_modifier(RoundingRule rule) {
     return static_cast<std::int32_t>(rounding_modifier(rule, texel_fraction_bits));
 }
 
-/// The same rule in both texture directions' biases.
+/// The same rule in both texture directions' modifiers.
 constexpr TexelRounding texel_rounding(RoundingRule u_rule, RoundingRule v_rule) {
-    return {texel_bias(u_rule), texel_bias(v_rule)};
+    return {texel_modifier(u_rule), texel_modifier(v_rule)};
 }
 
 //> choose-rule

@@ -123,7 +123,6 @@ void map_span_affine(const AffineSpan<Real>& s, Emit&& emit) {
 }
 //< map-span-affine
 
-//> map-span-affine-fresh
 /// The affine mapper evaluated afresh at every pixel, u0 + k du, instead of stepped:
 /// the same straight line without chapter 6's drift (@eq:drift-bound); one multiply
 /// more per pixel and coordinate, and no sum carried from pixel to pixel.
@@ -134,7 +133,6 @@ void map_span_affine_fresh(const AffineSpan<Real>& s, Emit&& emit) {
         emit(k, s.u + t * s.du, s.v + t * s.dv);
     }
 }
-//< map-span-affine-fresh
 
 //> map-span-subdivided
 /// Subdivided affine: exact at pixels 0, n, 2n, ..., affine between them; the last

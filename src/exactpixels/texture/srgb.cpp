@@ -37,7 +37,6 @@ std::array<double, 256> decode_table() {
     return table;
 }
 
-//> srgb-thresholds
 /// For each code c = 1..255 the smallest double l with linear16_to_srgb(l) >= c, found
 /// by bisection on the doubles between two linear values (the code only grows with l).
 std::array<double, 256> code_thresholds() {
@@ -54,7 +53,6 @@ std::array<double, 256> code_thresholds() {
     }
     return t;
 }
-//< srgb-thresholds
 
 } // namespace
 

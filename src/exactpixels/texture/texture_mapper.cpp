@@ -24,7 +24,7 @@ TexelMap::TexelMap(int width_, int height_)
 void check_textured_triangle(const std::array<TexturedVertex, 3>& v,
                              const MapperSettings& settings) {
     const double uv_limit = settings.precision == Precision::fixed ? 16384.0 : 1e30;
-    const int span = settings.mapper.span;
+    const int piece = settings.mapper.piece;
     for (int k = 0; k < 3; ++k) {
         const TexturedVertex& p = v[static_cast<std::size_t>(k)];
         try {
@@ -47,9 +47,10 @@ void check_textured_triangle(const std::array<TexturedVertex, 3>& v,
             }
         }
     }
-    if (span < min_mapper_span || span > max_mapper_span) {
-        throw Error(fmt::format("mapper settings: span = {} pixels (must be in [{}, {}])",
-                                span, min_mapper_span, max_mapper_span));
+    if (piece < min_mapper_piece || piece > max_mapper_piece) {
+        throw Error(
+            fmt::format("mapper settings: piece = {} pixels (must be in [{}, {}])", piece,
+                        min_mapper_piece, max_mapper_piece));
     }
 }
 

@@ -24,7 +24,7 @@
 //   - quadratic_subdivided does the same on pieces of `span` pixels.
 // Precision picks the inner loop's arithmetic: float, double, or fixed point with
 // texel coordinates held as 16.16 (U = u * 2^16); the fixed loops take the texel index
-// floor((U + bias - 2^15) / 2^16) with the bias of TexelRounding.
+// floor((U + modifier - 2^15) / 2^16) with the modifier of TexelRounding.
 #pragma once
 
 #include "exactpixels/base/floor_to_int.hpp"
@@ -56,12 +56,12 @@ inline constexpr int texel_fraction_bits = 16;
 inline constexpr std::int32_t texel_scale = std::int32_t{1} << texel_fraction_bits;
 
 /// How a fixed-point inner loop turns U = u * D into a texel index:
-/// floor((U + bias - D/2) / D). bias = D/2 gives floor(u) (rule 1); chapter 4's
-/// rounding_modifier gives the bias of ceil(u) - 1 (rule 2). Default: rule 1 in both
+/// floor((U + modifier - D/2) / D). modifier = D/2 gives floor(u) (rule 1); chapter 4's
+/// rounding_modifier gives the modifier of ceil(u) - 1 (rule 2). Default: rule 1 in both
 /// directions. Chapter 4 picks it.
 struct TexelRounding {
-    std::int32_t u_bias = 1 << 15; ///< bias added to U before the floor division
-    std::int32_t v_bias = 1 << 15; ///< bias added to V before the floor division
+    std::int32_t u_modifier = 1 << 15; ///< modifier added to U before the floor division
+    std::int32_t v_modifier = 1 << 15; ///< modifier added to V before the floor division
 };
 
 /// A rounding chosen for each pixel row: given the triangle and the height y of the row's
@@ -81,28 +81,30 @@ struct MapperSettings {
     RowRounding row_rounding = nullptr;
 };
 
-/// The texel index a mapper picks from a 16.16 coordinate U: floor((U + bias - D/2) / D).
-constexpr int fixed_texel_index(std::int32_t U, std::int32_t bias) {
-    const std::int64_t shifted = std::int64_t{U} + bias - texel_scale / 2;
+/// The texel index a mapper picks from a 16.16 coordinate U:
+/// floor((U + modifier - D/2) / D).
+constexpr int fixed_texel_index(std::int32_t U, std::int32_t modifier) {
+    const std::int64_t shifted = std::int64_t{U} + modifier - texel_scale / 2;
     return static_cast<int>(shifted >> texel_fraction_bits); // >> floors (C++20)
 }
 
-/// The texel index for a real coordinate u under the same bias: floor(u) for bias = D/2,
-/// ceil(u) - 1 for rule 2's bias. Agrees with fixed_texel_index(u * D, bias) whenever
-/// u * D is an integer. Every real mapper calls it for every pixel, twice: within
-/// |u| < 2^30 it rounds with floor_to_int and ceil_to_int (base/floor_to_int.hpp), which
-/// are exact and need no call into the maths library; beyond, std::floor and std::ceil.
+/// The texel index for a real coordinate u under the same modifier: floor(u) for
+/// modifier = D/2, ceil(u) - 1 for rule 2's modifier. Agrees with
+/// fixed_texel_index(u * D, modifier) whenever u * D is an integer. Every real mapper
+/// calls it for every pixel, twice: within |u| < 2^30 it rounds with floor_to_int and
+/// ceil_to_int (base/floor_to_int.hpp), which are exact and need no call into the maths
+/// library; beyond, std::floor and std::ceil.
 /// Always inlined: where a file instantiates the mappers twice (chapter 7's renderer
 /// with its lean drawing path), GCC otherwise calls it, two calls per pixel.
-[[gnu::always_inline]] inline int real_texel_index(double u, std::int32_t bias) {
-    const std::int32_t offset = bias - texel_scale / 2; // b' in floor((U + b') / D)
+[[gnu::always_inline]] inline int real_texel_index(double u, std::int32_t modifier) {
+    const std::int32_t offset = modifier - texel_scale / 2; // b' in floor((U + b') / D)
     const bool small = std::abs(u) < 0x1p30;            // false for NaN too
     if (offset >= 0) {
         const double x = u + double(offset) / texel_scale;
         return small ? floor_to_int(x) : static_cast<int>(std::floor(x));
     }
-    // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1: with rule 2's bias
-    // this is ceil(u) - 1.
+    // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1: with rule 2's
+    // modifier this is ceil(u) - 1.
     const double x = u + double(offset + 1) / texel_scale;
     return (small ? ceil_to_int(x) : static_cast<int>(std::ceil(x))) - 1;
 }
@@ -175,7 +177,6 @@ PerspectiveSpan<double> perspective_span(const TexturePlanes& planes, Span s);
 /// The same for the affine mapper.
 AffineSpan<double> affine_span(const TexturePlanes& planes, Span s);
 
-//> map-span
 /// Runs `mapper` on one span in the inner-loop arithmetic `precision` and calls
 /// texel(k, i, j, u, v) for its pixel k = 0, 1, ...: the texel indices picked with the
 /// rounding `r` (before wrapping) and the coordinate computed there, texels. The one
@@ -186,11 +187,11 @@ void map_span(Mapper mapper, Precision precision, TexelRounding r,
               const PerspectiveSpan<double>& ps, const AffineSpan<double>& as,
               TexelFn&& texel) {
     const auto real = [&](int k, auto u, auto v) {
-        texel(k, real_texel_index(u, r.u_bias), real_texel_index(v, r.v_bias), double(u),
-              double(v));
+        texel(k, real_texel_index(u, r.u_modifier), real_texel_index(v, r.v_modifier),
+              double(u), double(v));
     };
     const auto fixed = [&](int k, std::int32_t U, std::int32_t V) {
-        texel(k, fixed_texel_index(U, r.u_bias), fixed_texel_index(V, r.v_bias),
+        texel(k, fixed_texel_index(U, r.u_modifier), fixed_texel_index(V, r.v_modifier),
               double(U) / texel_scale, double(V) / texel_scale);
     };
     const auto run = [&](const auto& p, const auto& a, auto&& emit) {
@@ -200,11 +201,11 @@ void map_span(Mapper mapper, Precision precision, TexelRounding r,
         case MapperKind::affine:
             return map_span_affine(a, emit);
         case MapperKind::subdivided:
-            return map_span_subdivided(p, mapper.span, emit);
+            return map_span_subdivided(p, mapper.piece, emit);
         case MapperKind::quadratic:
             return map_span_quadratic(p, emit);
         case MapperKind::quadratic_subdivided:
-            return map_span_quadratic_subdivided(p, mapper.span, emit);
+            return map_span_quadratic_subdivided(p, mapper.piece, emit);
         }
     };
     switch (precision) {
@@ -219,15 +220,14 @@ void map_span(Mapper mapper, Precision precision, TexelRounding r,
         case MapperKind::affine:
             return map_span_affine_fixed(as, fixed);
         case MapperKind::subdivided:
-            return map_span_subdivided_fixed(ps, mapper.span, fixed);
+            return map_span_subdivided_fixed(ps, mapper.piece, fixed);
         case MapperKind::quadratic:
             return map_span_quadratic_fixed(ps, fixed);
         case MapperKind::quadratic_subdivided:
-            return map_span_quadratic_subdivided_fixed(ps, mapper.span, fixed);
+            return map_span_quadratic_subdivided_fixed(ps, mapper.piece, fixed);
         }
     }
 }
-//< map-span
 
 /// Draws the triangle into `target`, each covered pixel taking the colour of the texel
 /// the mapper picks (wrapped by settings.wrap). Checks its input first: on Error nothing

@@ -19,7 +19,7 @@ namespace exactpixels {
 
 namespace {
 
-/// The bias of rule 1, floor(u): the texel the teaching path picks (TexelRounding).
+/// The modifier of rule 1, floor(u): the texel the teaching path picks (TexelRounding).
 constexpr std::int32_t rule_1 = texel_scale / 2;
 
 /// Checks every triangle before anything is drawn; Error names the triangle.
