@@ -10,10 +10,10 @@
 
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/error.hpp"
-#include "exactpixels/raster/block_masks.hpp"
+#include "exactpixels/fast/block_masks.hpp"
+#include "exactpixels/fast/row_runs.hpp"
 #include "exactpixels/raster/coverage_reader.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
-#include "exactpixels/raster/row_runs.hpp"
 
 #include <fmt/format.h>
 

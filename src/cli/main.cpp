@@ -6,7 +6,7 @@
 
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/error.hpp"
-#include "exactpixels/base/simd.hpp"
+#include "exactpixels/fast/simd.hpp"
 
 #include <fmt/format.h>
 
@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
     exactpixels::remove_temporaries_on_signals();
 
     // EXACTPIXELS_SIMD, when set, must name a vector instruction set this CPU has
-    // (base/simd.hpp): refused at once, before any command runs.
+    // (fast/simd.hpp): refused at once, before any command runs.
     try {
         (void)exactpixels::chosen_simd();
     } catch (const exactpixels::Error& error) {

@@ -11,8 +11,8 @@
 // Units are span_mappers.hpp's. SimdVariant::portable runs the plain scalar loop.
 #pragma once
 
-#include "exactpixels/base/simd.hpp"
-#include "exactpixels/texture/exact_lanes_kernel.hpp"
+#include "exactpixels/fast/exact_lanes_kernel.hpp"
+#include "exactpixels/fast/simd.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
 #include "exactpixels/texture/texture.hpp"
 

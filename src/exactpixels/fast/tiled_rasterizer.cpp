@@ -1,13 +1,13 @@
-#include "exactpixels/raster/tiled_rasterizer.hpp"
+#include "exactpixels/fast/tiled_rasterizer.hpp"
 
 #include "exactpixels/base/error.hpp"
-#include "exactpixels/raster/block_masks.hpp"
-#include "exactpixels/raster/depth_lanes.hpp"
+#include "exactpixels/fast/block_masks.hpp"
+#include "exactpixels/fast/depth_lanes.hpp"
+#include "exactpixels/fast/row_runs.hpp"
+#include "exactpixels/fast/sign_lanes4.hpp"
+#include "exactpixels/fast/tiny_triangle.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/gradients.hpp"
-#include "exactpixels/raster/row_runs.hpp"
-#include "exactpixels/raster/sign_lanes4.hpp"
-#include "exactpixels/raster/tiny_triangle.hpp"
 
 #include <fmt/format.h>
 
