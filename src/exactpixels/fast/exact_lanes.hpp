@@ -1,5 +1,5 @@
 // exact_lanes.hpp: chapter 3's exact mapper with 2, 4 or 8 pixels' divides at once, in
-// the vector instruction set chosen at run time (base/simd.hpp): a named fast variant
+// the vector instruction set chosen at run time (fast/simd.hpp): a named fast variant
 // of map_span_exact and of the textured runs' per-pixel loop, with their bits.
 //
 // Usage:
