@@ -5,6 +5,7 @@
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/raster/screen_plane.hpp"
 #include "exactpixels/scene/camera.hpp"
+#include "exactpixels/scene/corner_quotients.hpp"
 #include "exactpixels/scene/filter_stage.hpp"
 #include "exactpixels/texture/perspective.hpp"
 #include "exactpixels/texture/rounding.hpp"
