@@ -270,7 +270,7 @@ TiledRenderer::TiledRenderer(int threads)
 
 TiledRenderer::~TiledRenderer() = default;
 
-//> bin-chunk
+//> draw-tiled
 namespace {
 /// The frame in tiles: tile_size squares, `across` to a row, `count` in all.
 struct TileGrid {
@@ -328,9 +328,6 @@ void bin_chunk(const RenderTarget& target, std::span<const FlatTriangle> triangl
         });
     }
 }
-//< bin-chunk
-
-//> draw-tile
 
 /// Drawing one tile's triangles of one chunk, in order, each tested against the whole
 /// tile first (@eq:edge-block): outside, nothing; inside, plain runs; else exact runs.
@@ -363,9 +360,6 @@ void draw_tile(const RenderTarget& target, std::span<const FlatTriangle> triangl
     }
 }
 } // namespace
-//< draw-tile
-
-//> draw-tiled
 
 void TiledRenderer::State::start(std::size_t triangles, std::size_t chunk_total,
                                  std::size_t tiles) {
