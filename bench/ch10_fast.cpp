@@ -71,16 +71,16 @@
 // the textured runs out: callgrind.sh counts the default run only).
 //
 // Vector instruction sets, only with `--simd` (chapters/10-fast-pixels/simd_run.sh):
-// textured/runs_SET/AREA/1 for every SET this CPU has (base/simd.hpp: portable, sse2,
+// textured/runs_SET/AREA/1 for every SET this CPU has (fast/simd.hpp: portable, sse2,
 // avx2, avx512, neon), the runs forced to it, and textured/llvmpipe/AREA/1, at AREA 0
 // and 1000. `--once=textured/runs_SET/AREA` counts one. EXACTPIXELS_SIMD, if set, must
 // name an instruction set this CPU has (else exit 2, one line).
 #include "exactpixels/base/error.hpp"
-#include "exactpixels/base/simd.hpp"
+#include "exactpixels/fast/simd.hpp"
+#include "exactpixels/fast/textured_runs.hpp"
+#include "exactpixels/fast/tiled_rasterizer.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
-#include "exactpixels/raster/tiled_rasterizer.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
-#include "exactpixels/texture/textured_runs.hpp"
 #include "triangle_sets.hpp"
 
 #include <GL/osmesa.h>

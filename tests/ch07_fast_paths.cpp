@@ -11,6 +11,7 @@
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/lab/model_generator.hpp"
 #include "exactpixels/scene/camera.hpp"
+#include "exactpixels/scene/corner_quotients.hpp"
 #include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"

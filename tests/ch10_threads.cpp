@@ -5,8 +5,8 @@
 // fan sets, with and without depth, however often it is reused.
 #include "ch02_grid.hpp"
 #include "exactpixels/base/error.hpp"
-#include "exactpixels/base/worker_pool.hpp"
-#include "exactpixels/raster/tiled_rasterizer.hpp"
+#include "exactpixels/fast/tiled_rasterizer.hpp"
+#include "exactpixels/fast/worker_pool.hpp"
 #include "support/printing.hpp"
 #include "support/meshes.hpp"
 

@@ -1,15 +1,15 @@
-// Every vector instruction set this machine runs (base/simd.hpp) gives the teaching
+// Every vector instruction set this machine runs (fast/simd.hpp) gives the teaching
 // path's pixels bit for bit: the exact mapper's u and v, the textured runs and the scene
 // renderer's shipped scenes, each variant forced in turn. And EXACTPIXELS_SIMD refuses
 // a value that names no variant, or one this CPU lacks, with exit 2 and one line.
 #include "exactpixels/base/error.hpp"
-#include "exactpixels/base/simd.hpp"
+#include "exactpixels/fast/exact_lanes.hpp"
+#include "exactpixels/fast/simd.hpp"
+#include "exactpixels/fast/textured_runs.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
-#include "exactpixels/texture/exact_lanes.hpp"
 #include "exactpixels/texture/texture.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
-#include "exactpixels/texture/textured_runs.hpp"
 #include "support/printing.hpp"
 #include "support/process.hpp"
 

@@ -35,7 +35,7 @@
   // start-up code) are never called by the figures' functions, except the clock, which
   // chapter 7's renderer reads to time its stages (render_report.hpp): it is given
   // performance.now(); and the environment, which the renderer reads once for
-  // EXACTPIXELS_SIMD (base/simd.hpp): it is given an empty one, so the module takes its
+  // EXACTPIXELS_SIMD (fast/simd.hpp): it is given an empty one, so the module takes its
   // only variant, portable. Every other call fails loudly.
   function wasiStubs(memory) {
     const names = ["fd_close", "fd_seek", "fd_write", "proc_exit"];

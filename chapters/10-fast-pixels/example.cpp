@@ -5,7 +5,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/framebuffer.hpp"
 #include "exactpixels/base/png.hpp"
-#include "exactpixels/raster/tiled_rasterizer.hpp"
+#include "exactpixels/fast/tiled_rasterizer.hpp"
 
 #include <cstdint>
 #include <cstdio>

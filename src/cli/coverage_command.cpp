@@ -10,10 +10,12 @@
 
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/error.hpp"
-#include "exactpixels/raster/block_masks.hpp"
 #include "exactpixels/raster/coverage_reader.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
-#include "exactpixels/raster/row_runs.hpp"
+#ifdef EXACTPIXELS_HAS_FAST // chapter 10's layer (a chapter 2 kit has not got it)
+#include "exactpixels/fast/block_masks.hpp"
+#include "exactpixels/fast/row_runs.hpp"
+#endif
 
 #include <fmt/format.h>
 
@@ -30,6 +32,7 @@ namespace {
 /// traversals (covered runs per row, 8 x 8 masks).
 enum class CoverageRasterizer { scanline, edge, edge8x8, runs, masks };
 
+#ifdef EXACTPIXELS_HAS_FAST
 /// Adds 1 to counts[y * width + x] for every pixel the triangle v (pixels) covers, drawn
 /// by chapter 10's runs or masks (fixed point). Throws Error naming a vertex out of range.
 void add_fast_coverage(std::vector<int>& counts, Viewport viewport,
@@ -61,12 +64,30 @@ void add_fast_coverage(std::vector<int>& counts, Viewport viewport,
         traverse_block_masks(s, r, [&](BlockMask m) { for_each_pixel(m, count); });
     }
 }
+#endif
 
 /// Chapters 1 and 2's rasterizer for one of theirs (runs and masks are chapter 10's).
 RasterizerKind chapter2_kind(CoverageRasterizer kind) {
     return kind == CoverageRasterizer::scanline ? RasterizerKind::scanline
            : kind == CoverageRasterizer::edge   ? RasterizerKind::edge
                                                 : RasterizerKind::edge8x8;
+}
+
+/// Reads the frame and the triangles from standard input and counts the coverage with
+/// `kind` in `precision`; sets `viewport` to the frame read.
+std::vector<int> count_input(CoverageRasterizer kind, CoveragePrecision precision,
+                             Viewport& viewport) {
+#ifdef EXACTPIXELS_HAS_FAST
+    if (kind == CoverageRasterizer::runs || kind == CoverageRasterizer::masks) {
+        return count_coverage(
+            std::cin,
+            [kind](std::vector<int>& c, Viewport frame, const std::array<Point2, 3>& v) {
+                add_fast_coverage(c, frame, v, kind);
+            },
+            viewport);
+    }
+#endif
+    return count_coverage(std::cin, chapter2_kind(kind), precision, viewport);
 }
 
 } // namespace
@@ -85,8 +106,11 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
         {"scanline", CoverageRasterizer::scanline},
         {"edge", CoverageRasterizer::edge},
         {"edge8x8", CoverageRasterizer::edge8x8},
+#ifdef EXACTPIXELS_HAS_FAST
         {"runs", CoverageRasterizer::runs},
-        {"masks", CoverageRasterizer::masks}};
+        {"masks", CoverageRasterizer::masks},
+#endif
+    };
     const std::map<std::string, CoveragePrecision> precisions{
         {"fixed", CoveragePrecision::fixed}, {"float", CoveragePrecision::floating}};
     command
@@ -126,15 +150,7 @@ void add_coverage_command(CLI::App& app, int& exit_code) {
             };
             std::vector<int> counts;
             try {
-                counts = fast ? count_coverage(
-                                    std::cin,
-                                    [kind](std::vector<int>& c, Viewport frame,
-                                           const std::array<Point2, 3>& v) {
-                                        add_fast_coverage(c, frame, v, kind);
-                                    },
-                                    viewport)
-                              : count_coverage(std::cin, chapter2_kind(kind),
-                                               options->precision, viewport);
+                counts = count_input(kind, options->precision, viewport);
             } catch (const Error&) {
                 if (std::ferror(stdin)) {
                     throw unread();

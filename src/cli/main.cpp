@@ -6,7 +6,9 @@
 
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/error.hpp"
-#include "exactpixels/base/simd.hpp"
+#ifdef EXACTPIXELS_HAS_FAST // chapter 10's layer (an earlier chapter's kit has not got it)
+#include "exactpixels/fast/simd.hpp"
+#endif
 
 #include <fmt/format.h>
 
@@ -25,13 +27,15 @@ int main(int argc, char** argv) {
     exactpixels::remove_temporaries_on_signals();
 
     // EXACTPIXELS_SIMD, when set, must name a vector instruction set this CPU has
-    // (base/simd.hpp): refused at once, before any command runs.
+    // (fast/simd.hpp): refused at once, before any command runs.
+#ifdef EXACTPIXELS_HAS_FAST
     try {
         (void)exactpixels::chosen_simd();
     } catch (const exactpixels::Error& error) {
         exactpixels::cli::print_error("", error.what());
         return exactpixels::cli::exit_bad_input;
     }
+#endif
 
     CLI::App app{"Exact Pixels: the book's rasterizers and texture mappers from the "
                  "command line"};

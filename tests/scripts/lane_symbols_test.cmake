@@ -1,5 +1,5 @@
 # lane_symbols_test.cmake: the objects of one instruction set's vector kernels
-# (texture/exact_lanes.inl compiled for SET) define no symbol that another object could
+# (fast/exact_lanes.inl compiled for SET) define no symbol that another object could
 # share: every global symbol lies in exactpixels::simd_SET. An inline function or template
 # (std:: ones too) instantiated there would be a weak symbol the linker may keep for every
 # caller, so that a CPU without SET stops on an illegal instruction (CTest

@@ -1,11 +1,12 @@
 #include "exactpixels/scene/span_stages.hpp"
 
 #include "exactpixels/base/fixed_point.hpp"
+#include "exactpixels/fast/exact_lanes.hpp"
 #include "exactpixels/raster/scanline.hpp"
 #include "exactpixels/raster/screen_plane.hpp"
 #include "exactpixels/scene/camera.hpp"
+#include "exactpixels/scene/corner_quotients.hpp"
 #include "exactpixels/scene/filter_stage.hpp"
-#include "exactpixels/texture/exact_lanes.hpp"
 #include "exactpixels/texture/perspective.hpp"
 #include "exactpixels/texture/rounding.hpp"
 

@@ -8,7 +8,7 @@
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
-#include "exactpixels/base/simd.hpp"
+#include "exactpixels/fast/simd.hpp"
 #include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/render_report.hpp"

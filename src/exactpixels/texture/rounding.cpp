@@ -5,30 +5,6 @@ namespace exactpixels {
 
 namespace {
 
-/// 1/w, u/w and v/w at the three vertices, and their screen gradients.
-struct ProjectedPlanes {
-    CornerQuotients at_corners;
-    Gradient<double> dq, dpu, dpv;
-};
-
-ProjectedPlanes projected_planes(const std::array<TexturedVertex, 3>& v,
-                                 const CornerQuotients& q) {
-    const std::array<glm::dvec2, 3> p{v[0].position, v[1].position, v[2].position};
-    return {q, closed_form_gradient(p, q.one_w), closed_form_gradient(p, q.u_w),
-            closed_form_gradient(p, q.v_w)};
-}
-
-/// The two coordinates at the screen point `at` from the planes.
-std::array<ProjectedCoordinate<double>, 2> coordinates_at(const ProjectedPlanes& planes,
-                                                         const std::array<TexturedVertex, 3>& v,
-                                                         Point2 at) {
-    const CornerQuotients& q = planes.at_corners;
-    const Point2 d = at - v[0].position; // move from vertex 0 to `at`
-    const ProjectedCoordinate<double> u0{q.u_w[0], q.one_w[0], planes.dpu, planes.dq};
-    const ProjectedCoordinate<double> v0{q.v_w[0], q.one_w[0], planes.dpv, planes.dq};
-    return {moved_by(u0, d.x, d.y), moved_by(v0, d.x, d.y)};
-}
-
 /// The rule on the row through the point of u. When the x numerator is zero the row is
 /// a line of constant u, and the sign of du/dy = numerator_y / q^2 is taken on the side
 /// of the row where q > 0 (the visible side): numerator_y / q has that sign everywhere.
@@ -41,22 +17,39 @@ RoundingRule rule_on_row(const ProjectedCoordinate<double>& c) {
 
 std::array<ProjectedCoordinate<double>, 2>
 projected_coordinates(const std::array<TexturedVertex, 3>& v, Point2 at) {
-    return coordinates_at(projected_planes(v, corner_quotients(v)), v, at);
+    return projected_coordinates(
+        v, {v[0].uv.x / v[0].w, v[1].uv.x / v[1].w, v[2].uv.x / v[2].w},
+        {v[0].uv.y / v[0].w, v[1].uv.y / v[1].w, v[2].uv.y / v[2].w},
+        {1.0 / v[0].w, 1.0 / v[1].w, 1.0 / v[2].w}, at);
+}
+
+std::array<ProjectedCoordinate<double>, 2>
+projected_coordinates(const std::array<TexturedVertex, 3>& v,
+                      const std::array<double, 3>& u_w, const std::array<double, 3>& v_w,
+                      const std::array<double, 3>& one_w, Point2 at) {
+    // u/w, v/w and 1/w are planes (@eq:linear-in-screen): their gradients, and the move
+    // from vertex 0 to `at`.
+    const std::array<glm::dvec2, 3> p{v[0].position, v[1].position, v[2].position};
+    const Gradient<double> dq = closed_form_gradient(p, one_w);
+    const Gradient<double> dpu = closed_form_gradient(p, u_w);
+    const Gradient<double> dpv = closed_form_gradient(p, v_w);
+    const Point2 d = at - v[0].position;
+    const ProjectedCoordinate<double> u0{u_w[0], one_w[0], dpu, dq};
+    const ProjectedCoordinate<double> v0{v_w[0], one_w[0], dpv, dq};
+    return {moved_by(u0, d.x, d.y), moved_by(v0, d.x, d.y)};
 }
 
 TexelRounding choose_rounding(const Gradient<double>& du, const Gradient<double>& dv) {
     return texel_rounding(choose_rule(du.dx, du.dy), choose_rule(dv.dx, dv.dy));
 }
 
-//> choose-rounding
-TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v) {
-    return choose_rounding(v, corner_quotients(v));
+Point2 centroid(const std::array<TexturedVertex, 3>& v) {
+    return (v[0].position + v[1].position + v[2].position) / 3.0;
 }
 
-TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v,
-                              const CornerQuotients& q) {
-    const Point2 centroid = (v[0].position + v[1].position + v[2].position) / 3.0;
-    const auto [u, t] = coordinates_at(projected_planes(v, q), v, centroid);
+//> choose-rounding
+TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v) {
+    const auto [u, t] = projected_coordinates(v, centroid(v));
     return texel_rounding(choose_rule(u), choose_rule(t));
 }
 

@@ -173,18 +173,23 @@ template <class Real> RoundingRule choose_rule(const ProjectedCoordinate<Real>& 
 std::array<ProjectedCoordinate<double>, 2>
 projected_coordinates(const std::array<TexturedVertex, 3>& v, Point2 at);
 
+/// The same from the quotients at the corners, divided already: u_w[k] = u/w, v_w[k] =
+/// v/w and one_w[k] = 1/w at v[k].
+std::array<ProjectedCoordinate<double>, 2>
+projected_coordinates(const std::array<TexturedVertex, 3>& v,
+                      const std::array<double, 3>& u_w, const std::array<double, 3>& v_w,
+                      const std::array<double, 3>& one_w, Point2 at);
+
 /// The rounding for an affine mapping from the gradients of u and of v.
 TexelRounding choose_rounding(const Gradient<double>& du, const Gradient<double>& dv);
+
+/// The centroid of the triangle's corners: where choose_rounding reads the numerators.
+Point2 centroid(const std::array<TexturedVertex, 3>& v);
 
 /// The rounding for a perspective-correct mapping of the triangle, from the numerators
 /// at its centroid. Exact for every row when the numerators keep their sign over the
 /// triangle (always when w is constant); see choose_rounding_on_row otherwise.
 TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v);
-
-/// The same from the corners' quotients q = corner_quotients(v), for a caller that has
-/// them already (the scene renderer's texture planes divide by the same w).
-TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v,
-                              const CornerQuotients& q);
 
 /// The rounding a mapper of `kind` needs for the triangle: the affine gradients of u
 /// and v for MapperKind::affine (it interpolates u and v themselves), the perspective

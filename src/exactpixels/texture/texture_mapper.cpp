@@ -54,30 +54,18 @@ void check_textured_triangle(const std::array<TexturedVertex, 3>& v,
     }
 }
 
-CornerQuotients corner_quotients(const std::array<TexturedVertex, 3>& v) {
-    CornerQuotients q{};
-    for (std::size_t k = 0; k < 3; ++k) {
-        q.u_w[k] = v[k].uv.x / v[k].w;
-        q.v_w[k] = v[k].uv.y / v[k].w;
-        q.one_w[k] = 1.0 / v[k].w;
-    }
-    return q;
-}
-
 TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
                              const std::array<TexturedVertex, 3>& v, bool affine) {
-    const CornerQuotients q = corner_quotients(v);
-    return texture_planes(corners, v, q, plane_through(corners, q.one_w), affine);
-}
-
-TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
-                             const std::array<TexturedVertex, 3>& v,
-                             const CornerQuotients& q, const ScreenPlane& one_w,
-                             bool affine) {
     // u/w, v/w and 1/w are linear in screen space (@eq:linear-in-screen); so are u and
     // v of the affine mapper, by assumption.
     TexturePlanes planes{
-        plane_through(corners, q.u_w), plane_through(corners, q.v_w), one_w, {}, {}};
+        plane_through(corners,
+                      {v[0].uv.x / v[0].w, v[1].uv.x / v[1].w, v[2].uv.x / v[2].w}),
+        plane_through(corners,
+                      {v[0].uv.y / v[0].w, v[1].uv.y / v[1].w, v[2].uv.y / v[2].w}),
+        plane_through(corners, {1.0 / v[0].w, 1.0 / v[1].w, 1.0 / v[2].w}),
+        {},
+        {}};
     if (affine) {
         planes.u = plane_through(corners, {v[0].uv.x, v[1].uv.x, v[2].uv.x});
         planes.v = plane_through(corners, {v[0].uv.y, v[1].uv.y, v[2].uv.y});

@@ -144,31 +144,11 @@ struct TexturePlanes {
     ScreenPlane v;     ///< v (affine mapper)
 };
 
-/// u/w, v/w and 1/w at each corner of a textured triangle, one divide each: the values
-/// that texture_planes and chapter 4's choose_rounding interpolate, for a caller that
-/// needs both to divide once.
-struct CornerQuotients {
-    std::array<double, 3> u_w;   ///< u/w at corners 0, 1, 2
-    std::array<double, 3> v_w;   ///< v/w at corners 0, 1, 2
-    std::array<double, 3> one_w; ///< 1/w at corners 0, 1, 2
-};
-
-/// The quotients at the corners of `v`.
-CornerQuotients corner_quotients(const std::array<TexturedVertex, 3>& v);
-
 /// The planes of the triangle whose corners, snapped to 1/256 px, are at `corners`.
 /// Without `affine` the planes u and v are left zero: a caller whose spans never run
 /// the affine mapper need not set them up.
 TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
                              const std::array<TexturedVertex, 3>& v, bool affine = true);
-
-/// The same planes from the quotients q = corner_quotients(v) and the 1/w plane
-/// one_w = plane_through(corners, q.one_w), which a depth stage that stores 1/w has
-/// already: equal to texture_planes(corners, v, affine), value for value.
-TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
-                             const std::array<TexturedVertex, 3>& v,
-                             const CornerQuotients& q, const ScreenPlane& one_w,
-                             bool affine);
 
 /// One row span's setup for the perspective mappers: the planes at the first pixel's
 /// centre (x_begin + 0.5, y + 0.5) and their steps per pixel.

@@ -12,7 +12,7 @@
 // This file calls no inline function or template of another header, so that nothing
 // compiled here for a wide instruction set can stand in for a shared function (see
 // exact_lanes_kernel.hpp).
-#include "exactpixels/texture/exact_lanes_kernel.hpp"
+#include "exactpixels/fast/exact_lanes_kernel.hpp"
 
 namespace exactpixels::EXACTPIXELS_LANES_SET {
 

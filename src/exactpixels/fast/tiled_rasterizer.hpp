@@ -20,7 +20,7 @@
 
 #include "exactpixels/base/fixed_point.hpp"
 #include "exactpixels/base/framebuffer.hpp"
-#include "exactpixels/base/worker_pool.hpp"
+#include "exactpixels/fast/worker_pool.hpp"
 #include "exactpixels/raster/edge_function.hpp"
 
 #include <array>

@@ -9,7 +9,7 @@
 // One binary carries the fast variants' code for several instruction sets: on x86-64
 // baseline SSE2 (two doubles per register), AVX2 (four) and AVX-512 (eight), on ARM64
 // NEON (two); `portable` is the plain scalar loop, everywhere. Each set's code is one
-// source text compiled once per set with that set's flags (texture/exact_lanes.inl), and
+// source text compiled once per set with that set's flags (fast/exact_lanes.inl), and
 // every one without contraction (-ffp-contract=off), so that every lane does what the
 // scalar code does: IEEE division, multiplication and addition round each lane exactly as
 // they round a scalar, and every variant gives the same bits (tested per variant).

@@ -14,9 +14,9 @@
 // handed out; a mask of all ones (BlockMask::full) is a whole block inside.
 #pragma once
 
+#include "exactpixels/fast/sign_lanes.hpp"
 #include "exactpixels/raster/edge_function.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
-#include "exactpixels/raster/sign_lanes.hpp"
 
 #include <algorithm>
 #include <array>

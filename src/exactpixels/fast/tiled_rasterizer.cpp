@@ -1,13 +1,13 @@
-#include "exactpixels/raster/tiled_rasterizer.hpp"
+#include "exactpixels/fast/tiled_rasterizer.hpp"
 
 #include "exactpixels/base/error.hpp"
-#include "exactpixels/raster/block_masks.hpp"
-#include "exactpixels/raster/depth_lanes.hpp"
+#include "exactpixels/fast/block_masks.hpp"
+#include "exactpixels/fast/depth_lanes.hpp"
+#include "exactpixels/fast/row_runs.hpp"
+#include "exactpixels/fast/sign_lanes4.hpp"
+#include "exactpixels/fast/tiny_triangle.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
 #include "exactpixels/raster/gradients.hpp"
-#include "exactpixels/raster/row_runs.hpp"
-#include "exactpixels/raster/sign_lanes4.hpp"
-#include "exactpixels/raster/tiny_triangle.hpp"
 
 #include <fmt/format.h>
 
@@ -247,6 +247,20 @@ struct TiledRenderer::State {
     std::atomic<std::size_t> chunks_done{0}; ///< chunks binned (or failed)
     std::vector<TileCounter> bands;          ///< per thread: its band of tiles
     std::atomic<bool> failed{false};         ///< a chunk could not be binned: no drawing
+
+    /// Readies a draw of `triangles` triangles in `chunks` chunks over `tiles` tiles.
+    void start(std::size_t triangles, std::size_t chunks, std::size_t tiles);
+    /// The first tile of band b of a frame of `tiles` tiles (b = bands.size(): the end).
+    std::size_t band_begin(std::size_t b, std::size_t tiles) const {
+        return tiles * b / bands.size();
+    }
+    /// One thread's share of binning: bin(c) for every chunk c it takes from next_chunk,
+    /// then a wait for the other threads' chunks. False when a chunk failed (then
+    /// nothing is drawn); a failure of this thread's own is rethrown.
+    template <class BinFn> bool bin_chunks(std::size_t chunks, BinFn&& bin);
+    /// Thread `thread`'s share of drawing: draw(tile) for the tiles of its own band,
+    /// then for those left in the other bands.
+    template <class TileFn> void draw_bands(int thread, std::size_t tiles, TileFn&& draw);
 };
 //< tiled-state
 
@@ -257,133 +271,173 @@ TiledRenderer::TiledRenderer(int threads)
 TiledRenderer::~TiledRenderer() = default;
 
 //> draw-tiled
+namespace {
+/// The frame in tiles: tile_size squares, `across` to a row, `count` in all.
+struct TileGrid {
+    int across;        ///< tiles per row
+    std::size_t count; ///< tiles in the frame
+
+    /// The tiles of a width x height frame (the last row and column may be cut).
+    TileGrid(int width, int height)
+        : across((width + tile_size - 1) / tile_size),
+          count(static_cast<std::size_t>(across * ((height + tile_size - 1) / tile_size))) {}
+
+    /// Calls f(tile) for every tile that b meets.
+    template <class TileFn> void for_each_tile(const PixelRect& b, TileFn&& f) const {
+        for (int ty = b.y_begin / tile_size; ty * tile_size < b.y_end; ++ty) {
+            for (int tx = b.x_begin / tile_size; tx * tile_size < b.x_end; ++tx) {
+                f(static_cast<std::size_t>(ty * across + tx));
+            }
+        }
+    }
+
+    /// The part of b within tile `tile`.
+    PixelRect clip(const PixelRect& b, std::size_t tile) const {
+        const int tx = static_cast<int>(tile) % across;
+        const int ty = static_cast<int>(tile) / across;
+        return {std::max(b.x_begin, tx * tile_size), std::max(b.y_begin, ty * tile_size),
+                std::min(b.x_end, (tx + 1) * tile_size),
+                std::min(b.y_end, (ty + 1) * tile_size)};
+    }
+};
+
+/// Binning one chunk, the triangles [begin, end) of the submission order: each is set
+/// up (prepared[n]) and sorted into the chunk's bins of the tiles its bounds meet.
+void bin_chunk(const RenderTarget& target, std::span<const FlatTriangle> triangles,
+               std::size_t begin, std::size_t end, const TileGrid& grid,
+               std::span<Prepared> prepared, ChunkBins& chunk) {
+    std::vector<std::uint32_t>& first = chunk.first;
+    first.assign(grid.count + 1, 0);
+    for (std::size_t n = begin; n < end; ++n) {
+        Prepared& p = prepared[n];
+        p.edges = setup_edges(triangles[n].v);
+        p.bounds = p.edges.empty ? PixelRect{}
+                                 : pixel_bounds(triangles[n].v, viewport_of(target));
+        grid.for_each_tile(p.bounds, [&](std::size_t tile) { ++first[tile + 1]; });
+    }
+    for (std::size_t k = 0; k < grid.count; ++k) {
+        first[k + 1] += first[k];
+    }
+    std::vector<std::uint32_t>& bins = chunk.bins;
+    bins.resize(first[grid.count]);
+    std::vector<std::uint32_t>& end_of = chunk.fill;
+    end_of.assign(first.begin(), first.end() - 1);
+    for (std::size_t n = begin; n < end; ++n) {
+        grid.for_each_tile(prepared[n].bounds, [&](std::size_t tile) {
+            bins[end_of[tile]++] = static_cast<std::uint32_t>(n);
+        });
+    }
+}
+
+/// Drawing one tile's triangles of one chunk, in order, each tested against the whole
+/// tile first (@eq:edge-block): outside, nothing; inside, plain runs; else exact runs.
+void draw_tile(const RenderTarget& target, std::span<const FlatTriangle> triangles,
+               std::span<const Prepared> prepared, const TileGrid& grid,
+               std::size_t tile, const ChunkBins& from) {
+    for (std::uint32_t k = from.first[tile]; k < from.first[tile + 1]; ++k) {
+        const FlatTriangle& tri = triangles[from.bins[k]];
+        const Prepared& p = prepared[from.bins[k]];
+        const PixelRect r = grid.clip(p.bounds, tile);
+        const auto run = [&](Span s) { plot_run(target, tri, s); };
+        if (small(r)) {
+            if (!draw_tiny(target, tri, r)) {
+                walk(target, tri, p.edges, r);
+            }
+            continue;
+        }
+        switch (classify_block(p.edges, r)) {
+        case BlockClass::outside:
+            break;
+        case BlockClass::inside:
+            for (int y = r.y_begin; y < r.y_end; ++y) {
+                run(Span{y, r.x_begin, r.x_end});
+            }
+            break;
+        case BlockClass::partial:
+            traverse_runs_stepped(p.edges, r, run);
+            break;
+        }
+    }
+}
+} // namespace
+
+void TiledRenderer::State::start(std::size_t triangles, std::size_t chunk_total,
+                                 std::size_t tiles) {
+    prepared.resize(triangles);
+    if (chunks.size() < chunk_total) {
+        chunks.resize(chunk_total);
+    }
+    next_chunk = 0;
+    chunks_done = 0;
+    for (std::size_t b = 0; b < bands.size(); ++b) {
+        bands[b].next = band_begin(b, tiles);
+    }
+    failed = false;
+}
+
+template <class BinFn>
+bool TiledRenderer::State::bin_chunks(std::size_t chunk_total, BinFn&& bin) {
+    for (std::size_t c = next_chunk++; c < chunk_total; c = next_chunk++) {
+        try {
+            bin(c);
+        } catch (...) { // out of memory: count the chunk, so nobody waits; no drawing
+            failed = true;
+            if (++chunks_done == chunk_total) {
+                chunks_done.notify_all();
+            }
+            throw;
+        }
+        if (++chunks_done == chunk_total) {
+            chunks_done.notify_all(); // the last chunk is binned: every tile may be drawn
+        }
+    }
+    for (std::size_t d = chunks_done.load(); d < chunk_total; d = chunks_done.load()) {
+        chunks_done.wait(d); // another thread bins the last chunks
+    }
+    return !failed;
+}
+
+template <class TileFn>
+void TiledRenderer::State::draw_bands(int thread, std::size_t tiles, TileFn&& draw) {
+    // Thread t draws the tiles of band t first, the same rows of the frame every time,
+    // so they are still in its core's cache from the last frame; then it helps the
+    // other bands, taking their tiles from their counters.
+    for (std::size_t k = 0; k < bands.size(); ++k) {
+        const std::size_t b = (static_cast<std::size_t>(thread) + k) % bands.size();
+        std::atomic<std::size_t>& next = bands[b].next;
+        for (std::size_t tile = next++; tile < band_begin(b + 1, tiles); tile = next++) {
+            draw(tile);
+        }
+    }
+}
+
 void TiledRenderer::draw(const RenderTarget& target,
                          std::span<const FlatTriangle> triangles) {
     check_all(triangles);
-    const int tiles_x = (target.width + tile_size - 1) / tile_size;
-    const int tiles_y = (target.height + tile_size - 1) / tile_size;
-    const auto tile_count = static_cast<std::size_t>(tiles_x * tiles_y);
+    const TileGrid grid(target.width, target.height);
     const std::size_t chunks = chunk_count(triangles.size(), threads());
-    std::vector<Prepared>& prepared = state_->prepared;
-    prepared.resize(triangles.size());
-    if (state_->chunks.size() < chunks) {
-        state_->chunks.resize(chunks);
-    }
-    state_->next_chunk = 0;
-    state_->chunks_done = 0;
-    const std::size_t band_count = state_->bands.size();
-    const auto band_begin = [&](std::size_t b) { return tile_count * b / band_count; };
-    for (std::size_t b = 0; b < band_count; ++b) {
-        state_->bands[b].next = band_begin(b);
-    }
-    state_->failed = false;
-    const auto for_each_tile = [&](const PixelRect& b, auto&& f) {
-        for (int ty = b.y_begin / tile_size; ty * tile_size < b.y_end; ++ty) {
-            for (int tx = b.x_begin / tile_size; tx * tile_size < b.x_end; ++tx) {
-                f(static_cast<std::size_t>(ty * tiles_x + tx));
-            }
-        }
-    };
-    // Binning, by every thread at once: the triangles in `chunks` contiguous slices of
-    // the submission order, taken from a shared counter; chunk c's triangles [begin, end)
-    // are set up and sorted into chunk c's own bins.
-    const auto bin_chunk = [&](std::size_t c) {
-        const std::size_t begin = triangles.size() * c / chunks;
-        const std::size_t end = triangles.size() * (c + 1) / chunks;
-        std::vector<std::uint32_t>& first = state_->chunks[c].first;
-        first.assign(tile_count + 1, 0);
-        for (std::size_t n = begin; n < end; ++n) {
-            Prepared& p = prepared[n];
-            p.edges = setup_edges(triangles[n].v);
-            p.bounds = p.edges.empty ? PixelRect{}
-                                     : pixel_bounds(triangles[n].v, viewport_of(target));
-            for_each_tile(p.bounds, [&](std::size_t tile) { ++first[tile + 1]; });
-        }
-        for (std::size_t k = 0; k < tile_count; ++k) {
-            first[k + 1] += first[k];
-        }
-        std::vector<std::uint32_t>& bins = state_->chunks[c].bins;
-        bins.resize(first[tile_count]);
-        std::vector<std::uint32_t>& end_of = state_->chunks[c].fill;
-        end_of.assign(first.begin(), first.end() - 1);
-        for (std::size_t n = begin; n < end; ++n) {
-            for_each_tile(prepared[n].bounds, [&](std::size_t tile) {
-                bins[end_of[tile]++] = static_cast<std::uint32_t>(n);
-            });
-        }
-    };
-    // Drawing: a tile is one thread's; its triangles in order, each tested against the
-    // whole tile first (@eq:edge-block): outside, nothing; inside, plain runs; else exact
-    // runs. The triangles of one chunk's bins come in order, and the chunks follow each
-    // other, so walking the bins in chunk order is submission order.
-    const auto draw_tile = [&](std::size_t tile, const ChunkBins& from) {
-        const std::vector<std::uint32_t>& first = from.first;
-        const std::vector<std::uint32_t>& bins = from.bins;
-        const int tx = static_cast<int>(tile) % tiles_x;
-        const int ty = static_cast<int>(tile) / tiles_x;
-        for (std::uint32_t k = first[tile]; k < first[tile + 1]; ++k) {
-            const FlatTriangle& tri = triangles[bins[k]];
-            const Prepared& p = prepared[bins[k]];
-            const PixelRect r{std::max(p.bounds.x_begin, tx * tile_size),
-                              std::max(p.bounds.y_begin, ty * tile_size),
-                              std::min(p.bounds.x_end, (tx + 1) * tile_size),
-                              std::min(p.bounds.y_end, (ty + 1) * tile_size)};
-            const auto run = [&](Span s) { plot_run(target, tri, s); };
-            if (small(r)) {
-                if (!draw_tiny(target, tri, r)) {
-                    walk(target, tri, p.edges, r);
-                }
-                continue;
-            }
-            switch (classify_block(p.edges, r)) {
-            case BlockClass::outside:
-                break;
-            case BlockClass::inside:
-                for (int y = r.y_begin; y < r.y_end; ++y) {
-                    run(Span{y, r.x_begin, r.x_end});
-                }
-                break;
-            case BlockClass::partial:
-                traverse_runs_stepped(p.edges, r, run);
-                break;
-            }
-        }
-    };
+    state_->start(triangles.size(), chunks, grid.count);
+    const std::span<Prepared> prepared(state_->prepared);
+    const std::span<const ChunkBins> in_order(state_->chunks.data(), chunks);
     pool_.run([&](int thread) {
-        std::atomic<std::size_t>& done = state_->chunks_done;
-        for (std::size_t c = state_->next_chunk++; c < chunks; c = state_->next_chunk++) {
-            try {
-                bin_chunk(c);
-            } catch (...) { // out of memory: count the chunk, so nobody waits; no drawing
-                state_->failed = true;
-                if (++done == chunks) {
-                    done.notify_all();
-                }
-                throw;
-            }
-            if (++done == chunks) {
-                done.notify_all(); // the last chunk is binned: every tile may be drawn
-            }
-        }
-        for (std::size_t d = done.load(); d < chunks; d = done.load()) {
-            done.wait(d); // another thread bins the last chunks
-        }
-        if (state_->failed) {
+        // Binning, by every thread at once: the triangles in `chunks` contiguous slices
+        // of the submission order, taken from a shared counter, each into its own bins.
+        const bool binned = state_->bin_chunks(chunks, [&](std::size_t c) {
+            bin_chunk(target, triangles, triangles.size() * c / chunks,
+                      triangles.size() * (c + 1) / chunks, grid, prepared,
+                      state_->chunks[c]);
+        });
+        if (!binned) {
             return;
         }
-        const std::span<const ChunkBins> in_order(state_->chunks.data(), chunks);
-        // Thread t draws the tiles of band t first, the same rows of the frame every
-        // time, so they are still in its core's cache from the last frame; then it helps
-        // the other bands, taking their tiles from their counters.
-        for (std::size_t k = 0; k < band_count; ++k) {
-            const std::size_t b = (static_cast<std::size_t>(thread) + k) % band_count;
-            std::atomic<std::size_t>& next = state_->bands[b].next;
-            for (std::size_t tile = next++; tile < band_begin(b + 1); tile = next++) {
-                for (const ChunkBins& from : in_order) {
-                    draw_tile(tile, from);
-                }
+        // Drawing, a tile by one thread: the chunks' bins in chunk order, which is
+        // submission order (a chunk's bins are in order, and the chunks follow each
+        // other).
+        state_->draw_bands(thread, grid.count, [&](std::size_t tile) {
+            for (const ChunkBins& from : in_order) {
+                draw_tile(target, triangles, prepared, grid, tile, from);
             }
-        }
+        });
     });
 }
 //< draw-tiled

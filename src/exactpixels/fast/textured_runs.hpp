@@ -22,8 +22,8 @@
 // fast variants.
 #pragma once
 
-#include "exactpixels/base/simd.hpp"
-#include "exactpixels/raster/tiled_rasterizer.hpp"
+#include "exactpixels/fast/simd.hpp"
+#include "exactpixels/fast/tiled_rasterizer.hpp"
 #include "exactpixels/texture/texture.hpp"
 #include "exactpixels/texture/texture_mapper.hpp"
 

@@ -21,7 +21,7 @@
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
-#include "exactpixels/raster/tiled_rasterizer.hpp"
+#include "exactpixels/fast/tiled_rasterizer.hpp"
 
 #include <bit>
 #include <cstdint>

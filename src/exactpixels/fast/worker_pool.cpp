@@ -1,4 +1,4 @@
-#include "exactpixels/base/worker_pool.hpp"
+#include "exactpixels/fast/worker_pool.hpp"
 
 #include "exactpixels/base/error.hpp"
 

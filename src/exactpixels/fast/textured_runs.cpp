@@ -1,10 +1,10 @@
-#include "exactpixels/texture/textured_runs.hpp"
+#include "exactpixels/fast/textured_runs.hpp"
 
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/fixed_point.hpp"
+#include "exactpixels/fast/exact_lanes.hpp"
+#include "exactpixels/fast/row_runs.hpp"
 #include "exactpixels/raster/edge_rasterizer.hpp"
-#include "exactpixels/raster/row_runs.hpp"
-#include "exactpixels/texture/exact_lanes.hpp"
 
 #include <fmt/format.h>
 

@@ -1,5 +1,5 @@
 // exact_lanes.hpp: chapter 3's exact mapper with 2, 4 or 8 pixels' divides at once, in
-// the vector instruction set chosen at run time (base/simd.hpp): a named fast variant
+// the vector instruction set chosen at run time (fast/simd.hpp): a named fast variant
 // of map_span_exact and of the textured runs' per-pixel loop, with their bits.
 //
 // Usage:
@@ -11,8 +11,8 @@
 // Units are span_mappers.hpp's. SimdVariant::portable runs the plain scalar loop.
 #pragma once
 
-#include "exactpixels/base/simd.hpp"
-#include "exactpixels/texture/exact_lanes_kernel.hpp"
+#include "exactpixels/fast/exact_lanes_kernel.hpp"
+#include "exactpixels/fast/simd.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
 #include "exactpixels/texture/texture.hpp"
 

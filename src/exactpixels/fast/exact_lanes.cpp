@@ -1,4 +1,4 @@
-#include "exactpixels/texture/exact_lanes.hpp"
+#include "exactpixels/fast/exact_lanes.hpp"
 
 #include "exactpixels/base/floor_to_int.hpp"
 

@@ -1,4 +1,4 @@
-#include "exactpixels/base/simd.hpp"
+#include "exactpixels/fast/simd.hpp"
 
 #include "exactpixels/base/error.hpp"
 

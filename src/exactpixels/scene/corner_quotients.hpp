@@ -1,0 +1,45 @@
+// corner_quotients.hpp: the scene renderer's texture setup with one divide per quotient
+// (chapter 7). Chapter 3's texture planes and chapter 4's rounding each divide u, v and
+// 1 by every corner's w; the renderer divides once and hands both the quotients, and
+// takes the depth stage's 1/w plane as the texture's.
+//
+// Usage:
+//   const CornerQuotients q = corner_quotients(tv);
+//   const TexturePlanes planes = texture_planes(p, tv, q, one_w, /*affine=*/false);
+//   const TexelRounding r = choose_rounding(tv, q);
+//   // the planes of texture_planes(p, tv, false), the rounding of choose_rounding(tv),
+//   // value for value
+#pragma once
+
+#include "exactpixels/raster/screen_plane.hpp"
+#include "exactpixels/texture/rounding.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
+
+#include <array>
+
+namespace exactpixels {
+
+/// u/w, v/w and 1/w at each corner of a textured triangle, one divide each.
+struct CornerQuotients {
+    std::array<double, 3> u_w;   ///< u/w at corners 0, 1, 2
+    std::array<double, 3> v_w;   ///< v/w at corners 0, 1, 2
+    std::array<double, 3> one_w; ///< 1/w at corners 0, 1, 2
+};
+
+/// The quotients at the corners of `v`.
+CornerQuotients corner_quotients(const std::array<TexturedVertex, 3>& v);
+
+/// Chapter 3's texture_planes(corners, v, affine) from the quotients q =
+/// corner_quotients(v) and the 1/w plane one_w = plane_through(corners, q.one_w), which
+/// the depth stage has already: equal to it, value for value.
+TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
+                             const std::array<TexturedVertex, 3>& v,
+                             const CornerQuotients& q, const ScreenPlane& one_w,
+                             bool affine);
+
+/// Chapter 4's choose_rounding(v) from the quotients q = corner_quotients(v): the same
+/// rounding.
+TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v,
+                              const CornerQuotients& q);
+
+} // namespace exactpixels
