@@ -32,13 +32,13 @@ ms() {
     awk -F, -v want="\"textured/$1/1/process_time\"" '$1 == want { printf "%.3f", $4 / 1e6 }' "$scratch/median.csv"
 }
 count() {
-    LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch09_draw_once \
+    LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch10_draw_once \
         --smc-check=all-non-file --callgrind-out-file="$scratch/callgrind.out" \
         "$bench" --once="textured/$1" >/dev/null 2>"$scratch/vg.log"
     sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$scratch/vg.log"
 }
 {
-    echo "# Chapter 9: the textured runs in each vector instruction set against llvmpipe"
+    echo "# Chapter 10: the textured runs in each vector instruction set against llvmpipe"
     echo
     echo "Measured $start-$end UTC on $(uname -m) ($cpu, $(nproc --all) cores; load average $load_start at the start, $load_end at the end), compiler $(c++ --version | head -n 1), Mesa $mesa, $(valgrind --version). Regenerate with \`chapters/10-fast-pixels/simd_run.sh build\` (Release build). The set: 1024 textured triangles of 1000 px (bench_ch10_fast's textured set, perspective-correct, nearest texel, a 256 x 256 texture that repeats), drawn in order into a 1024 x 1024 frame; llvmpipe with LP_NUM_THREADS=1 draws the same triangles (clip-space w = the depth), pinned to one core, 5 repetitions interleaved at random, the median."
     echo
