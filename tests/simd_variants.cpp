@@ -16,6 +16,7 @@
 #include <doctest/doctest.h>
 
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
@@ -210,6 +211,58 @@ TEST_CASE("every variant's textured runs draw the teaching path's texels") {
         draw_textured_runs({chosen.data(), nullptr, width, height}, tris, texture,
                            Wrap::repeat);
         CHECK((chosen == teaching.pixels()));
+    }
+}
+
+TEST_CASE("every variant's textured runs floor exact integers and negative coordinates") {
+    // Spans of constant depth (1/w = 1, so u = u/w exactly) whose u and v step by a
+    // quarter texel through zero: exact integers, -0.25 and -1 land in every lane
+    // position, in runs from 1 pixel (shorter than any register) to 49. A floor that
+    // rounds an exact integer down by one (ceil - 1), truncates towards zero or rounds
+    // to nearest picks another texel of the numbered texture, which has no two alike.
+    const Texture texture = numbered(64, 32);
+    const LaneTexels tex = lane_texels(texture);
+    std::vector<LaneSpan> spans;
+    for (int start = 0; start < 8; ++start) {
+        for (int count = 1; count <= 49; ++count) {
+            const double u0 = -6.0 + 0.25 * start, v0 = 3.0 - 0.25 * start;
+            spans.push_back({u0, v0, 1.0, 0.25, -0.25, 0.0, count});
+        }
+    }
+    // One ulp either side of integers, and the zeros and the smallest doubles.
+    for (const double x : {-1025.0, -64.0, -3.0, -1.0, 0.0, 1.0, 31.0, 4096.0}) {
+        for (const double y : {std::nextafter(x, -1e9), x, std::nextafter(x, 1e9)}) {
+            for (int count = 1; count <= 17; ++count) {
+                spans.push_back({y, -y, 1.0, 0.0, 0.0, 0.0, count});
+            }
+        }
+    }
+    for (const double y : {-0.0, 0x1p-1074, -0x1p-1074}) {
+        spans.push_back({y, y, 1.0, 0.0, 0.0, 0.0, 9});
+    }
+    for (const SimdVariant v : available_simd()) {
+        INFO(std::string(simd_name(v)));
+        long long compared = 0;
+        for (const LaneSpan& s : spans) {
+            const PerspectiveSpan<double> plain{s.u_w,  s.v_w,    s.one_w, s.du_w,
+                                                s.dv_w, s.done_w, s.count};
+            std::vector<Rgba8> row(static_cast<std::size_t>(s.count) + 1, rgba(0, 0, 0, 0));
+            textured_run_lanes(v, row.data(), s, tex);
+            for (int k = 0; k < s.count; ++k) {
+                const UV<double> uv = exact_at(plain, k);
+                const auto i = static_cast<int>(std::floor(uv.u)),
+                           j = static_cast<int>(std::floor(uv.v));
+                const Rgba8 expected = texture.texels()[static_cast<std::size_t>(
+                    (j & 31) * 64 + (i & 63))];
+                if (!(row[static_cast<std::size_t>(k)] == expected)) {
+                    FAIL_CHECK("u " << uv.u << ", v " << uv.v << ", pixel " << k << " of "
+                                    << s.count);
+                }
+                ++compared;
+            }
+            CHECK(row.back() == rgba(0, 0, 0, 0)); // nothing written past the run
+        }
+        CHECK(compared > 10000);
     }
 }
 

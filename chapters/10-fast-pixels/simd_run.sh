@@ -32,7 +32,7 @@ ms() {
     awk -F, -v want="\"textured/$1/1/process_time\"" '$1 == want { printf "%.3f", $4 / 1e6 }' "$scratch/median.csv"
 }
 count() {
-    LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch09_draw_once \
+    LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch10_draw_once \
         --smc-check=all-non-file --callgrind-out-file="$scratch/callgrind.out" \
         "$bench" --once="textured/$1" >/dev/null 2>"$scratch/vg.log"
     sed -n 's/.*Collected : \([0-9]*\).*/\1/p' "$scratch/vg.log"
