@@ -39,7 +39,7 @@ using namespace exactpixels;
 namespace {
 
 /// Every count of a stage (its seconds are not counts).
-void check_same_counts(const StageCounter& a, const StageCounter& b, const char* stage) {
+void check_same_counts(const WorkCount& a, const WorkCount& b, const char* stage) {
     INFO(stage);
     CHECK(a.triangles == b.triangles);
     CHECK(a.spans == b.spans);
@@ -162,7 +162,8 @@ TEST_CASE("the fast paths draw the big torus as the plain path does") {
         for (int path = 0; path < 3; ++path) {
             INFO("fast path " << path << (s == &scene ? ", depth on" : ", depth off"));
             FastPaths alone = plain_paths;
-            bool* const flags[] = {&alone.masked_fetch, &alone.lean_spans, &alone.exact_lanes};
+            bool* const flags[] = {&alone.masked_fetch, &alone.lean_spans,
+                                   &alone.exact_lanes};
             *flags[path] = true;
             const RenderResult fast = render_scene(*s, nullptr, alone);
             CHECK(fast.image == plain.image);
@@ -403,12 +404,12 @@ TEST_CASE("texture planes and rounding from shared quotients are those of the co
         }
         const TexturePlanes shared = texture_planes(p, v, q, plane_through(p, nearness),
                                                     /*affine=*/true);
-        check_same_plane(shared.u_w, plane_through(p, {v[0].uv.x / v[0].w,
-                                                       v[1].uv.x / v[1].w,
-                                                       v[2].uv.x / v[2].w}));
-        check_same_plane(shared.v_w, plane_through(p, {v[0].uv.y / v[0].w,
-                                                       v[1].uv.y / v[1].w,
-                                                       v[2].uv.y / v[2].w}));
+        check_same_plane(shared.u_w,
+                         plane_through(p, {v[0].uv.x / v[0].w, v[1].uv.x / v[1].w,
+                                           v[2].uv.x / v[2].w}));
+        check_same_plane(shared.v_w,
+                         plane_through(p, {v[0].uv.y / v[0].w, v[1].uv.y / v[1].w,
+                                           v[2].uv.y / v[2].w}));
         check_same_plane(shared.one_w,
                          plane_through(p, {1.0 / v[0].w, 1.0 / v[1].w, 1.0 / v[2].w}));
         check_same_plane(shared.u, plane_through(p, {v[0].uv.x, v[1].uv.x, v[2].uv.x}));

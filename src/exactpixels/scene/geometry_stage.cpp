@@ -178,15 +178,15 @@ double largest(Precision precision) {
 /// mappers will use.
 void check_finite(const TexturedVertex& v, Precision precision, std::size_t triangle) {
     const double limit = largest(precision);
-    const double inverse_w = 1.0 / v.w;
-    for (const double value : {v.position.x, v.position.y, v.w, inverse_w,
-                               v.uv.x * inverse_w, v.uv.y * inverse_w}) {
+    const double one_w = 1.0 / v.w;
+    for (const double value :
+         {v.position.x, v.position.y, v.w, one_w, v.uv.x * one_w, v.uv.y * one_w}) {
         if (!(std::abs(value) <= limit)) { // false for NaN too
             throw Error(fmt::format(
                 "triangle {}: a corner projects to a value that is not "
                 "finite in {} (w = {}, 1/w = {})",
                 triangle, precision == Precision::float32 ? "float" : "double", v.w,
-                inverse_w));
+                one_w));
         }
     }
 }
@@ -222,7 +222,7 @@ struct MovedPosition {
     glm::dvec3 view;        ///< view space
     Point2 at;              ///< on screen (where `projected`)
     double w = 0.0;         ///< project_vertex's depth (where `projected`)
-    double inverse_w = 0.0; ///< 1 / w, as check_finite computes it
+    double one_w = 0.0;     ///< 1/w, as check_finite computes it
     double nearness = 0.0;  ///< 1/w (perspective) or -z (orthographic)
     std::uint32_t code = 0; ///< the planes it lies outside (OutcodePlanes)
     bool projected = false; ///< inside every clipping plane, and project_vertex took it
@@ -252,10 +252,10 @@ MovedPosition move_position(const StageSetup& s, const glm::dvec3& p) {
                 : project_vertex(s.scene, s.lens, {m.view, {}});
         m.at = c.position;
         m.w = c.w;
-        m.inverse_w = 1.0 / c.w;
-        m.nearness = s.perspective ? m.inverse_w : -m.view.z;
+        m.one_w = 1.0 / c.w;
+        m.nearness = s.perspective ? m.one_w : -m.view.z;
         m.finite = std::abs(m.at.x) <= s.limit && std::abs(m.at.y) <= s.limit &&
-                   std::abs(m.w) <= s.limit && std::abs(m.inverse_w) <= s.limit;
+                   std::abs(m.w) <= s.limit && std::abs(m.one_w) <= s.limit;
     }
     return m;
 }
@@ -403,8 +403,8 @@ void MeshPass::check_corners(std::size_t index, const MovedCorners& m) const {
     for (std::size_t k = 0; k < 3; ++k) {
         const MovedPosition& p = *m[k];
         const TexCoord uv = triangle[k].uv;
-        if (!(p.finite && std::abs(uv.x * p.inverse_w) <= s.limit &&
-              std::abs(uv.y * p.inverse_w) <= s.limit)) { // each throws
+        if (!(p.finite && std::abs(uv.x * p.one_w) <= s.limit &&
+              std::abs(uv.y * p.one_w) <= s.limit)) { // each throws
             checked(p.projected ? TexturedVertex{p.at, p.w, uv}
                                 : project_vertex(s.scene, s.lens, {p.view, uv}),
                     index);

@@ -10,6 +10,8 @@
 #include "exactpixels/texture/rounding.hpp"
 
 #include <array>
+#include <cmath>
+#include <limits>
 
 namespace exactpixels {
 
@@ -31,10 +33,30 @@ struct TextureSetup {
     TexelRounding perspective_rounding{}, affine_rounding{}; ///< chapter 4's choice
 };
 
-/// Throws Error when a textured triangle with corners `tv` leaves the ranges of chapter
-/// 3's mappers as the scene sets them.
+/// Whether check_textured_triangle passes corners `tv` whose positions snap_in_range
+/// has already taken (so they are in range): each w finite and > 0, each texture
+/// coordinate finite and below the limit, the span in range. Its comparisons without
+/// the message's machinery: the checked triangle costs no call (3M instructions on the
+/// big torus's frame).
+bool mapper_ranges_hold(const RenderOptions& options,
+                        const std::array<TexturedVertex, 3>& tv) {
+    const double limit = texture_coordinate_limit(options.precision);
+    const int span = options.mapper.mapper.span;
+    bool hold = span >= min_mapper_span && span <= max_mapper_span;
+    for (const TexturedVertex& v : tv) { // each false for NaN too
+        hold = hold && v.w > 0.0 && v.w <= std::numeric_limits<double>::max() &&
+               std::abs(v.uv.x) < limit && std::abs(v.uv.y) < limit;
+    }
+    return hold;
+}
+
+/// Throws Error when a textured triangle with corners `tv` (snapped in range) leaves
+/// the ranges of chapter 3's mappers as the scene sets them.
 void check_mapper_ranges(const MeshContext& m, const std::array<TexturedVertex, 3>& tv) {
     const RenderOptions& options = m.scene.options;
+    if (mapper_ranges_hold(options, tv)) {
+        return;
+    }
     check_textured_triangle(tv, MapperSettings{.mapper = options.mapper.mapper,
                                                .precision = options.precision,
                                                .rounding = {},
@@ -56,13 +78,13 @@ TextureSetup texture_setup(const RenderOptions& options,
     const bool affine_only = options.mapper.automatic
                                  ? setup.affine_exact
                                  : options.mapper.mapper.kind == MapperKind::affine;
-    const CornerQuotients q = corner_quotients(tv);
-    setup.planes = texture_planes(p, tv, q, one_w, affine_only);
+    const CornerQuotients quotients = corner_quotients(tv);
+    setup.planes = texture_planes(p, tv, quotients, one_w, affine_only);
     if (options.rounding) { // chapter 4: ties go right, or down
         if (affine_only) {
             setup.affine_rounding = choose_rounding(tv, MapperKind::affine);
         } else {
-            setup.perspective_rounding = choose_rounding(tv, q);
+            setup.perspective_rounding = choose_rounding(tv, quotients);
         }
     }
     return setup;
@@ -165,12 +187,13 @@ class TrianglePlanes {
     const LightingPlanes& lighting() {
         if (!has_lighting_) {
             const std::array<TexturedVertex, 3>& tv = triangle_.corners;
-            const std::array<double, 3> q{1.0 / tv[0].w, 1.0 / tv[1].w, 1.0 / tv[2].w};
+            const std::array<double, 3> corner_one_w{1.0 / tv[0].w, 1.0 / tv[1].w,
+                                                     1.0 / tv[2].w};
             for (int c = 0; c < 3; ++c) {
                 std::array<double, 3> a{}, n{};
                 for (std::size_t k = 0; k < 3; ++k) {
-                    a[k] = triangle_.points[k][c] * q[k];
-                    n[k] = triangle_.normals[k][c] * q[k];
+                    a[k] = triangle_.points[k][c] * corner_one_w[k];
+                    n[k] = triangle_.normals[k][c] * corner_one_w[k];
                 }
                 lighting_.point_w[static_cast<std::size_t>(c)] = plane_through(p, a);
                 lighting_.normal_w[static_cast<std::size_t>(c)] = plane_through(p, n);
@@ -228,7 +251,7 @@ MappedSpan span_mapper(const RenderOptions& options, const TextureSetup& setup,
         report.auto_choice.divides += mapped.choice_divides;
     }
     const auto kind = static_cast<std::size_t>(mapped.mapper.kind);
-    StageCounter& counter = report.mappers[kind];
+    WorkCount& counter = report.mappers[kind];
     const long long divides = mapper_divides(mapped.mapper, count);
     counter.triangles += used[kind] ? 0 : 1;
     used[kind] = true;
@@ -259,8 +282,8 @@ depth_stage(DepthBuffer& depth, const ScreenPlane& nearness, Span s, char* visib
     const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
     int shown = 0;
     for (int k = 0; k < count; ++k) {
-        const float q = nearness_key(nearness.at(x + k, y));
-        const bool seen = depth.test_and_write(s.x_begin + k, s.y, q);
+        const float key = nearness_key(nearness.at(x + k, y));
+        const bool seen = depth.test_and_write(s.x_begin + k, s.y, key);
         visible[k] = seen;
         shown += seen;
     }
@@ -292,10 +315,9 @@ map_texture_span(SimdVariant lanes, Mapper mapper, Precision precision, TexelRou
 /// mapper in the instruction set `lanes`, portable on the plain path). Returns the
 /// mapper, for the report.
 template <class TexelOut>
-[[gnu::always_inline]] inline MappedSpan texture_stage(const RenderOptions& options,
-                                                       const TextureSetup& texture,
-                                                       Span s, SimdVariant lanes,
-                                                       TexelOut&& texel) {
+[[gnu::always_inline]] inline MappedSpan
+texture_stage(const RenderOptions& options, const TextureSetup& texture, Span s,
+              SimdVariant lanes, TexelOut&& texel) {
     const PerspectiveSpan<double> ps = perspective_span(texture.planes, s);
     const MappedSpan mapped =
         span_mapper(options, texture, ps); // auto: within the budget
@@ -338,13 +360,13 @@ void colour_stage(const ColourPlanes& planes, bool textured, Span s, Rgba8* row)
     Colour c{rgb[0].at(x, y), rgb[1].at(x, y), rgb[2].at(x, y)};
     const Colour dc{rgb[0].g.dx, rgb[1].g.dx, rgb[2].g.dx};
     const bool corrected = planes.one_w != nullptr;
-    double q = corrected ? planes.one_w->at(x, y) : 0.0; // 1/w, as the exact mapper
-    const double dq = corrected ? planes.one_w->g.dx : 0.0;
+    double one_w = corrected ? planes.one_w->at(x, y) : 0.0; // as the exact mapper
+    const double d_one_w = corrected ? planes.one_w->g.dx : 0.0;
     for (int k = 0; k < s.x_end - s.x_begin; ++k) {
-        const Colour shade = corrected ? c * (1.0 / q) : c;
+        const Colour shade = corrected ? c * (1.0 / one_w) : c;
         row[k] = textured ? multiply(row[k], shade) : to_rgba8(shade);
         c += dc;
-        q += dq;
+        one_w += d_one_w;
     }
 }
 //< colour-stage
