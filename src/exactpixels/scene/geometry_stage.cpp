@@ -301,8 +301,10 @@ class MeshPass {
     const SceneMesh& mesh;
     RenderReport& report;
     std::vector<ScreenTriangle>& out;
+    std::vector<ShadedCorners>& shading; ///< filled only where `shaded`
     MeshFootprint& footprint;
     bool with_colours = false, gouraud = false, phong = false;
+    bool shaded = false; ///< the colour or the lighting stage reads ShadedCorners
     std::vector<CornerNormals> normals; ///< world space, per triangle (lit meshes)
     SharedPositions own; ///< the mesh's positions indexed here, when it has no index
     const std::vector<glm::dvec3>* positions = nullptr; ///< the mesh's or own's
@@ -312,9 +314,10 @@ class MeshPass {
 
 MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
                    RenderReport& r, SceneGeometry& geometry)
-    : s(setup), mesh(m), report(r), out(geometry.meshes[i]),
+    : s(setup), mesh(m), report(r), out(geometry.meshes[i]), shading(geometry.shading[i]),
       footprint(geometry.footprints[i]) {
     with_colours = mesh_stages(s.scene, mesh).colour;
+    shaded = with_colours || s.lit;
     gouraud = s.lit && mesh_shading(s.scene, mesh) == Shading::gouraud;
     phong = s.lit && !gouraud;
     report.gouraud_meshes += gouraud;
@@ -354,6 +357,7 @@ void MeshPass::run() {
         moved.push_back(move_position(s, p));
     }
     out.reserve(mesh.triangles.size() / 2); // a closed mesh shows about half
+    shading.reserve(shaded ? out.capacity() : 0);
     for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
         triangle(index);
     }
@@ -385,12 +389,17 @@ void MeshPass::triangle(std::size_t index) {
     for (std::size_t k = 0; k < 3; ++k) {
         t.corners[k] = {m[k]->at, m[k]->w, triangle[k].uv};
         t.nearness[k] = m[k]->nearness;
-        t.points[k] = m[k]->view;
-        t.colours[k] = triangle[k].colour;
         footprint.box.add(m[k]->at);
     }
-    if (s.lit) {
-        light(index, t.points, t.colours, t.normals);
+    if (shaded) {
+        ShadedCorners& c = shading.emplace_back();
+        for (std::size_t k = 0; k < 3; ++k) {
+            c.points[k] = m[k]->view;
+            c.colours[k] = triangle[k].colour;
+        }
+        if (s.lit) {
+            light(index, c.points, c.colours, c.normals);
+        }
     }
 }
 //< geometry-mesh
@@ -462,13 +471,14 @@ void MeshPass::cut_triangle(std::size_t index, const MovedCorners& m) {
 /// Projects, checks, culls and stores one piece of a triangle that was cut.
 void MeshPass::keep_piece(std::size_t index, const ClippedCorners& piece) {
     ScreenTriangle t{};
+    ShadedCorners c{};
     for (std::size_t k = 0; k < 3; ++k) {
         t.corners[k] = checked(project_vertex(s.scene, s.lens, piece.view[k]), index);
         t.nearness[k] = s.perspective ? 1.0 / t.corners[k].w : -piece.view[k].position.z;
-        t.points[k] = piece.view[k].position;
+        c.points[k] = piece.view[k].position;
     }
-    t.colours = piece.colours;
-    t.normals = piece.normals;
+    c.colours = piece.colours;
+    c.normals = piece.normals;
     if (mesh.cull_back && screen_area2(t.corners[0].position, t.corners[1].position,
                                        t.corners[2].position) >= 0.0) {
         report.culling.triangles += 1; // a piece seen from behind
@@ -478,6 +488,9 @@ void MeshPass::keep_piece(std::size_t index, const ClippedCorners& piece) {
         footprint.box.add(v.position);
     }
     out.push_back(t);
+    if (shaded) {
+        shading.push_back(c);
+    }
 }
 
 } // namespace
@@ -506,6 +519,7 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
     const StageSetup setup(scene, camera, geometry.lights);
     // Every mesh first: the depth stage's plan needs to know where on screen each lands.
     geometry.meshes.resize(scene.meshes.size());
+    geometry.shading.resize(scene.meshes.size());
     geometry.footprints.resize(scene.meshes.size());
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         MeshPass(setup, scene.meshes[i], i, report, geometry).run();

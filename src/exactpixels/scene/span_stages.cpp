@@ -10,6 +10,7 @@
 #include "exactpixels/texture/rounding.hpp"
 
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -114,9 +115,12 @@ class TrianglePlanes {
     /// Snaps the corners (Error beyond +-2^20 px) and checks a textured triangle against
     /// the mappers' ranges: both before the first pixel. (Always inlined: both drawing
     /// paths construct it once per triangle, and GCC would call it out of line.)
+    /// `shading` is the triangle's ShadedCorners, or nullptr for a mesh that has none
+    /// (whose colour and lighting stages do not run).
     [[gnu::always_inline]] TrianglePlanes(const MeshContext& m,
-                                          const ScreenTriangle& triangle)
-        : m_(m), triangle_(triangle) {
+                                          const ScreenTriangle& triangle,
+                                          const ShadedCorners* shading)
+        : m_(m), triangle_(triangle), shading_(shading) {
         for (std::size_t k = 0; k < 3; ++k) {
             snapped[k] = snap_in_range(triangle.corners[k].position);
             p[k] = to_pixels(snapped[k]);
@@ -173,7 +177,7 @@ class TrianglePlanes {
             for (int c = 0; c < 3; ++c) {
                 std::array<double, 3> value{};
                 for (std::size_t k = 0; k < 3; ++k) {
-                    const double channel = triangle_.colours[k][c];
+                    const double channel = shading_->colours[k][c];
                     value[k] = corrected ? channel / tv[k].w : channel;
                 }
                 colour_.rgb[static_cast<std::size_t>(c)] = plane_through(p, value);
@@ -192,8 +196,8 @@ class TrianglePlanes {
             for (int c = 0; c < 3; ++c) {
                 std::array<double, 3> a{}, n{};
                 for (std::size_t k = 0; k < 3; ++k) {
-                    a[k] = triangle_.points[k][c] * corner_one_w[k];
-                    n[k] = triangle_.normals[k][c] * corner_one_w[k];
+                    a[k] = shading_->points[k][c] * corner_one_w[k];
+                    n[k] = shading_->normals[k][c] * corner_one_w[k];
                 }
                 lighting_.point_w[static_cast<std::size_t>(c)] = plane_through(p, a);
                 lighting_.normal_w[static_cast<std::size_t>(c)] = plane_through(p, n);
@@ -207,6 +211,7 @@ class TrianglePlanes {
   private:
     const MeshContext& m_;
     const ScreenTriangle& triangle_;
+    const ShadedCorners* shading_;
     bool has_nearness_ = false, has_one_w_ = false, has_texture_ = false,
          has_colour_ = false, has_lighting_ = false;
     ScreenPlane nearness_, one_w_;
@@ -556,8 +561,9 @@ void shaded_span(MeshContext& m, TrianglePlanes& planes, Filter filter, StageTim
 /// test, then the direct span (`direct`) or the shaded one. The stages return what they
 /// did and are counted here; the timer wraps each stage call (StageTimer).
 template <bool direct>
-void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
-    TrianglePlanes planes(m, triangle); // Error before the first pixel
+void draw_triangle(MeshContext& m, const ScreenTriangle& triangle,
+                   const ShadedCorners* shading) {
+    TrianglePlanes planes(m, triangle, shading); // Error before the first pixel
     const Filter filter = direct ? Filter::nearest : prepare_filter(m, planes);
     count_triangle(m, filter);
     StageTimer timer{m.timed};
@@ -603,7 +609,7 @@ bool lean_drawable(const MeshContext& m) {
 } // namespace
 
 void draw_mesh(MeshContext& m, const std::vector<ScreenTriangle>& triangles,
-               bool lean_spans) {
+               const std::vector<ShadedCorners>& shading, bool lean_spans) {
     // Stage times: the mesh's drawing is timed whole, and split among the stages as on
     // the timed sample of its triangles (timed_triangles_per_mesh).
     const RenderReport before = m.report;
@@ -615,10 +621,12 @@ void draw_mesh(MeshContext& m, const std::vector<ScreenTriangle>& triangles,
     for (std::size_t k = 0; k < triangles.size(); ++k) {
         m.timed = until_timed == 0;
         until_timed = m.timed ? interval - 1 : until_timed - 1;
+        assert(shading.empty() || shading.size() == triangles.size());
+        const ShadedCorners* corners = shading.empty() ? nullptr : &shading[k];
         if (direct) {
-            draw_triangle<true>(m, triangles[k]);
+            draw_triangle<true>(m, triangles[k], corners);
         } else {
-            draw_triangle<false>(m, triangles[k]);
+            draw_triangle<false>(m, triangles[k], corners);
         }
     }
     share_drawing_time(m.report, before, seconds_since(t0));
