@@ -40,7 +40,7 @@ using namespace exactpixels;
 namespace {
 
 /// Every count of a stage (its seconds are not counts).
-void check_same_counts(const StageCounter& a, const StageCounter& b, const char* stage) {
+void check_same_counts(const WorkCount& a, const WorkCount& b, const char* stage) {
     INFO(stage);
     CHECK(a.triangles == b.triangles);
     CHECK(a.spans == b.spans);
@@ -318,15 +318,27 @@ TEST_CASE(
         // Every stored corner is project_vertex's projection of its view-space point,
         // with 1/w (or -z) as the depth stage wants it: the stage projects each moved
         // position once, with project()'s arithmetic written out.
+        // The unlit mesh keeps no view-space points (no stage reads them); lit, the
+        // same triangles keep them, and the check reads them there.
         RenderReport geometry_report;
         const SceneGeometry geometry = run_geometry(scene, geometry_report);
+        CHECK(geometry.shading.at(0).empty());
+        Scene lit = scene;
+        lit.lights.push_back(SceneLight{});
+        RenderReport lit_report;
+        const SceneGeometry lit_geometry = run_geometry(lit, lit_report);
+        REQUIRE(lit_geometry.meshes.at(0).size() == geometry.meshes.at(0).size());
+        REQUIRE(lit_geometry.shading.at(0).size() == geometry.meshes.at(0).size());
         const Pinhole lens = pinhole(scene);
         long long corners = 0, differ = 0;
-        for (const ScreenTriangle& t : geometry.meshes.at(0)) {
+        for (std::size_t i = 0; i < geometry.meshes.at(0).size(); ++i) {
+            const ScreenTriangle& t = geometry.meshes.at(0)[i];
+            const std::array<glm::dvec3, 3>& points =
+                lit_geometry.shading.at(0)[i].points;
             for (std::size_t k = 0; k < 3; ++k) {
                 const TexturedVertex p =
-                    project_vertex(scene, lens, {t.points[k], t.corners[k].uv});
-                const double nearness = perspective ? 1.0 / p.w : -t.points[k].z;
+                    project_vertex(scene, lens, {points[k], t.corners[k].uv});
+                const double nearness = perspective ? 1.0 / p.w : -points[k].z;
                 corners += 1;
                 differ += !(p.position == t.corners[k].position &&
                             p.w == t.corners[k].w && nearness == t.nearness[k]);
@@ -404,12 +416,12 @@ TEST_CASE("texture planes and rounding from shared quotients are those of the co
         }
         const TexturePlanes shared = texture_planes(p, v, q, plane_through(p, nearness),
                                                     /*affine=*/true);
-        check_same_plane(shared.u_w, plane_through(p, {v[0].uv.x / v[0].w,
-                                                       v[1].uv.x / v[1].w,
-                                                       v[2].uv.x / v[2].w}));
-        check_same_plane(shared.v_w, plane_through(p, {v[0].uv.y / v[0].w,
-                                                       v[1].uv.y / v[1].w,
-                                                       v[2].uv.y / v[2].w}));
+        check_same_plane(shared.u_w,
+                         plane_through(p, {v[0].uv.x / v[0].w, v[1].uv.x / v[1].w,
+                                           v[2].uv.x / v[2].w}));
+        check_same_plane(shared.v_w,
+                         plane_through(p, {v[0].uv.y / v[0].w, v[1].uv.y / v[1].w,
+                                           v[2].uv.y / v[2].w}));
         check_same_plane(shared.one_w,
                          plane_through(p, {1.0 / v[0].w, 1.0 / v[1].w, 1.0 / v[2].w}));
         check_same_plane(shared.u, plane_through(p, {v[0].uv.x, v[1].uv.x, v[2].uv.x}));

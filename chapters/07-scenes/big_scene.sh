@@ -16,7 +16,7 @@
 #       bench_ch07_big_scene --once=NAME
 # (and for our full scene also with --fast=none, and --fast=NAME for each fast path,
 # masked_fetch and lean_spans, before --once: the plain
-# path and each fast path alone)
+# path, each fast path alone, and the two together without the exact lanes)
 # which counts one frame after an uncounted first one (llvmpipe compiles its code then;
 # LP_NUM_THREADS=0 makes it rasterize in the counted thread). Writes Markdown tables whose
 # rows are facts for the chapter's claims (default:
@@ -165,6 +165,7 @@ instructions() {
     ours_plain=$(instructions ours/full none)
     ours_masked=$(instructions ours/full masked_fetch)
     ours_lean=$(instructions ours/full lean_spans)
+    ours_both=$(instructions ours/full masked_fetch,lean_spans)
     echo "| run | instructions |"
     echo "|:--|--:|"
     echo "| instructions ours full | $ours_full |"
@@ -177,13 +178,15 @@ instructions() {
          "$(ratio "($ours_full - $ours_empty)" "($lp_full - $lp_empty)") |"
     echo
     echo "Ours on the full scene with only some fast paths (FastPaths): none (the teaching" \
-         "path), each one alone; all of them is \"ours full\" above:"
+         "path), each one alone, and the two without exact_lanes; all of them is" \
+         "\"ours full\" above:"
     echo
     echo "| run | instructions |"
     echo "|:--|--:|"
     echo "| instructions ours full plain | $ours_plain |"
     echo "| instructions ours full masked_fetch | $ours_masked |"
     echo "| instructions ours full lean_spans | $ours_lean |"
+    echo "| instructions ours full masked_fetch lean_spans | $ours_both |"
     echo
     echo "The same in millions:"
     echo
@@ -199,6 +202,8 @@ instructions() {
          "$(ratio "$ours_masked" 1000000) |"
     echo "| instructions ours full lean_spans millions |" \
          "$(ratio "$ours_lean" 1000000) |"
+    echo "| instructions ours full masked_fetch lean_spans millions |" \
+         "$(ratio "$ours_both" 1000000) |"
     "$bench" --report >"$scratch/report.txt"
     # The full scene's raster line: stage, triangles, spans, pixels, divides, ms.
     drawn=$(awk '/^## full/ { f = 1 } f && $1 == "raster" { print $2; exit }' \

@@ -423,7 +423,12 @@ std::vector<Rgba8> draw_gl(const Scene& scene, const SceneGeometry& geometry,
         const double tw = textured ? scene.textures[*mesh.texture].texture.width() : 1;
         const double th = textured ? scene.textures[*mesh.texture].texture.height() : 1;
         glBegin(GL_TRIANGLES);
-        for (const ScreenTriangle& t : geometry.meshes[i]) {
+        for (std::size_t n = 0; n < geometry.meshes[i].size(); ++n) {
+            const ScreenTriangle& t = geometry.meshes[i][n];
+            // Colours, points and normals: kept where a colour or lighting stage reads
+            // them, which is where they are read here.
+            const ShadedCorners* shaded =
+                geometry.shading[i].empty() ? nullptr : &geometry.shading[i][n];
             ++index;
             if (id_pass) {
                 glColor4ub(static_cast<GLubyte>(index & 0xff),
@@ -444,15 +449,16 @@ std::vector<Rgba8> draw_gl(const Scene& scene, const SceneGeometry& geometry,
                 const double w = perspective ? t.corners[k].w : 1.0;
                 const double z_ndc = 0.9 - 1.8 * (t.nearness[k] - q_min) / q_span;
                 if (!id_pass && stages.colour) {
-                    glColor4d(t.colours[k].r, t.colours[k].g, t.colours[k].b, 1.0);
+                    const Colour& c = shaded->colours[k];
+                    glColor4d(c.r, c.g, c.b, 1.0);
                 }
                 if (textured) {
                     glTexCoord2d(t.corners[k].uv.x / tw, t.corners[k].uv.y / th);
                 }
                 if (phong) { // the view-space point and normal the lighting stage uses
-                    glMultiTexCoord3d(GL_TEXTURE1, t.points[k].x, t.points[k].y,
-                                      t.points[k].z);
-                    glNormal3d(t.normals[k].x, t.normals[k].y, t.normals[k].z);
+                    const glm::dvec3 &at = shaded->points[k], &n = shaded->normals[k];
+                    glMultiTexCoord3d(GL_TEXTURE1, at.x, at.y, at.z);
+                    glNormal3d(n.x, n.y, n.z);
                 }
                 // glOrtho's z row is -z: clip z = -z_ndc w gives z_ndc after the divide.
                 glVertex4d(p.x * w, p.y * w, -z_ndc * w, w);
@@ -493,8 +499,8 @@ double edge_distance(double u) {
 /// The view-space point and unit normal the renderer's lighting stage lights at pixel
 /// (x, y)'s centre: point/w and n/w planes through the snapped corners over the 1/w
 /// plane, the normal renormalised (scene_renderer.cpp, the lighting stage).
-std::pair<glm::dvec3, glm::dvec3> lit_point_normal(const ScreenTriangle& t, int x,
-                                                   int y) {
+std::pair<glm::dvec3, glm::dvec3>
+lit_point_normal(const ScreenTriangle& t, const ShadedCorners& shaded, int x, int y) {
     std::array<Point2, 3> p{};
     std::array<double, 3> q{};
     for (std::size_t k = 0; k < 3; ++k) {
@@ -507,8 +513,8 @@ std::pair<glm::dvec3, glm::dvec3> lit_point_normal(const ScreenTriangle& t, int 
     for (int c = 0; c < 3; ++c) {
         std::array<double, 3> a{}, n{};
         for (std::size_t k = 0; k < 3; ++k) {
-            a[k] = t.points[k][c] * q[k];
-            n[k] = t.normals[k][c] * q[k];
+            a[k] = shaded.points[k][c] * q[k];
+            n[k] = shaded.normals[k][c] * q[k];
         }
         point[c] = plane_through(p, a).at(px, py) * w;
         normal[c] = plane_through(p, n).at(px, py);
@@ -541,7 +547,8 @@ float probed(const std::vector<Rgba8>& pass, std::size_t at) {
 /// = referee_float_relative(shininess). Texel (i, j) is the one the exact render picked.
 double lit_float_levels(const Scene& scene, const SceneGeometry& geometry,
                         const SceneMesh& mesh, const MeshStages& stages,
-                        const ScreenTriangle& t, int x, int y, int i, int j,
+                        const ScreenTriangle& t, const ShadedCorners& shaded, int x,
+                        int y, int i, int j,
                         const std::vector<std::vector<Rgba8>>& probes, std::size_t at) {
     Rgba8 base = to_rgba8(mesh.colour); // the pixel the stages before lighting write
     if (stages.texture) {
@@ -554,7 +561,7 @@ double lit_float_levels(const Scene& scene, const SceneGeometry& geometry,
     }
     const Colour diffuse{base.r / 255.0, base.g / 255.0, base.b / 255.0};
     const Material material{mesh.specular, mesh.shininess};
-    const auto [point, normal] = lit_point_normal(t, x, y);
+    const auto [point, normal] = lit_point_normal(t, shaded, x, y);
     const glm::dvec3 gl_normal = glm::normalize(
         glm::dvec3{probed(probes[0], at), probed(probes[1], at), probed(probes[2], at)});
     const glm::dvec3 gl_point{probed(probes[3], at), probed(probes[4], at),
@@ -678,9 +685,12 @@ RefereeComparison referee_scene(const Scene& scene, const std::string& name,
     RenderReport geometry_report;
     const SceneGeometry geometry = run_geometry(scene, geometry_report);
     std::vector<const ScreenTriangle*> triangles;
-    for (const auto& mesh : geometry.meshes) {
-        for (const ScreenTriangle& t : mesh) {
-            triangles.push_back(&t);
+    std::vector<const ShadedCorners*> shading; // per triangle; nullptr where none kept
+    for (std::size_t i = 0; i < geometry.meshes.size(); ++i) {
+        for (std::size_t n = 0; n < geometry.meshes[i].size(); ++n) {
+            triangles.push_back(&geometry.meshes[i][n]);
+            shading.push_back(geometry.shading[i].empty() ? nullptr
+                                                          : &geometry.shading[i][n]);
         }
     }
     std::vector<MeshLook> looks(scene.meshes.size());
@@ -799,7 +809,8 @@ RefereeComparison referee_scene(const Scene& scene, const std::string& name,
                     const double bound = lit_float_levels(
                         scene, geometry, scene.meshes[mesh_index],
                         looks[mesh_index].stages,
-                        *triangles[static_cast<std::size_t>(ours_id)], x, y,
+                        *triangles[static_cast<std::size_t>(ours_id)],
+                        *shading[static_cast<std::size_t>(ours_id)], x, y,
                         texels.covered[at] ? texels.i[at] : 0,
                         texels.covered[at] ? texels.j[at] : 0, probes, at);
                     c.worst_lit_float = std::max(c.worst_lit_float, bound);

@@ -178,15 +178,15 @@ double largest(Precision precision) {
 /// mappers will use.
 void check_finite(const TexturedVertex& v, Precision precision, std::size_t triangle) {
     const double limit = largest(precision);
-    const double inverse_w = 1.0 / v.w;
-    for (const double value : {v.position.x, v.position.y, v.w, inverse_w,
-                               v.uv.x * inverse_w, v.uv.y * inverse_w}) {
+    const double one_w = 1.0 / v.w;
+    for (const double value :
+         {v.position.x, v.position.y, v.w, one_w, v.uv.x * one_w, v.uv.y * one_w}) {
         if (!(std::abs(value) <= limit)) { // false for NaN too
             throw Error(fmt::format(
                 "triangle {}: a corner projects to a value that is not "
                 "finite in {} (w = {}, 1/w = {})",
                 triangle, precision == Precision::float32 ? "float" : "double", v.w,
-                inverse_w));
+                one_w));
         }
     }
 }
@@ -222,7 +222,7 @@ struct MovedPosition {
     glm::dvec3 view;        ///< view space
     Point2 at;              ///< on screen (where `projected`)
     double w = 0.0;         ///< project_vertex's depth (where `projected`)
-    double inverse_w = 0.0; ///< 1 / w, as check_finite computes it
+    double one_w = 0.0;     ///< 1/w, as check_finite computes it
     double nearness = 0.0;  ///< 1/w (perspective) or -z (orthographic)
     std::uint32_t code = 0; ///< the planes it lies outside (OutcodePlanes)
     bool projected = false; ///< inside every clipping plane, and project_vertex took it
@@ -252,10 +252,10 @@ MovedPosition move_position(const StageSetup& s, const glm::dvec3& p) {
                 : project_vertex(s.scene, s.lens, {m.view, {}});
         m.at = c.position;
         m.w = c.w;
-        m.inverse_w = 1.0 / c.w;
-        m.nearness = s.perspective ? m.inverse_w : -m.view.z;
+        m.one_w = 1.0 / c.w;
+        m.nearness = s.perspective ? m.one_w : -m.view.z;
         m.finite = std::abs(m.at.x) <= s.limit && std::abs(m.at.y) <= s.limit &&
-                   std::abs(m.w) <= s.limit && std::abs(m.inverse_w) <= s.limit;
+                   std::abs(m.w) <= s.limit && std::abs(m.one_w) <= s.limit;
     }
     return m;
 }
@@ -301,8 +301,10 @@ class MeshPass {
     const SceneMesh& mesh;
     RenderReport& report;
     std::vector<ScreenTriangle>& out;
+    std::vector<ShadedCorners>& shading; ///< filled only where `shaded`
     MeshFootprint& footprint;
     bool with_colours = false, gouraud = false, phong = false;
+    bool shaded = false; ///< the colour or the lighting stage reads ShadedCorners
     std::vector<CornerNormals> normals; ///< world space, per triangle (lit meshes)
     SharedPositions own; ///< the mesh's positions indexed here, when it has no index
     const std::vector<glm::dvec3>* positions = nullptr; ///< the mesh's or own's
@@ -312,9 +314,10 @@ class MeshPass {
 
 MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
                    RenderReport& r, SceneGeometry& geometry)
-    : s(setup), mesh(m), report(r), out(geometry.meshes[i]),
+    : s(setup), mesh(m), report(r), out(geometry.meshes[i]), shading(geometry.shading[i]),
       footprint(geometry.footprints[i]) {
     with_colours = mesh_stages(s.scene, mesh).colour;
+    shaded = with_colours || s.lit;
     gouraud = s.lit && mesh_shading(s.scene, mesh) == Shading::gouraud;
     phong = s.lit && !gouraud;
     report.gouraud_meshes += gouraud;
@@ -354,6 +357,7 @@ void MeshPass::run() {
         moved.push_back(move_position(s, p));
     }
     out.reserve(mesh.triangles.size() / 2); // a closed mesh shows about half
+    shading.reserve(shaded ? out.capacity() : 0);
     for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
         triangle(index);
     }
@@ -385,12 +389,17 @@ void MeshPass::triangle(std::size_t index) {
     for (std::size_t k = 0; k < 3; ++k) {
         t.corners[k] = {m[k]->at, m[k]->w, triangle[k].uv};
         t.nearness[k] = m[k]->nearness;
-        t.points[k] = m[k]->view;
-        t.colours[k] = triangle[k].colour;
         footprint.box.add(m[k]->at);
     }
-    if (s.lit) {
-        light(index, t.points, t.colours, t.normals);
+    if (shaded) {
+        ShadedCorners& c = shading.emplace_back();
+        for (std::size_t k = 0; k < 3; ++k) {
+            c.points[k] = m[k]->view;
+            c.colours[k] = triangle[k].colour;
+        }
+        if (s.lit) {
+            light(index, c.points, c.colours, c.normals);
+        }
     }
 }
 //< geometry-mesh
@@ -403,8 +412,8 @@ void MeshPass::check_corners(std::size_t index, const MovedCorners& m) const {
     for (std::size_t k = 0; k < 3; ++k) {
         const MovedPosition& p = *m[k];
         const TexCoord uv = triangle[k].uv;
-        if (!(p.finite && std::abs(uv.x * p.inverse_w) <= s.limit &&
-              std::abs(uv.y * p.inverse_w) <= s.limit)) { // each throws
+        if (!(p.finite && std::abs(uv.x * p.one_w) <= s.limit &&
+              std::abs(uv.y * p.one_w) <= s.limit)) { // each throws
             checked(p.projected ? TexturedVertex{p.at, p.w, uv}
                                 : project_vertex(s.scene, s.lens, {p.view, uv}),
                     index);
@@ -462,13 +471,14 @@ void MeshPass::cut_triangle(std::size_t index, const MovedCorners& m) {
 /// Projects, checks, culls and stores one piece of a triangle that was cut.
 void MeshPass::keep_piece(std::size_t index, const ClippedCorners& piece) {
     ScreenTriangle t{};
+    ShadedCorners c{};
     for (std::size_t k = 0; k < 3; ++k) {
         t.corners[k] = checked(project_vertex(s.scene, s.lens, piece.view[k]), index);
         t.nearness[k] = s.perspective ? 1.0 / t.corners[k].w : -piece.view[k].position.z;
-        t.points[k] = piece.view[k].position;
+        c.points[k] = piece.view[k].position;
     }
-    t.colours = piece.colours;
-    t.normals = piece.normals;
+    c.colours = piece.colours;
+    c.normals = piece.normals;
     if (mesh.cull_back && screen_area2(t.corners[0].position, t.corners[1].position,
                                        t.corners[2].position) >= 0.0) {
         report.culling.triangles += 1; // a piece seen from behind
@@ -478,6 +488,9 @@ void MeshPass::keep_piece(std::size_t index, const ClippedCorners& piece) {
         footprint.box.add(v.position);
     }
     out.push_back(t);
+    if (shaded) {
+        shading.push_back(c);
+    }
 }
 
 } // namespace
@@ -506,6 +519,7 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
     const StageSetup setup(scene, camera, geometry.lights);
     // Every mesh first: the depth stage's plan needs to know where on screen each lands.
     geometry.meshes.resize(scene.meshes.size());
+    geometry.shading.resize(scene.meshes.size());
     geometry.footprints.resize(scene.meshes.size());
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         MeshPass(setup, scene.meshes[i], i, report, geometry).run();

@@ -9,7 +9,7 @@ namespace exactpixels {
 long long RenderReport::divides() const {
     long long total = auto_choice.divides + colour_perspective.divides + filter.divides +
                       lighting.divides;
-    for (const StageCounter& m : mappers) {
+    for (const WorkCount& m : mappers) {
         total += m.divides;
     }
     return total;
@@ -23,7 +23,7 @@ void share_drawing_time(RenderReport& report, const RenderReport& before, double
         sampled += (report.*stage).seconds - (before.*stage).seconds;
     }
     const double scale = sampled > 0.0 ? spent / sampled : 0.0;
-    const auto rescale = [&](StageCounter& now, const StageCounter& then) {
+    const auto rescale = [&](WorkCount& now, const WorkCount& then) {
         now.seconds = then.seconds + scale * (now.seconds - then.seconds);
     };
     for (const auto stage :
@@ -39,7 +39,7 @@ void share_drawing_time(RenderReport& report, const RenderReport& before, double
 std::string format_report(const RenderReport& r) {
     std::string out = fmt::format("{:<18} {:>10} {:>8} {:>10} {:>10} {:>10}\n", "stage",
                                   "triangles", "spans", "pixels", "divides", "ms");
-    const auto line = [&](const std::string& name, const StageCounter& c, bool always) {
+    const auto line = [&](const std::string& name, const WorkCount& c, bool always) {
         if (always || c.triangles > 0 || c.spans > 0) {
             out +=
                 fmt::format("{:<18} {:>10} {:>8} {:>10} {:>10} {:>10.3f}\n", name,

@@ -18,9 +18,10 @@
 
 namespace exactpixels {
 
-/// What one stage did over a whole render.
-struct StageCounter {
-    long long triangles = 0; ///< triangles the stage ran on
+/// The work one part of a render did over the whole of it: a stage, a mapper, auto's
+/// choice, the pixels the depth test hid.
+struct WorkCount {
+    long long triangles = 0; ///< triangles it ran on
     long long spans = 0;     ///< row spans it ran on
     long long pixels = 0;    ///< pixels it ran on
     long long divides = 0;   ///< divides it performed
@@ -29,27 +30,27 @@ struct StageCounter {
 
 /// What ran while rendering a scene: one counter per stage and per mapper.
 struct RenderReport {
-    StageCounter geometry; ///< triangles moved to view space and projected
+    WorkCount geometry; ///< triangles moved to view space and projected
     /// triangles wholly outside one plane of the view volume (a screen edge, near or
     /// far), dropped before they are projected or lit
-    StageCounter rejected;
+    WorkCount rejected;
     /// triangles cut in view space because a corner lies nearer than the near plane,
     /// beyond the far plane or past the guard band (guard_band_px)
-    StageCounter clipping;
-    StageCounter culling; ///< triangles skipped because their back faces the camera
-    StageCounter depth;   ///< depth stage: the triangles, spans and pixels it tested
-    StageCounter hidden;  ///< pixels that failed the depth test (spans with any)
-    StageCounter raster;  ///< coverage: the triangles, spans and pixels drawn
-    StageCounter flat;    ///< pixels written with the mesh's flat colour
-    StageCounter colour;  ///< vertex colours interpolated and applied
-    StageCounter colour_perspective; ///< of those, perspective-correct (c/w over 1/w)
-    StageCounter texture;            ///< texture coordinates computed and texels sampled
-    StageCounter auto_choice;        ///< spans whose mapper `auto` chose, and its divides
-    std::array<StageCounter, 5> mappers; ///< per MapperKind (index = the enum's value)
-    StageCounter filter; ///< pixels filtered (any filter but nearest), 3 divides each
+    WorkCount clipping;
+    WorkCount culling; ///< triangles skipped because their back faces the camera
+    WorkCount depth;   ///< depth stage: the triangles, spans and pixels it tested
+    WorkCount hidden;  ///< pixels that failed the depth test (spans with any)
+    WorkCount raster;  ///< coverage: the triangles, spans and pixels drawn
+    WorkCount flat;    ///< pixels written with the mesh's flat colour
+    WorkCount colour;  ///< vertex colours interpolated and applied
+    WorkCount colour_perspective; ///< of those, perspective-correct (c/w over 1/w)
+    WorkCount texture;            ///< texture coordinates computed and texels sampled
+    WorkCount auto_choice;        ///< spans whose mapper `auto` chose, and its divides
+    std::array<WorkCount, 5> mappers; ///< per MapperKind (index = the enum's value)
+    WorkCount filter; ///< pixels filtered (any filter but nearest), 3 divides each
     /// Lighting per pixel (Phong): the triangles, spans and pixels lit, and one divide
     /// per pixel, 1/w (the reciprocal square roots of normalising are not counted)
-    StageCounter lighting;
+    WorkCount lighting;
     long long lit_vertices = 0; ///< corners lit per vertex (Gouraud), in the geometry
     bool lighting_on = false;   ///< whether the scene has lights (the stage ran)
     int lights = 0;             ///< how many

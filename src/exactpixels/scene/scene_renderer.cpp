@@ -61,9 +61,12 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
         //> choose-colours
         bool corrected = scene.options.colours == ColourInterpolation::perspective;
         if (mesh_stages(scene, mesh).colour) { // the screen path's bound, vs the budget
-            for (const ScreenTriangle& t : geometry.meshes[i]) {
-                const double bound = colour_error_bound(
-                    {t.corners[0].w, t.corners[1].w, t.corners[2].w}, t.colours);
+            const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
+            for (std::size_t k = 0; k < triangles.size(); ++k) {
+                const ScreenTriangle& t = triangles[k];
+                const double bound =
+                    colour_error_bound({t.corners[0].w, t.corners[1].w, t.corners[2].w},
+                                       geometry.shading[i][k].colours);
                 report.colour_bound = std::max(report.colour_bound, bound);
                 corrected = corrected ||
                             (scene.options.colours == ColourInterpolation::automatic &&
@@ -96,7 +99,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
         bool full_chain = mesh.texture && full_chains[*mesh.texture];
         m.full_chain = &full_chain;
         try {
-            draw_mesh(m, geometry.meshes[i], fast.lean_spans);
+            draw_mesh(m, geometry.meshes[i], geometry.shading[i], fast.lean_spans);
             if (mesh.texture) {
                 full_chains[*mesh.texture] = full_chain;
             }

@@ -80,11 +80,17 @@ inline constexpr FastPaths teaching_path{false, false, false};
 MeshStages mesh_stages(const Scene& scene, const SceneMesh& mesh);
 
 /// A triangle after the geometry stage: moved to view space, clipped, projected, not
-/// culled, with what the later stages need at its corners.
+/// culled, with what every mesh's stages need at its corners.
 struct ScreenTriangle {
     std::array<TexturedVertex, 3> corners; ///< pixels (not yet snapped), depth w, texels
+    /// The depth stage's nearness: 1/w (perspective) or -z (orthographic).
+    std::array<double, 3> nearness;
+};
+
+/// What the colour and lighting stages read at a triangle's corners, kept only for a
+/// mesh that runs one of them (an unlit mesh without vertex colours writes none).
+struct ShadedCorners {
     std::array<Colour, 3> colours;     ///< vertex colours; under Gouraud the lit colours
-    std::array<double, 3> nearness;    ///< 1/w (perspective) or -z (orthographic)
     std::array<glm::dvec3, 3> points;  ///< view space (used by Phong lighting)
     std::array<glm::dvec3, 3> normals; ///< view space (used by Phong lighting)
 };
@@ -92,8 +98,11 @@ struct ScreenTriangle {
 /// What the geometry stage hands the rest of the pipeline.
 struct SceneGeometry {
     std::vector<std::vector<ScreenTriangle>> meshes; ///< per mesh, in file order
-    std::vector<MeshFootprint> footprints;           ///< per mesh, for the depth plan
-    std::vector<ViewLight> lights;                   ///< the lights in view space
+    /// Per mesh: the ShadedCorners of each of its triangles in `meshes` where the scene
+    /// has lights or the mesh a colour stage, else none.
+    std::vector<std::vector<ShadedCorners>> shading;
+    std::vector<MeshFootprint> footprints; ///< per mesh, for the depth plan
+    std::vector<ViewLight> lights;         ///< the lights in view space
 };
 
 /// The geometry stage alone, as render_scene runs it: each mesh as an indexed mesh,

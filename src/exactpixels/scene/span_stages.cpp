@@ -11,6 +11,9 @@
 #include "exactpixels/texture/rounding.hpp"
 
 #include <array>
+#include <cassert>
+#include <cmath>
+#include <limits>
 
 namespace exactpixels {
 
@@ -32,10 +35,30 @@ struct TextureSetup {
     TexelRounding perspective_rounding{}, affine_rounding{}; ///< chapter 4's choice
 };
 
-/// Throws Error when a textured triangle with corners `tv` leaves the ranges of chapter
-/// 3's mappers as the scene sets them.
+/// Whether check_textured_triangle passes corners `tv` whose positions snap_in_range
+/// has already taken (so they are in range): each w finite and > 0, each texture
+/// coordinate finite and below the limit, the piece length in range. Its comparisons
+/// without the message's machinery: the checked triangle costs no call (3M instructions
+/// on the big torus's frame).
+bool mapper_ranges_hold(const RenderOptions& options,
+                        const std::array<TexturedVertex, 3>& tv) {
+    const double limit = texture_coordinate_limit(options.precision);
+    const int piece = options.mapper.mapper.piece;
+    bool hold = piece >= min_mapper_piece && piece <= max_mapper_piece;
+    for (const TexturedVertex& v : tv) { // each false for NaN too
+        hold = hold && v.w > 0.0 && v.w <= std::numeric_limits<double>::max() &&
+               std::abs(v.uv.x) < limit && std::abs(v.uv.y) < limit;
+    }
+    return hold;
+}
+
+/// Throws Error when a textured triangle with corners `tv` (snapped in range) leaves
+/// the ranges of chapter 3's mappers as the scene sets them.
 void check_mapper_ranges(const MeshContext& m, const std::array<TexturedVertex, 3>& tv) {
     const RenderOptions& options = m.scene.options;
+    if (mapper_ranges_hold(options, tv)) {
+        return;
+    }
     check_textured_triangle(tv, MapperSettings{.mapper = options.mapper.mapper,
                                                .precision = options.precision,
                                                .rounding = {},
@@ -57,13 +80,13 @@ TextureSetup texture_setup(const RenderOptions& options,
     const bool affine_only = options.mapper.automatic
                                  ? setup.affine_exact
                                  : options.mapper.mapper.kind == MapperKind::affine;
-    const CornerQuotients q = corner_quotients(tv);
-    setup.planes = texture_planes(p, tv, q, one_w, affine_only);
+    const CornerQuotients quotients = corner_quotients(tv);
+    setup.planes = texture_planes(p, tv, quotients, one_w, affine_only);
     if (options.rounding) { // chapter 4: ties go right, or down
         if (affine_only) {
             setup.affine_rounding = choose_rounding(tv, MapperKind::affine);
         } else {
-            setup.perspective_rounding = choose_rounding(tv, q);
+            setup.perspective_rounding = choose_rounding(tv, quotients);
         }
     }
     return setup;
@@ -93,9 +116,12 @@ class TrianglePlanes {
     /// Snaps the corners (Error beyond +-2^20 px) and checks a textured triangle against
     /// the mappers' ranges: both before the first pixel. (Always inlined: both drawing
     /// paths construct it once per triangle, and GCC would call it out of line.)
+    /// `shading` is the triangle's ShadedCorners, or nullptr for a mesh that has none
+    /// (whose colour and lighting stages do not run).
     [[gnu::always_inline]] TrianglePlanes(const MeshContext& m,
-                                          const ScreenTriangle& triangle)
-        : m_(m), triangle_(triangle) {
+                                          const ScreenTriangle& triangle,
+                                          const ShadedCorners* shading)
+        : m_(m), triangle_(triangle), shading_(shading) {
         for (std::size_t k = 0; k < 3; ++k) {
             snapped[k] = snap_in_range(triangle.corners[k].position);
             p[k] = to_pixels(snapped[k]);
@@ -152,7 +178,7 @@ class TrianglePlanes {
             for (int c = 0; c < 3; ++c) {
                 std::array<double, 3> value{};
                 for (std::size_t k = 0; k < 3; ++k) {
-                    const double channel = triangle_.colours[k][c];
+                    const double channel = shading_->colours[k][c];
                     value[k] = corrected ? channel / tv[k].w : channel;
                 }
                 colour_.rgb[static_cast<std::size_t>(c)] = plane_through(p, value);
@@ -166,12 +192,13 @@ class TrianglePlanes {
     const LightingPlanes& lighting() {
         if (!has_lighting_) {
             const std::array<TexturedVertex, 3>& tv = triangle_.corners;
-            const std::array<double, 3> q{1.0 / tv[0].w, 1.0 / tv[1].w, 1.0 / tv[2].w};
+            const std::array<double, 3> corner_one_w{1.0 / tv[0].w, 1.0 / tv[1].w,
+                                                     1.0 / tv[2].w};
             for (int c = 0; c < 3; ++c) {
                 std::array<double, 3> a{}, n{};
                 for (std::size_t k = 0; k < 3; ++k) {
-                    a[k] = triangle_.points[k][c] * q[k];
-                    n[k] = triangle_.normals[k][c] * q[k];
+                    a[k] = shading_->points[k][c] * corner_one_w[k];
+                    n[k] = shading_->normals[k][c] * corner_one_w[k];
                 }
                 lighting_.point_w[static_cast<std::size_t>(c)] = plane_through(p, a);
                 lighting_.normal_w[static_cast<std::size_t>(c)] = plane_through(p, n);
@@ -185,6 +212,7 @@ class TrianglePlanes {
   private:
     const MeshContext& m_;
     const ScreenTriangle& triangle_;
+    const ShadedCorners* shading_;
     bool has_nearness_ = false, has_one_w_ = false, has_texture_ = false,
          has_colour_ = false, has_lighting_ = false;
     ScreenPlane nearness_, one_w_;
@@ -229,7 +257,7 @@ MappedSpan span_mapper(const RenderOptions& options, const TextureSetup& setup,
         report.auto_choice.divides += mapped.choice_divides;
     }
     const auto kind = static_cast<std::size_t>(mapped.mapper.kind);
-    StageCounter& counter = report.mappers[kind];
+    WorkCount& counter = report.mappers[kind];
     const long long divides = mapper_divides(mapped.mapper, count);
     counter.triangles += used[kind] ? 0 : 1;
     used[kind] = true;
@@ -260,8 +288,8 @@ depth_stage(DepthBuffer& depth, const ScreenPlane& nearness, Span s, char* visib
     const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
     int shown = 0;
     for (int k = 0; k < count; ++k) {
-        const float q = nearness_key(nearness.at(x + k, y));
-        const bool seen = depth.test_and_write(s.x_begin + k, s.y, q);
+        const float key = nearness_key(nearness.at(x + k, y));
+        const bool seen = depth.test_and_write(s.x_begin + k, s.y, key);
         visible[k] = seen;
         shown += seen;
     }
@@ -294,10 +322,9 @@ map_texture_span(SimdVariant lanes, Mapper mapper, Precision precision, TexelRou
 /// mapper in the instruction set `lanes`, portable on the teaching path). Returns the
 /// mapper, for the report.
 template <class TexelOut>
-[[gnu::always_inline]] inline MappedSpan texture_stage(const RenderOptions& options,
-                                                       const TextureSetup& texture,
-                                                       Span s, SimdVariant lanes,
-                                                       TexelOut&& texel) {
+[[gnu::always_inline]] inline MappedSpan
+texture_stage(const RenderOptions& options, const TextureSetup& texture, Span s,
+              SimdVariant lanes, TexelOut&& texel) {
     const PerspectiveSpan<double> ps = perspective_span(texture.planes, s);
     const MappedSpan mapped =
         span_mapper(options, texture, ps); // auto: within the budget
@@ -340,13 +367,13 @@ void colour_stage(const ColourPlanes& planes, bool textured, Span s, Rgba8* row)
     Colour c{rgb[0].at(x, y), rgb[1].at(x, y), rgb[2].at(x, y)};
     const Colour dc{rgb[0].g.dx, rgb[1].g.dx, rgb[2].g.dx};
     const bool corrected = planes.one_w != nullptr;
-    double q = corrected ? planes.one_w->at(x, y) : 0.0; // 1/w, as the exact mapper
-    const double dq = corrected ? planes.one_w->g.dx : 0.0;
+    double one_w = corrected ? planes.one_w->at(x, y) : 0.0; // as the exact mapper
+    const double d_one_w = corrected ? planes.one_w->g.dx : 0.0;
     for (int k = 0; k < s.x_end - s.x_begin; ++k) {
-        const Colour shade = corrected ? c * (1.0 / q) : c;
+        const Colour shade = corrected ? c * (1.0 / one_w) : c;
         row[k] = textured ? multiply(row[k], shade) : to_rgba8(shade);
         c += dc;
-        q += dq;
+        one_w += d_one_w;
     }
 }
 //< colour-stage
@@ -536,8 +563,9 @@ void shaded_span(MeshContext& m, TrianglePlanes& planes, Filter filter, StageTim
 /// test, then the direct span (`direct`) or the shaded one. The stages return what they
 /// did and are counted here; the timer wraps each stage call (StageTimer).
 template <bool direct>
-void draw_triangle(MeshContext& m, const ScreenTriangle& triangle) {
-    TrianglePlanes planes(m, triangle); // Error before the first pixel
+void draw_triangle(MeshContext& m, const ScreenTriangle& triangle,
+                   const ShadedCorners* shading) {
+    TrianglePlanes planes(m, triangle, shading); // Error before the first pixel
     const Filter filter = direct ? Filter::nearest : prepare_filter(m, planes);
     count_triangle(m, filter);
     StageTimer timer{m.timed};
@@ -583,7 +611,7 @@ bool lean_drawable(const MeshContext& m) {
 } // namespace
 
 void draw_mesh(MeshContext& m, const std::vector<ScreenTriangle>& triangles,
-               bool lean_spans) {
+               const std::vector<ShadedCorners>& shading, bool lean_spans) {
     // Stage times: the mesh's drawing is timed whole, and split among the stages as on
     // the timed sample of its triangles (timed_triangles_per_mesh).
     const RenderReport before = m.report;
@@ -595,10 +623,12 @@ void draw_mesh(MeshContext& m, const std::vector<ScreenTriangle>& triangles,
     for (std::size_t k = 0; k < triangles.size(); ++k) {
         m.timed = until_timed == 0;
         until_timed = m.timed ? interval - 1 : until_timed - 1;
+        assert(shading.empty() || shading.size() == triangles.size());
+        const ShadedCorners* corners = shading.empty() ? nullptr : &shading[k];
         if (direct) {
-            draw_triangle<true>(m, triangles[k]);
+            draw_triangle<true>(m, triangles[k], corners);
         } else {
-            draw_triangle<false>(m, triangles[k]);
+            draw_triangle<false>(m, triangles[k], corners);
         }
     }
     share_drawing_time(m.report, before, seconds_since(t0));

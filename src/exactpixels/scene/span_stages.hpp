@@ -4,7 +4,7 @@
 //
 // Usage (render_scene, once per mesh):
 //   MeshContext m{scene, mesh, mesh_stages(scene, mesh), texture, frame, ...};
-//   draw_mesh(m, geometry.meshes[i], fast.lean_spans);
+//   draw_mesh(m, geometry.meshes[i], geometry.shading[i], fast.lean_spans);
 #pragma once
 
 #include "exactpixels/base/framebuffer.hpp"
@@ -43,12 +43,13 @@ struct MeshContext {
     SimdVariant lanes = SimdVariant::portable;
 };
 
-/// Draws `triangles`, one mesh's, in order with the stages of `m` (each visible pixel
-/// straight to the frame where `lean_spans` and the mesh allow it), times the whole and
-/// shares the time among the stages as the sampled triangles spent it
-/// (share_drawing_time). Throws Error when a triangle leaves the rasterizer's or the
-/// mapper's exact range.
+/// Draws `triangles`, one mesh's, with their ShadedCorners `shading` (one per triangle
+/// where the mesh has a colour or lighting stage, else none), in order with the stages of
+/// `m` (each visible pixel straight to the frame where `lean_spans` and the mesh allow
+/// it), times the whole and shares the time among the stages as the sampled triangles
+/// spent it (share_drawing_time). Throws Error when a triangle leaves the rasterizer's or
+/// the mapper's exact range.
 void draw_mesh(MeshContext& m, const std::vector<ScreenTriangle>& triangles,
-               bool lean_spans);
+               const std::vector<ShadedCorners>& shading, bool lean_spans);
 
 } // namespace exactpixels

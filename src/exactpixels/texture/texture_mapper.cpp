@@ -23,7 +23,7 @@ TexelMap::TexelMap(int width_, int height_)
 
 void check_textured_triangle(const std::array<TexturedVertex, 3>& v,
                              const MapperSettings& settings) {
-    const double uv_limit = settings.precision == Precision::fixed ? 16384.0 : 1e30;
+    const double uv_limit = texture_coordinate_limit(settings.precision);
     const int piece = settings.mapper.piece;
     for (int k = 0; k < 3; ++k) {
         const TexturedVertex& p = v[static_cast<std::size_t>(k)];

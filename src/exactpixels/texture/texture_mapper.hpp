@@ -122,6 +122,12 @@ struct TexelMap {
     std::vector<double> v;     ///< the v the mapper computed there, texels (fixed: V / D)
 };
 
+/// The bound on |u| and |v| (texels, exclusive) that check_textured_triangle sets in
+/// `precision`: 2^14 for fixed point, where U = u D must fit, else 1e30.
+inline double texture_coordinate_limit(Precision precision) {
+    return precision == Precision::fixed ? 16384.0 : 1e30;
+}
+
 /// Checks the triangle and settings: finite positions within chapter 2's fixed-point
 /// range, w > 0 and finite, finite uv (|u|, |v| < 2^14 for Precision::fixed), span in
 /// [2, 4096]. Throws Error naming the offending value; returns when all is well.
