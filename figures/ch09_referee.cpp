@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
             "|:------|----:|----:|---:|----:|----:|----:|---:|\n";
         long long scenes = 0, covered = 0, coverage = 0, depth = 0, compared = 0,
                   over = 0, edge = 0, shipped = 0, lit_scenes = 0, lit = 0,
-                  uncompared = 0;
+                  uncompared = 0, shown_marked = 0, shown_any = 0;
         int worst_off_edge = 0, worst_lit = 0;
         double worst_gap = 0.0, worst_lit_float = 0.0;
         for (const std::string& name : referee_scene_names()) {
@@ -107,6 +107,16 @@ int main(int argc, char** argv) {
             worst_gap = std::max(worst_gap, c.worst_depth_gap);
             if (name == shown_scene) {
                 write_png(folder / "ch09_referee.png", panels(c));
+                // What the figure shows: the pixels it marks, and the pixels whose bytes
+                // differ at all (most of them within the tolerance, so left unmarked).
+                for (int y = 0; y < c.height; ++y) {
+                    for (int x = 0; x < c.width; ++x) {
+                        const Rgba8 p = c.differences.at(x, y);
+                        shown_marked += p.r != p.g || p.g != p.b;
+                        const Rgba8 a = c.ours.at(x, y), b = c.theirs.at(x, y);
+                        shown_any += a.r != b.r || a.g != b.g || a.b != b.b;
+                    }
+                }
             }
         }
         table +=
@@ -144,10 +154,12 @@ int main(int argc, char** argv) {
                 "referee_far_departures {}\nreferee_far_ours_exact {}\n"
                 "referee_lit_scenes {}\nreferee_lit_compared {}\n"
                 "referee_worst_lit_off_edge {}\nreferee_lit_float_levels {:.4f}\n"
-                "referee_colour_uncompared {}\n",
+                "referee_colour_uncompared {}\nreferee_shown_marked {}\n"
+                "referee_shown_any {}\n",
                 scenes, covered, coverage, depth, worst_gap * 1e6, compared, over, edge,
                 worst_off_edge, shipped, far_count, far_covered, far_departures,
-                far_exact, lit_scenes, lit, worst_lit, worst_lit_float, uncompared));
+                far_exact, lit_scenes, lit, worst_lit, worst_lit_float, uncompared,
+                shown_marked, shown_any));
     } catch (const Error& error) {
         std::fprintf(stderr, "fig_ch09_referee: %s\n", error.what());
         return 2;
