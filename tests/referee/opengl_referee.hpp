@@ -1,7 +1,7 @@
 // opengl_referee.hpp: a shipped scene drawn a second time by Mesa's llvmpipe (OSMesa),
 // from the very triangles the renderer draws, and the two pictures compared.
 //
-// Usage (tests/referee_opengl.cpp, figures/ch07_referee.cpp; links OSMesa):
+// Usage (tests/referee_opengl.cpp, figures/ch09_referee.cpp; links OSMesa):
 //   std::string why;
 //   if (!opengl_referee_ready(why)) { /* skip, saying why */ }
 //   const RefereeComparison c = referee_scene(load_scene(path), "boxes");

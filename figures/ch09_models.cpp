@@ -1,11 +1,11 @@
-// Chapter 7 figures for models read from OBJ files (@sec:scene-models): the four
-// shipped model scenes rendered (ch07_model_torus.png, ch07_model_room.png,
-// ch07_model_terrain.png, and the lit torus ch07_model_lit_torus.png), and a generated
+// Chapter 9 figures for models read from OBJ files (@sec:scene-models): the four
+// shipped model scenes rendered (ch09_model_torus.png, ch09_model_room.png,
+// ch09_model_terrain.png, and the lit torus ch09_model_lit_torus.png), and a generated
 // torus of 102,400 triangles written into the figure folder (big_torus.obj, .mtl, .png
-// and big_torus.toml) and rendered at 1280 x 720 (ch07_big_torus.png), with the reports
-// of all five as a Markdown fragment (ch07_models.md).
+// and big_torus.toml) and rendered at 1280 x 720 (ch09_big_torus.png), with the reports
+// of all five as a Markdown fragment (ch09_models.md).
 //
-// Usage: fig_ch07_models FIGURE_DIR
+// Usage: fig_ch09_models FIGURE_DIR
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/lab/model_generator.hpp"
@@ -34,8 +34,8 @@ int main(int argc, char** argv) {
             const Scene scene = load_scene(path);
             const RenderResult result = render_scene(scene);
             const std::string name = path.stem().string();
-            write_png(folder / (name == "big_torus" ? "ch07_big_torus.png"
-                                                    : "ch07_model_" + name + ".png"),
+            write_png(folder / (name == "big_torus" ? "ch09_big_torus.png"
+                                                    : "ch09_model_" + name + ".png"),
                       result.image);
             long long triangles = 0;
             for (const SceneMesh& mesh : scene.meshes) {
@@ -46,9 +46,9 @@ int main(int argc, char** argv) {
                                    name, path.filename().string(), scene.width,
                                    scene.height, triangles, format_report(result.report));
         }
-        write_figure_file(folder / "ch07_models.md", reports);
+        write_figure_file(folder / "ch09_models.md", reports);
     } catch (const Error& error) {
-        std::fprintf(stderr, "fig_ch07_models: %s\n", error.what());
+        std::fprintf(stderr, "fig_ch09_models: %s\n", error.what());
         return 2;
     }
     return 0;
