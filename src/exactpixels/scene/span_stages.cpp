@@ -297,16 +297,22 @@ depth_stage(DepthBuffer& depth, const ScreenPlane& nearness, Span s, char* visib
 }
 //< depth-stage
 
+/// The shortest span the exact mapper's lanes take: a shorter one costs more in chunk
+/// set-up than its divides save. On the big torus (spans of 2.7 pixels on average) the
+/// lanes on every span took 188.0M instructions a frame, from 8 pixels 180.4M
+/// (callgrind, AVX2); 4 gave 180.8M, 16 the same as 8.
+constexpr int min_exact_lanes_pixels = 8;
+
 /// map_span, except the exact mapper in double under FastPaths::exact_lanes (`lanes` not
-/// portable): its divides 2, 4 or 8 pixels at once (exact_lanes.hpp), the same u and v,
-/// rounded to texels as map_span rounds them.
+/// portable) on spans of min_exact_lanes_pixels or more: its divides 2, 4 or 8 pixels at
+/// once (exact_lanes.hpp), the same u and v, rounded to texels as map_span rounds them.
 template <class TexelOut>
 [[gnu::always_inline]] inline void
 map_texture_span(SimdVariant lanes, Mapper mapper, Precision precision, TexelRounding r,
                  const PerspectiveSpan<double>& ps, const AffineSpan<double>& as,
                  TexelOut&& texel) {
     if (lanes != SimdVariant::portable && mapper.kind == MapperKind::exact &&
-        precision == Precision::float64) {
+        precision == Precision::float64 && ps.count >= min_exact_lanes_pixels) {
         map_span_exact_lanes(lanes, ps, [&](int k, double u, double v) {
             texel(k, real_texel_index(u, r.u_modifier), real_texel_index(v, r.v_modifier),
                   u, v);
