@@ -1,9 +1,10 @@
 #include "support/printing.hpp"
-// Chapter 7 tests: the comparisons @sec:scene-speed states about the big torus against
-// llvmpipe, checked against the committed, dated run
-// (chapters/07-scenes/big_scene_results.md, written by big_scene.sh beside it). A new run
-// that changes a comparison makes the matching test fail, and the sentence must change
-// with it. The instruction counts of the fast paths (FastPaths) are checked the same way.
+// Chapter 10 tests (kept with chapter 7's suite, whose scene they draw): the comparisons
+// @sec:scene-speed states about the big torus against llvmpipe, checked against the
+// committed, dated run (chapters/07-scenes/big_scene_results.md, written by big_scene.sh
+// beside it). A new run that changes a comparison makes the matching test fail, and the
+// sentence must change with it. The instruction counts of the fast paths (FastPaths) are
+// checked the same way.
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -91,7 +92,7 @@ TEST_CASE("claim: the big torus's geometry and rasterizer take most of its frame
     const double raster = fact("stage_ms_full_raster");
     const double pixels = fact("stage_ms_full_depth") + fact("stage_ms_full_texture");
     const double total = fact("stage_ms_full_total");
-    CHECK(geometry + raster > 0.66 * total);
+    CHECK(geometry + raster > 0.6 * total); // "more than three fifths" (@sec:scene-speed)
     CHECK(pixels < geometry + raster);
     CHECK(geometry + raster + pixels <= total);
 }
