@@ -81,7 +81,6 @@ void plot(const RenderTarget& t, const FlatTriangle& tri, int x, int y) {
 }
 //< plot-pixel
 
-//> plot-run
 /// Draws the run s of `tri`: one fill without depth, four depth tests at a time with it
 /// (depth_lanes.hpp: the bits plot writes).
 void plot_run(const RenderTarget& t, const FlatTriangle& tri, Span s) {
@@ -93,7 +92,6 @@ void plot_run(const RenderTarget& t, const FlatTriangle& tri, Span s) {
     depth_run(tri.depth, tri.colour, s.y, s.x_begin, s.x_end, t.depth + row,
               t.colour + row);
 }
-//< plot-run
 
 Viewport viewport_of(const RenderTarget& t) {
     return {t.width, t.height};
@@ -442,11 +440,9 @@ void TiledRenderer::draw(const RenderTarget& target,
 }
 //< draw-tiled
 
-//> draw-tiled-once
 void draw_tiled(const RenderTarget& target, std::span<const FlatTriangle> triangles,
                 int threads) {
     TiledRenderer(threads).draw(target, triangles);
 }
-//< draw-tiled-once
 
 } // namespace exactpixels

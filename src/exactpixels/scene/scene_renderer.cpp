@@ -37,7 +37,6 @@ void check_fill_work(const Scene& scene, const SceneGeometry& geometry) {
 
 } // namespace
 
-//> render-scene
 RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths fast) {
     const Clock::time_point start = Clock::now();
     RenderResult result{
@@ -58,7 +57,6 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
     }
     for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
         const SceneMesh& mesh = scene.meshes[i];
-        //> choose-colours
         bool corrected = scene.options.colours == ColourInterpolation::perspective;
         if (mesh_stages(scene, mesh).colour) { // the screen path's bound, vs the budget
             const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
@@ -73,7 +71,6 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
                              bound > scene.options.budget);
             }
         }
-        //< choose-colours
         MeshContext m{scene,
                       mesh,
                       mesh_stages(scene, mesh),
@@ -110,7 +107,6 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
     report.seconds = seconds_since(start);
     return result;
 }
-//< render-scene
 
 TexelError check_against_exact(Scene scene) {
     TexelMap map(scene.width, scene.height), reference(scene.width, scene.height);

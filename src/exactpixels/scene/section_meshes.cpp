@@ -72,7 +72,6 @@ std::vector<SceneVertex> read_corners(const TableReader& t, SceneMesh& mesh,
     return v;
 }
 
-//> primitives
 /// triangles: `positions`, three corners per triangle.
 void read_triangles(const TableReader& t, SceneMesh& mesh) {
     const std::vector<SceneVertex> v = read_corners(t, mesh, "positions", 0);
@@ -196,7 +195,6 @@ const std::vector<Primitive>& primitives() {
     };
     return table;
 }
-//< primitives
 
 /// A [[mesh]] of a primitive: the primitive first, as it decides which keys are allowed.
 SceneMesh read_mesh(const Context& c, const toml::table& table, const std::string& path,
