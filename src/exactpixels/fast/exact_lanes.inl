@@ -45,8 +45,8 @@ static_assert(sizeof(Rgba8) == sizeof(std::int32_t)); // a colour fills one int 
 #define EXACTPIXELS_LANES_WIDE 256
 #endif
 
-/// Calls step(t, k, n) for the pixels first, first + 1, ..., first + count - 1, lanes at a
-/// time: t holds the pixel numbers first + k .. first + k + lanes - 1 as doubles, of
+/// Calls step(t, k, n) for the pixels first, first + 1, ..., first + count - 1, lanes at
+/// a time: t holds the pixel numbers first + k .. first + k + lanes - 1 as doubles, of
 /// which the first n are to be kept. A run of at least `lanes` pixels ends with one step
 /// over its last `lanes` pixels, overlapping the step before (its pixels come out the
 /// same twice), so every step keeps all its lanes; a shorter run is one step that repeats
@@ -82,7 +82,8 @@ Ints floor_lanes(Doubles x) {
     // One conversion rounding towards minus infinity (the zero-masking form, all lanes
     // kept: the plain one reads an undefined register that GCC 12 warns of).
     return reinterpret_cast<Ints>(_mm512_maskz_cvt_roundpd_epi32(
-        0xff, reinterpret_cast<__m512d>(x), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+        static_cast<__mmask8>(0xff), reinterpret_cast<__m512d>(x),
+        _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
 #elif EXACTPIXELS_LANES_WIDE == 256
     // floor in double (exact), then a conversion of an integer: exact in any rounding.
     return reinterpret_cast<Ints>(
@@ -91,7 +92,8 @@ Ints floor_lanes(Doubles x) {
     // Truncate, then subtract one where the truncation came out above x (floor_to_int's
     // correction, per lane).
     const Ints t = __builtin_convertvector(x, Ints);
-    const Ints above = __builtin_convertvector(__builtin_convertvector(t, Doubles) > x, Ints);
+    const Ints above =
+        __builtin_convertvector(__builtin_convertvector(t, Doubles) > x, Ints);
     return t + above; // a true comparison is -1 in every bit
 #endif
 }
