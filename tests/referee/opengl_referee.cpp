@@ -637,6 +637,7 @@ CoverageComparison referee_coverage(const std::vector<ScreenTriangle>& triangles
     frame.meshes.resize(1);
     SceneGeometry geometry;
     geometry.meshes.push_back(triangles);
+    geometry.shading.emplace_back(); // one entry per mesh: none kept (no colour, no light)
     const std::vector<long long> ids = our_ids(geometry, width, height, false);
     const std::vector<bool> exact = exact_coverage(geometry, width, height);
     const std::vector<Rgba8> gl_ids = draw_gl(frame, geometry, {MeshLook{}}, false, true);
