@@ -122,9 +122,11 @@ void textured_run(Rgba8* row, const LaneSpan& span, const LaneTexels& texels) {
 #if defined(EXACTPIXELS_LANES_WIDE)
         if (n == lanes) { // one load per texel, one store of all the colours
             Ints colour;
-            for (int l = 0; l < lanes; ++l) {
-                std::memcpy(&colour[l], &tex.texels[static_cast<std::uint32_t>(index[l])],
+            for (int l = 0; l < lanes; ++l) { // (a vector element has no address)
+                std::uint32_t texel = 0;
+                std::memcpy(&texel, &tex.texels[static_cast<std::uint32_t>(index[l])],
                             sizeof(Rgba8));
+                colour[l] = static_cast<std::int32_t>(texel); // modular, as C++20 says
             }
             std::memcpy(static_cast<void*>(row + k), &colour, sizeof(colour));
             return;
