@@ -115,6 +115,31 @@ TEST_CASE("a PNG's size is checked from its header before its pixels are decoded
     CHECK(seen_height == 14);
 }
 
+TEST_CASE("a PNG with an unknown chunk before its IHDR is read by its own IHDR") {
+    // libpng skips an unknown ancillary chunk (lower-case first letter) before IHDR, so
+    // such a file is a sound image. The fuzzer found one whose first chunk was "mIHD":
+    // the decompression-bomb guard read the header at byte 16 and took the stray
+    // chunk's tenth byte, 0x89, for the colour type (std::out_of_range, not Error).
+    std::string stray(13, '\0');
+    stray[9] = '\x89';
+    const std::string fixture_bytes = slurp(fixture);
+    const std::string bytes =
+        fixture_bytes.substr(0, 8) + png_chunk("mIHD", stray) + fixture_bytes.substr(8);
+    CHECK(read_bytes(bytes) == draw_f_pattern(2));
+
+    // The guard still counts this image's rows: the bomb below is refused, with or
+    // without the stray chunk in front.
+    std::string rows;
+    for (int y = 0; y < 8; ++y) {
+        rows += '\0' + std::string(32, '\x40');
+    }
+    const std::string bomb =
+        png_file(8, 8, 8, 6, "", zlib_stream(rows, std::size_t{64} << 20));
+    CHECK_THROWS_WITH_AS(read_bytes(bomb.substr(0, 8) + png_chunk("mIHD", stray) +
+                                    bomb.substr(8)),
+                         doctest::Contains("inflates to more than"), Error);
+}
+
 TEST_CASE("a PNG path that is a FIFO or a directory is refused without blocking") {
     const fs::path fifo = fs::temp_directory_path() /
                           ("exactpixels-png-fifo-" + std::to_string(::getpid()));

@@ -65,11 +65,32 @@ std::uint32_t big_endian_u32(std::string_view bytes, std::size_t at) {
     return value;
 }
 
+/// Where the data of the first IHDR chunk starts. libpng skips unknown ancillary chunks
+/// before it (a file may begin "mIHD"), so it is found by walking the chunks from the
+/// signature, as libpng does, not assumed at byte 16. libpng has already checked that
+/// the chunk exists, holds 13 bytes and has a valid colour type; a file that says
+/// otherwise is refused here too, never read out of bounds.
+std::size_t ihdr_data(std::string_view bytes, const std::string& name) {
+    constexpr std::size_t ihdr_length = 13;
+    std::size_t at = 8; // after the signature: chunks of length, type, data, CRC
+    while (at + 8 <= bytes.size()) {
+        const std::size_t length = big_endian_u32(bytes, at);
+        if (bytes.compare(at + 4, 4, "IHDR") == 0) {
+            if (length != ihdr_length || at + 8 + length > bytes.size()) {
+                break;
+            }
+            return at + 8;
+        }
+        at += 12 + length;
+    }
+    throw Error(fmt::format("{}: cannot read image (no IHDR chunk of 13 bytes)", name));
+}
+
 /// The bytes an honest zlib stream of this PNG inflates to: for every row (of every
 /// Adam7 pass, when interlaced), a filter byte and the row's packed samples. Read from
-/// the IHDR chunk, which always comes first and which libpng has already checked.
-long long inflated_image_bytes(std::string_view bytes) {
-    constexpr std::size_t ihdr = 16; // signature, then the chunk's length and type
+/// the IHDR chunk whose data starts at `ihdr`.
+long long inflated_image_bytes(std::string_view bytes, std::size_t ihdr,
+                               const std::string& name) {
     const long long width = big_endian_u32(bytes, ihdr);
     const long long height = big_endian_u32(bytes, ihdr + 4);
     const int bit_depth = static_cast<unsigned char>(bytes[ihdr + 8]);
@@ -78,7 +99,11 @@ long long inflated_image_bytes(std::string_view bytes) {
     // Samples per pixel for colour types 0 (grey), 2 (RGB), 3 (palette), 4 (grey and
     // alpha) and 6 (RGBA).
     const std::array<int, 7> channels{1, 0, 3, 1, 2, 0, 4};
-    const long long bits_per_pixel = channels.at(colour_type) * bit_depth;
+    if (colour_type >= static_cast<int>(channels.size()) || channels[colour_type] == 0) {
+        throw Error(
+            fmt::format("{}: cannot read image (colour type {})", name, colour_type));
+    }
+    const long long bits_per_pixel = channels[colour_type] * bit_depth;
     const auto rows_bytes = [&](long long pass_width, long long pass_height) {
         if (pass_width == 0 || pass_height == 0) {
             return 0LL; // an empty pass has no rows at all, not even filter bytes
@@ -188,7 +213,8 @@ Framebuffer decode_png(std::string_view bytes, const std::string& name,
     }
     // libpng inflates the whole stream to check its Adler-32, however far it goes on
     // past the image, so a small file could cost minutes: bound it first.
-    const long long image_bytes = inflated_image_bytes(bytes);
+    const long long image_bytes =
+        inflated_image_bytes(bytes, ihdr_data(bytes, name), name);
     if (!inflates_within(bytes, image_bytes + max_png_extra_inflated_bytes)) {
         fail(fmt::format("its image data inflates to more than the {} bytes of its {}x{} "
                          "pixels and {} to spare",
