@@ -35,9 +35,34 @@ struct LaneTexels {
     int w_shift;         ///< log2(width)
 };
 
+/// A plane over the screen in plain numbers: ScreenPlane's fields (screen_plane.hpp),
+/// whose value at (x, y) is value + dx (x - origin_x) + dy (y - origin_y).
+struct LanePlane {
+    double origin_x, origin_y, value, dx, dy;
+};
+
+/// The exact mapper's three planes of one triangle (TexturePlanes' u_w, v_w, one_w).
+struct LanePlanes {
+    LanePlane u_w, v_w, one_w;
+};
+
+/// One covered run: pixels x_begin .. x_end - 1 of row y (a Span), x_end > x_begin.
+struct LaneRun {
+    int y, x_begin, x_end;
+};
+
+/// Where the runs are drawn: row y starts at colour + y * width.
+struct LaneFrame {
+    Rgba8* colour;
+    int width;
+};
+
 #define EXACTPIXELS_DECLARE_LANES(set)                                                   \
     namespace simd_##set {                                                               \
     void textured_run(Rgba8* row, const LaneSpan& s, const LaneTexels& t);               \
+    void textured_runs(LaneFrame f, const LanePlanes& p, const LaneRun* runs, int n,     \
+                       const LaneTexels& t);                                             \
+    LaneSpan run_span(const LanePlanes& p, LaneRun run);                                 \
     void exact_uv(const LaneSpan& s, int k0, int n, double* u, double* v);               \
     }
 EXACTPIXELS_DECLARE_LANES(sse2)
