@@ -69,7 +69,6 @@ struct MaskedTexels {
     Rgba8 operator()(int i, int j) const { return fetch_texel_masked(*texture, i, j); }
 };
 
-//> draw-runs-lanes
 /// The triangle's runs in the vector kernels, up to 64 rows per call: each kernel sets
 /// a run's span up itself (perspective_span's operations), so that a row costs no call.
 void draw_runs_lanes(const RenderTarget& target, const EdgeSetup<FixedEdge>& s, PixelRect r,
@@ -87,7 +86,6 @@ void draw_runs_lanes(const RenderTarget& target, const EdgeSetup<FixedEdge>& s, 
     });
     textured_runs_lanes(fetch.variant, frame, p, runs.data(), n, fetch.lanes);
 }
-//< draw-runs-lanes
 
 /// Draws one checked triangle, wrapping texel indices with fetch(i, j).
 template <class Fetch>
