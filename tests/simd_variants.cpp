@@ -184,6 +184,38 @@ TEST_CASE("every variant's exact mapper gives exact_at's bits") {
     }
 }
 
+TEST_CASE("every variant sets a run's span up with perspective_span's bits") {
+    // The kernels set each run's span up themselves (textured_runs_lanes): the planes at
+    // the run's first pixel centre, value + dx (x - x0) + dy (y - y0) in that order. Random
+    // planes with values and slopes of every size make a reordered sum, or a centre off by
+    // anything, round differently somewhere.
+    std::mt19937_64 rng(3435);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), corner(-50.0, 1100.0);
+    const auto plane = [&] {
+        const double scale = std::ldexp(1.0, static_cast<int>(rng() % 60) - 30);
+        return ScreenPlane{{corner(rng), corner(rng)},
+                           unit(rng) * scale * 1000.0,
+                           {unit(rng) * scale, unit(rng) * scale}};
+    };
+    for (const SimdVariant v : available_simd()) {
+        INFO(std::string(simd_name(v)));
+        int differing = 0;
+        for (int n = 0; n < 20000; ++n) {
+            const TexturePlanes planes{plane(), plane(), plane(), {}, {}};
+            const int x = static_cast<int>(rng() % 1024), y = static_cast<int>(rng() % 1024);
+            const Span run{y, x, x + 1 + static_cast<int>(rng() % 40)};
+            const LaneSpan got =
+                run_span_lanes(v, lane_planes(planes), {run.y, run.x_begin, run.x_end});
+            const PerspectiveSpan<double> e = perspective_span(planes, run);
+            differing += bits(got.u_w) != bits(e.u_w) || bits(got.v_w) != bits(e.v_w) ||
+                         bits(got.one_w) != bits(e.one_w) || bits(got.du_w) != bits(e.du_w) ||
+                         bits(got.dv_w) != bits(e.dv_w) || bits(got.done_w) != bits(e.done_w) ||
+                         got.count != e.count;
+        }
+        CHECK(differing == 0);
+    }
+}
+
 TEST_CASE("every variant's textured runs draw the teaching path's texels") {
     KeepChoice keep;
     std::mt19937_64 rng(3434);

@@ -3,6 +3,7 @@
 #include "exactpixels/base/floor_to_int.hpp"
 
 #include <bit>
+#include <cstddef>
 #include <cassert>
 
 namespace exactpixels {
@@ -10,6 +11,13 @@ namespace exactpixels {
 LaneTexels lane_texels(const Texture& texture) {
     return {texture.texels().data(), texture.width() - 1, texture.height() - 1,
             std::countr_zero(static_cast<unsigned>(texture.width()))};
+}
+
+LanePlanes lane_planes(const TexturePlanes& planes) {
+    const auto lane = [](const ScreenPlane& p) {
+        return LanePlane{p.origin.x, p.origin.y, p.value, p.g.dx, p.g.dy};
+    };
+    return {lane(planes.u_w), lane(planes.v_w), lane(planes.one_w)};
 }
 
 namespace {
@@ -66,6 +74,38 @@ void textured_run_lanes(SimdVariant variant, Rgba8* row, const LaneSpan& s,
         const UV<double> uv = exact_at(plain, k);
         const int i = floor_to_int(uv.u) & tex.w_mask, j = floor_to_int(uv.v) & tex.h_mask;
         row[k] = tex.texels[static_cast<unsigned>(j) << tex.w_shift | static_cast<unsigned>(i)];
+    }
+}
+
+LaneSpan run_span_lanes(SimdVariant variant, const LanePlanes& p, LaneRun run) {
+    switch (variant) {
+        EXACTPIXELS_LANES_CASES(run_span(p, run))
+    default:
+        break;
+    }
+    const auto plane = [](const LanePlane& q) {
+        return ScreenPlane{{q.origin_x, q.origin_y}, q.value, {q.dx, q.dy}};
+    };
+    const PerspectiveSpan<double> ps =
+        perspective_span({plane(p.u_w), plane(p.v_w), plane(p.one_w), {}, {}},
+                         Span{run.y, run.x_begin, run.x_end});
+    return lane_span(ps);
+}
+
+void textured_runs_lanes(SimdVariant variant, LaneFrame frame, const LanePlanes& p,
+                         const LaneRun* runs, int n, const LaneTexels& tex) {
+    switch (variant) {
+        EXACTPIXELS_LANES_CASES(textured_runs(frame, p, runs, n, tex))
+    default:
+        break;
+    }
+    for (int r = 0; r < n; ++r) {
+        textured_run_lanes(variant,
+                           frame.colour +
+                               static_cast<std::size_t>(runs[r].y) *
+                                   static_cast<std::size_t>(frame.width) +
+                               static_cast<std::size_t>(runs[r].x_begin),
+                           run_span_lanes(variant, p, runs[r]), tex);
     }
 }
 

@@ -15,6 +15,7 @@
 #include "exactpixels/fast/simd.hpp"
 #include "exactpixels/texture/span_mappers.hpp"
 #include "exactpixels/texture/texture.hpp"
+#include "exactpixels/texture/texture_mapper.hpp"
 
 #include <algorithm>
 
@@ -39,6 +40,17 @@ void exact_uv_lanes(SimdVariant variant, const LaneSpan& s, int k0, int n, doubl
 /// span must lie within +-2^24 texels (textured_runs.hpp checks the corners).
 void textured_run_lanes(SimdVariant variant, Rgba8* row, const LaneSpan& s,
                         const LaneTexels& tex);
+
+/// The exact mapper's planes of a triangle (u/w, v/w, 1/w) for the kernels.
+LanePlanes lane_planes(const TexturePlanes& planes);
+
+/// textured_run_lanes on each of n runs of one triangle, whose span is set up from the
+/// planes as perspective_span sets it up: one call, not one per row.
+void textured_runs_lanes(SimdVariant variant, LaneFrame frame, const LanePlanes& planes,
+                         const LaneRun* runs, int n, const LaneTexels& tex);
+
+/// The span of one run as the kernels of `variant` set it up (perspective_span's bits).
+LaneSpan run_span_lanes(SimdVariant variant, const LanePlanes& planes, LaneRun run);
 
 //> map-span-exact-lanes
 /// The exact mapper with its divides in lanes: u and v for up to 64 pixels at a time

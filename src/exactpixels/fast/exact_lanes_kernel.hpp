@@ -35,9 +35,42 @@ struct LaneTexels {
     int w_shift;         ///< log2(width)
 };
 
+/// A plane over the screen in plain numbers: ScreenPlane's fields (screen_plane.hpp),
+/// whose value at (x, y) is value + dx (x - origin_x) + dy (y - origin_y).
+struct LanePlane {
+    double origin_x; ///< the corner where `value` holds, pixels
+    double origin_y; ///< (its y)
+    double value;    ///< the value there
+    double dx;       ///< change per pixel to the right
+    double dy;       ///< change per pixel down
+};
+
+/// The exact mapper's three planes of one triangle (TexturePlanes' u_w, v_w, one_w).
+struct LanePlanes {
+    LanePlane u_w;   ///< u/w
+    LanePlane v_w;   ///< v/w
+    LanePlane one_w; ///< 1/w
+};
+
+/// One covered run: pixels x_begin .. x_end - 1 of row y (a Span), x_end > x_begin.
+struct LaneRun {
+    int y;       ///< the row
+    int x_begin; ///< the first covered column
+    int x_end;   ///< one past the last
+};
+
+/// Where the runs are drawn: row y starts at colour + y * width.
+struct LaneFrame {
+    Rgba8* colour; ///< the top row's first pixel
+    int width;     ///< pixels per row
+};
+
 #define EXACTPIXELS_DECLARE_LANES(set)                                                   \
     namespace simd_##set {                                                               \
     void textured_run(Rgba8* row, const LaneSpan& s, const LaneTexels& t);               \
+    void textured_runs(LaneFrame f, const LanePlanes& p, const LaneRun* runs, int n,     \
+                       const LaneTexels& t);                                             \
+    LaneSpan run_span(const LanePlanes& p, LaneRun run);                                 \
     void exact_uv(const LaneSpan& s, int k0, int n, double* u, double* v);               \
     }
 EXACTPIXELS_DECLARE_LANES(sse2)

@@ -69,6 +69,24 @@ struct MaskedTexels {
     Rgba8 operator()(int i, int j) const { return fetch_texel_masked(*texture, i, j); }
 };
 
+/// The triangle's runs in the vector kernels, up to 64 rows per call: each kernel sets
+/// a run's span up itself (perspective_span's operations), so that a row costs no call.
+void draw_runs_lanes(const RenderTarget& target, const EdgeSetup<FixedEdge>& s, PixelRect r,
+                     const TexturePlanes& planes, const MaskedTexels& fetch) {
+    const LanePlanes p = lane_planes(planes);
+    const LaneFrame frame{target.colour, target.width};
+    std::array<LaneRun, 64> runs{};
+    int n = 0;
+    traverse_runs_stepped(s, r, [&](Span run) {
+        runs[static_cast<std::size_t>(n++)] = {run.y, run.x_begin, run.x_end};
+        if (n == static_cast<int>(runs.size())) {
+            textured_runs_lanes(fetch.variant, frame, p, runs.data(), n, fetch.lanes);
+            n = 0;
+        }
+    });
+    textured_runs_lanes(fetch.variant, frame, p, runs.data(), n, fetch.lanes);
+}
+
 /// Draws one checked triangle, wrapping texel indices with fetch(i, j).
 template <class Fetch>
 void draw_one(const RenderTarget& target, const std::array<TexturedVertex, 3>& v,
@@ -85,19 +103,18 @@ void draw_one(const RenderTarget& target, const std::array<TexturedVertex, 3>& v
         return;
     }
     const TexturePlanes planes = texture_planes(corners, v, /*affine=*/false);
+    if constexpr (std::is_same_v<std::decay_t<Fetch>, MaskedTexels>) {
+        if (fetch.variant != SimdVariant::portable) { // 2, 4 or 8 divides at once
+            draw_runs_lanes(target, s, r, planes, fetch);
+            return;
+        }
+    }
     traverse_runs_stepped(s, r, [&](Span run) {
         Rgba8* row =
             target.colour +
             static_cast<std::size_t>(run.y) * static_cast<std::size_t>(target.width) +
             static_cast<std::size_t>(run.x_begin);
-        const PerspectiveSpan<double> ps = perspective_span(planes, run);
-        if constexpr (std::is_same_v<std::decay_t<Fetch>, MaskedTexels>) {
-            if (fetch.variant != SimdVariant::portable) { // 2, 4 or 8 divides at once
-                textured_run_lanes(fetch.variant, row, lane_span(ps), fetch.lanes);
-                return;
-            }
-        }
-        textured_run(row, ps, fetch);
+        textured_run(row, perspective_span(planes, run), fetch);
     });
 }
 

@@ -16,10 +16,10 @@
 // is neither tested nor written. What makes the pixels the teaching path's, bit for bit:
 // the runs are the rows' whole covered spans (the scanline spans chapter 3 maps), and
 // each run's u/w, v/w and 1/w come from the same planes (texture_planes) through the same
-// setup (perspective_span) and the same per-pixel formula (exact_at), so every double is
-// the same; only the index conversion (real_texel_index, which rounds with floor_to_int)
-// and the wrap (wrap_index_masked, for a power-of-two texture that repeats) are their
-// fast variants.
+// setup (perspective_span, or the vector kernels' copy of its operations) and the same
+// per-pixel formula (exact_at), so every double is the same; only the index conversion
+// (real_texel_index, which rounds with floor_to_int) and the wrap (wrap_index_masked,
+// for a power-of-two texture that repeats) are their fast variants.
 #pragma once
 
 #include "exactpixels/fast/simd.hpp"
