@@ -80,6 +80,18 @@ void check_same_report(const RenderReport& a, const RenderReport& b) {
     CHECK(a.colour_bound == b.colour_bound);
 }
 
+/// The same pixels, texel coordinates and report counts in two renders.
+void check_same_render(const RenderResult& a, const TexelMap& a_map,
+                       const RenderResult& b, const TexelMap& b_map) {
+    CHECK(a.image == b.image);
+    CHECK(a_map.covered == b_map.covered);
+    CHECK(a_map.i == b_map.i);
+    CHECK(a_map.j == b_map.j);
+    CHECK(a_map.u == b_map.u);
+    CHECK(a_map.v == b_map.v);
+    check_same_report(a.report, b.report);
+}
+
 /// Renders the scene with every fast path and on the teaching path and checks that the
 /// pixels, the texel coordinates and the counts are the same: once recording the texel
 /// coordinates, and once without, as a plain render runs (lean_spans draws only then).
@@ -87,13 +99,7 @@ void check_fast_is_teaching(const Scene& scene) {
     TexelMap fast_map(scene.width, scene.height), plain_map(scene.width, scene.height);
     const RenderResult fast = render_scene(scene, &fast_map);
     const RenderResult plain = render_scene(scene, &plain_map, teaching_path);
-    CHECK(fast.image == plain.image);
-    CHECK(fast_map.covered == plain_map.covered);
-    CHECK(fast_map.i == plain_map.i);
-    CHECK(fast_map.j == plain_map.j);
-    CHECK(fast_map.u == plain_map.u);
-    CHECK(fast_map.v == plain_map.v);
-    check_same_report(fast.report, plain.report);
+    check_same_render(fast, fast_map, plain, plain_map);
     const RenderResult fast_only = render_scene(scene);
     CHECK(fast_only.image == plain.image);
     check_same_report(fast_only.report, plain.report);
@@ -117,14 +123,7 @@ int check_threads_are_one(const Scene& scene) {
         FastPaths fast;
         fast.threads = threads;
         TexelMap map(scene.width, scene.height);
-        const RenderResult mapped = render_scene(scene, &map, fast);
-        CHECK(mapped.image == one.image);
-        CHECK(map.covered == one_map.covered);
-        CHECK(map.i == one_map.i);
-        CHECK(map.j == one_map.j);
-        CHECK(map.u == one_map.u);
-        CHECK(map.v == one_map.v);
-        check_same_report(mapped.report, one.report);
+        check_same_render(render_scene(scene, &map, fast), map, one, one_map);
         const RenderResult plain_run = render_scene(scene, nullptr, fast);
         CHECK(plain_run.image == plain.image);
         check_same_report(plain_run.report, plain.report);
@@ -275,11 +274,11 @@ TEST_CASE("a bad thread count is refused before any work") {
     for (int threads : {0, -1, max_threads + 1}) {
         FastPaths fast;
         fast.threads = threads;
-        CHECK_THROWS_WITH_AS(render_scene(scene, nullptr, fast),
-                             fmt::format("thread count {} is outside 1 .. {}", threads,
-                                         max_threads)
-                                 .c_str(),
-                             Error);
+        CHECK_THROWS_WITH_AS(
+            render_scene(scene, nullptr, fast),
+            fmt::format("thread count {} is outside 1 .. {}", threads, max_threads)
+                .c_str(),
+            Error);
     }
     const auto result = exactpixels::testing::run_command(
         exactpixels::testing::cli_path() + " render --threads 65 -o /dev/null");

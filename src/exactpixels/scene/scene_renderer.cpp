@@ -16,7 +16,9 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <span>
 #include <string>
@@ -58,9 +60,9 @@ bool colour_corrected(const Scene& scene, const SceneGeometry& geometry, std::si
                 colour_error_bound({t.corners[0].w, t.corners[1].w, t.corners[2].w},
                                    geometry.shading[i][k].colours);
             report.colour_bound = std::max(report.colour_bound, bound);
-            corrected = corrected ||
-                        (scene.options.colours == ColourInterpolation::automatic &&
-                         bound > scene.options.budget);
+            corrected =
+                corrected || (scene.options.colours == ColourInterpolation::automatic &&
+                              bound > scene.options.budget);
         }
     }
     return corrected;
@@ -126,8 +128,10 @@ std::uint64_t scene_order(const Binned& b) {
 }
 
 /// The bins: per band of band_rows rows, the triangles that may cover a pixel centre in
-/// it (their corners' rows, one row of margin for the snap to 1/256 px), in scene order.
-/// A triangle below or above the image goes to the last or first band.
+/// it, in scene order. Row y's centre y + 1/2 lies between the snapped corners' top and
+/// bottom, each within 1/512 px of the corner: y from floor(top - 1/2 - 1/256) to
+/// floor(bottom - 1/2 + 1/256). A triangle below or above the image goes to the last
+/// or first band.
 std::vector<std::vector<Binned>> bin_by_rows(const SceneGeometry& geometry, int height) {
     std::vector<std::vector<Binned>> bins(
         static_cast<std::size_t>((height + band_rows - 1) / band_rows));
@@ -136,14 +140,17 @@ std::vector<std::vector<Binned>> bin_by_rows(const SceneGeometry& geometry, int 
         const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
         for (std::size_t k = 0; k < triangles.size(); ++k) {
             const std::array<TexturedVertex, 3>& c = triangles[k].corners;
-            const double top = std::min({c[0].position.y, c[1].position.y, c[2].position.y});
+            const double top =
+                std::min({c[0].position.y, c[1].position.y, c[2].position.y});
             const double bottom =
                 std::max({c[0].position.y, c[1].position.y, c[2].position.y});
+            const double margin = 0.5 + 1.0 / 256.0;
             const int first =
-                static_cast<int>(std::clamp(std::floor(top) - 1.0, 0.0, last_row)) / band_rows;
-            const int last =
-                static_cast<int>(std::clamp(std::ceil(bottom) + 1.0, 0.0, last_row)) /
+                static_cast<int>(std::clamp(std::floor(top - margin), 0.0, last_row)) /
                 band_rows;
+            const int last = static_cast<int>(std::clamp(
+                                 std::floor(bottom - 0.5 + 1.0 / 256.0), 0.0, last_row)) /
+                             band_rows;
             for (int b = first; b <= last; ++b) {
                 bins[static_cast<std::size_t>(b)].push_back(
                     {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k),
@@ -235,11 +242,11 @@ void add_drawing(RenderReport& report, const RenderReport& part) {
         a.divides += b.divides;
         a.seconds += b.seconds;
     };
-    for (auto stage : {&RenderReport::depth, &RenderReport::hidden, &RenderReport::raster,
-                       &RenderReport::flat, &RenderReport::colour,
-                       &RenderReport::colour_perspective, &RenderReport::texture,
-                       &RenderReport::auto_choice, &RenderReport::filter,
-                       &RenderReport::lighting}) {
+    for (auto stage :
+         {&RenderReport::depth, &RenderReport::hidden, &RenderReport::raster,
+          &RenderReport::flat, &RenderReport::colour, &RenderReport::colour_perspective,
+          &RenderReport::texture, &RenderReport::auto_choice, &RenderReport::filter,
+          &RenderReport::lighting}) {
         add(report.*stage, part.*stage);
     }
     for (std::size_t k = 0; k < report.mappers.size(); ++k) {
@@ -263,12 +270,14 @@ void merge_bands(std::vector<BandResult>& bands, RenderReport& report) {
     std::vector<std::pair<std::uint64_t, unsigned>> shared;
     for (BandResult& band : bands) {
         add_drawing(report, band.report);
-        shared.insert(shared.end(), band.shared_mappers.begin(), band.shared_mappers.end());
+        shared.insert(shared.end(), band.shared_mappers.begin(),
+                      band.shared_mappers.end());
     }
     std::sort(shared.begin(), shared.end());
     for (std::size_t at = 0, end = 0; at < shared.size(); at = end) {
         unsigned mask = 0;
-        for (end = at; end < shared.size() && shared[end].first == shared[at].first; ++end) {
+        for (end = at; end < shared.size() && shared[end].first == shared[at].first;
+             ++end) {
             mask |= shared[end].second;
         }
         for (std::size_t kind = 0; kind < report.mappers.size(); ++kind) {
@@ -280,8 +289,9 @@ void merge_bands(std::vector<BandResult>& bands, RenderReport& report) {
 //> draw-threaded
 /// The threaded driver (FastPaths::threads > 1): the chains the filter stage will read
 /// made first, in scene order; the triangles binned into bands of rows (bin_by_rows);
-/// the threads take the bands one at a time and draw each band's triangles in scene
-/// order, their spans in its rows only; the bands' counts added in band order. Returns
+/// the threads take the bands one at a time, the fullest first, and draw each band's
+/// triangles in scene order, their spans in its rows only; the bands' counts added in
+/// band order. Returns
 /// false, having drawn nothing, when making a chain meets a bad triangle: the book's
 /// loop then finds the first error in scene order.
 bool draw_threaded(const Frame& f, RenderReport& report) {
@@ -301,15 +311,26 @@ bool draw_threaded(const Frame& f, RenderReport& report) {
             return false;
         }
     }
-    const std::vector<std::vector<Binned>> bins = bin_by_rows(f.geometry, f.image.height());
+    const std::vector<std::vector<Binned>> bins =
+        bin_by_rows(f.geometry, f.image.height());
+    std::vector<std::size_t> fullest(bins.size()); // taken fullest first: they even out
+    std::iota(fullest.begin(), fullest.end(), std::size_t{0});
+    std::stable_sort(fullest.begin(), fullest.end(), [&](std::size_t a, std::size_t b) {
+        return bins[a].size() > bins[b].size();
+    });
     std::vector<BandResult> bands(bins.size());
     std::atomic<std::size_t> next{0};
-    WorkerPool pool(f.fast.threads);
-    pool.run([&](int) {
-        for (std::size_t b = next++; b < bins.size(); b = next++) {
+    const std::function<void(int)> take_bands = [&](int) {
+        for (std::size_t n = next++; n < bins.size(); n = next++) {
+            const std::size_t b = fullest[n];
             bands[b] = draw_band(f, corrected, whole.get(), bins[b], static_cast<int>(b));
         }
-    });
+    };
+#ifdef __wasi__ // WebAssembly without threads (the live figures): one takes them all
+    take_bands(0);
+#else
+    WorkerPool(f.fast.threads).run(take_bands);
+#endif
     merge_bands(bands, report);
     return true;
 }
@@ -342,8 +363,9 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
     if (depth_plan.on) {
         depth.emplace(scene.width, scene.height);
     }
-    const Frame frame{scene,  geometry, result.image, coordinates, depth ? &*depth : nullptr,
-                      chains, fast};
+    const Frame frame{
+        scene,  geometry, result.image, coordinates, depth ? &*depth : nullptr,
+        chains, fast};
     if (fast.threads > 1 && draw_threaded(frame, report)) {
         report.seconds = seconds_since(start);
         return result;

@@ -70,9 +70,9 @@ struct FastPaths {
     /// one pixel at a time.
     bool exact_lanes = true;
     /// Drawing: with more than one, the threaded driver (scene_renderer.cpp) bins the
-    /// triangles into bands of rows and draws the bands on this many threads (1 ..
-    /// max_threads), each band's triangles in scene order: the same pixels, coordinates
-    /// and counts for any number. One is the book's loop, mesh by mesh.
+    /// triangles into bands of rows and draws the bands on this many threads, from one
+    /// to max_threads, each band's triangles in scene order: the same pixels,
+    /// coordinates and counts for any number. One is the book's loop, mesh by mesh.
     int threads = 1;
 };
 
@@ -142,8 +142,8 @@ struct RenderResult {
 RenderResult render_scene(const Scene& scene, TexelMap* coordinates = nullptr,
                           FastPaths fast = {});
 
-/// Throws Error naming `threads` unless it is a thread count render_scene takes:
-/// 1 .. max_threads (worker_pool.hpp). render_scene checks it before any work.
+/// Throws Error naming `threads` unless it is a thread count render_scene takes, from
+/// one to max_threads (worker_pool.hpp). render_scene checks it before any work.
 void check_thread_count(int threads);
 
 /// Bytes a TexelMap holds per pixel: the covered bit, the texel indices i and j, and the

@@ -42,9 +42,10 @@ struct MeshContext {
     bool masked_fetch = false; ///< FastPaths::masked_fetch, and the texture allows it
     /// FastPaths::exact_lanes: the exact mapper's instruction set (portable: plain loop)
     SimdVariant lanes = SimdVariant::portable;
-    /// The rows drawn, [first_row, end_row): all of them, except in a band of the
-    /// threaded driver (scene_threads.cpp), which draws a triangle's spans in its rows.
+    /// The first row drawn: 0, except in a band of the threaded driver
+    /// (scene_renderer.cpp), which draws only the spans in its own rows.
     int first_row = 0;
+    /// The row after the last drawn: all of them, except in a band.
     int end_row = std::numeric_limits<int>::max();
     /// Whether the triangle being drawn is counted into the per-triangle counts: always,
     /// except in the bands of the threaded driver that share it with a band above.
