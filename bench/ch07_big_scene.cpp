@@ -18,6 +18,10 @@
 //          empty_no_depth  the same without depth (no_depth's and flat's fixed cost)
 //        and llvmpipe/frame_copy, the part of llvmpipe's empty frame that is OSMesa's
 //        copy of the frame into our buffer (llvmpipe_frame_copy).
+// Two threads each: `--threads=2` (first) runs instead full_2_threads and
+// empty_2_threads, full and empty drawn by ours with FastPaths::threads = 2 and by
+// llvmpipe with LP_NUM_THREADS=2 (set by the program), both timed in wall-clock time
+// (process CPU time would add the threads' times up); run it on two cores.
 // Counters: frames per second and tri_per_s (the model's 102,400 triangles per second),
 // per second of process CPU time (every thread of the process, so llvmpipe's rasterizer
 // thread counts too, and a loaded machine does not distort it). llvmpipe's runs also
@@ -76,6 +80,7 @@
 #define GL_GLEXT_PROTOTYPES 1
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/png.hpp"
+#include "exactpixels/fast/worker_pool.hpp"
 #include "exactpixels/lab/model_generator.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
@@ -115,6 +120,18 @@ constexpr double max_coverage_differences = 1e-4;
 
 /// The fast paths our side uses: all unless --fast says otherwise.
 FastPaths fast_paths{};
+
+/// The threads each side draws with (--threads=N): 1, the one-core runs, or N for the
+/// runs RUN_N_threads.
+int bench_threads = 1;
+
+/// The scene's effects of run `name`: itself, or full for full_2_threads.
+std::string effects_of(const std::string& name) {
+    const std::size_t suffix =
+        name.find('_' + std::to_string(bench_threads) + "_threads");
+    return bench_threads > 1 && suffix != std::string::npos ? name.substr(0, suffix)
+                                                            : name;
+}
 
 /// Reads --fast=NAMES into fast_paths; false for a name it does not know.
 bool read_fast_paths(const std::string& names) {
@@ -255,9 +272,11 @@ std::vector<bool> covered_pixels(const std::vector<Rgba8>& a,
 
 void ours(benchmark::State& state, const std::string& effects) {
     const Scene scene = big_scene(effects);
+    FastPaths fast = fast_paths;
+    fast.threads = bench_threads;
     std::optional<RenderResult> last; // each frame replaces (and frees) the one before
     for (auto _ : state) {
-        last = render_scene(scene, nullptr, fast_paths);
+        last = render_scene(scene, nullptr, fast);
         benchmark::DoNotOptimize(last->image.pixels().data());
     }
     report(state, model_triangles(scene));
@@ -336,7 +355,9 @@ Peer& peer() {
             q.problem = "the GL projection here is for a pinhole without a far plane";
             return q;
         }
-        setenv("LP_NUM_THREADS", "1", 0); // one rasterizer thread unless the caller says
+        // One rasterizer thread unless the caller says; --threads=N: N.
+        setenv("LP_NUM_THREADS", std::to_string(bench_threads).c_str(),
+               bench_threads > 1);
         q.context = OSMesaCreateContextExt(OSMESA_RGBA, 32, 0, 0, nullptr);
         if (q.context == nullptr) {
             q.problem = "OSMesaCreateContextExt failed: no llvmpipe";
@@ -678,7 +699,9 @@ int frame_once(const std::string& name) {
         draw = [&ps = prepare_peer(effects)] { peer_frame(ps); };
     } else if (side == "ours") {
         draw = [scene = big_scene(effects)] {
-            const RenderResult result = render_scene(scene, nullptr, fast_paths);
+            FastPaths fast = fast_paths;
+            fast.threads = bench_threads; // --threads=N before --once
+            const RenderResult result = render_scene(scene, nullptr, fast);
             benchmark::DoNotOptimize(result.image.pixels().data());
         };
     } else {
@@ -728,6 +751,18 @@ double largest(const std::vector<double>& v) {
 int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
+        if (arg.rfind("--threads=", 0) == 0) { // not for Google Benchmark either
+            bench_threads = std::atoi(arg.c_str() + 10);
+            if (bench_threads < 2 || bench_threads > max_threads) {
+                std::fprintf(stderr, "bench_ch07_big_scene: bad thread count %s\n",
+                             arg.c_str() + 10);
+                return 2;
+            }
+            std::copy(argv + i + 1, argv + argc, argv + i);
+            argc -= 1;
+            i -= 1;
+            continue;
+        }
         if (arg.rfind("--fast=", 0) == 0) { // ours only; not for Google Benchmark
             if (!read_fast_paths(arg.substr(7))) {
                 return 2;
@@ -755,21 +790,35 @@ int main(int argc, char** argv) {
     }
     std::vector<std::string> runs(std::begin(effects_names), std::end(effects_names));
     runs.insert(runs.end(), std::begin(empty_names), std::end(empty_names));
-    for (const std::string& effects : runs) {
+    if (bench_threads > 1) { // full and empty on N threads each, and nothing else
+        const std::string n = "_" + std::to_string(bench_threads) + "_threads";
+        runs = {"full" + n, "empty" + n};
+    }
+    for (const std::string& run : runs) {
         for (const char* side : {"ours", "llvmpipe"}) {
-            const std::string e = effects;
-            benchmark::RegisterBenchmark(
-                (std::string(side) + "/" + effects).c_str(),
-                side == std::string("ours")
-                    ? std::function<void(benchmark::State&)>(
-                          [e](benchmark::State& s) { ours(s, e); })
-                    : std::function<void(benchmark::State&)>(
-                          [e](benchmark::State& s) { llvmpipe(s, e); }))
-                ->Unit(benchmark::kMillisecond)
-                ->MeasureProcessCPUTime()
-                ->ComputeStatistics("min", smallest)
-                ->ComputeStatistics("max", largest);
+            const std::string e = effects_of(run);
+            benchmark::internal::Benchmark* b =
+                benchmark::RegisterBenchmark(
+                    (std::string(side) + "/" + run).c_str(),
+                    side == std::string("ours")
+                        ? std::function<void(benchmark::State&)>(
+                              [e](benchmark::State& s) { ours(s, e); })
+                        : std::function<void(benchmark::State&)>(
+                              [e](benchmark::State& s) { llvmpipe(s, e); }))
+                    ->Unit(benchmark::kMillisecond)
+                    ->ComputeStatistics("min", smallest)
+                    ->ComputeStatistics("max", largest);
+            if (bench_threads > 1) {
+                b->UseRealTime();
+            } else {
+                b->MeasureProcessCPUTime();
+            }
         }
+    }
+    if (bench_threads > 1) {
+        benchmark::RunSpecifiedBenchmarks();
+        benchmark::Shutdown();
+        return 0;
     }
     // Checked after timing with every triangle's 24-bit id as its colour: the frame
     // check's colour differences are pixels another triangle won on one side.

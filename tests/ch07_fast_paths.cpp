@@ -5,10 +5,14 @@
 // outcodes reject and clip random triangles placed on and around the screen's edges,
 // the guard band, the near and the far plane as the view volume's plane tests do, and
 // a mesh drawn from its own index, from one made again after a change or from none
-// gives the same picture.
+// gives the same picture. The threaded driver (FastPaths::threads): every shipped
+// scene, the big torus and the refused scenes give the same pixels, texel coordinates,
+// report counts and error message with 1, 2, 3 and 7 threads as the book's loop, and the
+// command line refuses a bad thread count.
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/fixed_point.hpp"
+#include "exactpixels/fast/worker_pool.hpp"
 #include "exactpixels/lab/model_generator.hpp"
 #include "exactpixels/scene/camera.hpp"
 #include "exactpixels/scene/corner_quotients.hpp"
@@ -18,6 +22,7 @@
 #include "exactpixels/texture/rounding.hpp"
 #include "exactpixels/texture/texture.hpp"
 #include "support/printing.hpp"
+#include "support/process.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -30,6 +35,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <random>
 #include <string>
 #include <unistd.h>
@@ -74,6 +80,18 @@ void check_same_report(const RenderReport& a, const RenderReport& b) {
     CHECK(a.colour_bound == b.colour_bound);
 }
 
+/// The same pixels, texel coordinates and report counts in two renders.
+void check_same_render(const RenderResult& a, const TexelMap& a_map,
+                       const RenderResult& b, const TexelMap& b_map) {
+    CHECK(a.image == b.image);
+    CHECK(a_map.covered == b_map.covered);
+    CHECK(a_map.i == b_map.i);
+    CHECK(a_map.j == b_map.j);
+    CHECK(a_map.u == b_map.u);
+    CHECK(a_map.v == b_map.v);
+    check_same_report(a.report, b.report);
+}
+
 /// Renders the scene with every fast path and on the teaching path and checks that the
 /// pixels, the texel coordinates and the counts are the same: once recording the texel
 /// coordinates, and once without, as a plain render runs (lean_spans draws only then).
@@ -81,16 +99,65 @@ void check_fast_is_teaching(const Scene& scene) {
     TexelMap fast_map(scene.width, scene.height), plain_map(scene.width, scene.height);
     const RenderResult fast = render_scene(scene, &fast_map);
     const RenderResult plain = render_scene(scene, &plain_map, teaching_path);
-    CHECK(fast.image == plain.image);
-    CHECK(fast_map.covered == plain_map.covered);
-    CHECK(fast_map.i == plain_map.i);
-    CHECK(fast_map.j == plain_map.j);
-    CHECK(fast_map.u == plain_map.u);
-    CHECK(fast_map.v == plain_map.v);
-    check_same_report(fast.report, plain.report);
+    check_same_render(fast, fast_map, plain, plain_map);
     const RenderResult fast_only = render_scene(scene);
     CHECK(fast_only.image == plain.image);
     check_same_report(fast_only.report, plain.report);
+}
+
+/// The thread counts the threaded driver is checked with: 1 (the book's loop), two
+/// bands per thread and fewer, odd counts, more threads than some images have bands.
+constexpr std::array<int, 4> checked_threads = {1, 2, 3, 7};
+
+/// Renders the scene with each of checked_threads threads, with and without a texel map,
+/// and checks the pixels, coordinates and counts against the book's loop (one thread,
+/// fast paths on) and the teaching path. Returns how many renders it compared.
+int check_threads_are_one(const Scene& scene) {
+    TexelMap one_map(scene.width, scene.height);
+    const RenderResult one = render_scene(scene, &one_map);
+    const RenderResult plain = render_scene(scene, nullptr, teaching_path);
+    CHECK(one.image == plain.image);
+    int compared = 0;
+    for (int threads : checked_threads) {
+        INFO(threads << " threads");
+        FastPaths fast;
+        fast.threads = threads;
+        TexelMap map(scene.width, scene.height);
+        check_same_render(render_scene(scene, &map, fast), map, one, one_map);
+        const RenderResult plain_run = render_scene(scene, nullptr, fast);
+        CHECK(plain_run.image == plain.image);
+        check_same_report(plain_run.report, plain.report);
+        FastPaths teaching = teaching_path;
+        teaching.threads = threads;
+        CHECK(render_scene(scene, nullptr, teaching).image == plain.image);
+        compared += 3;
+    }
+    return compared;
+}
+
+/// The message render_scene throws for the scene with `threads` threads, or "" if none.
+std::string render_error(const Scene& scene, int threads) {
+    FastPaths fast;
+    fast.threads = threads;
+    try {
+        render_scene(scene, nullptr, fast);
+    } catch (const Error& error) {
+        return error.what();
+    }
+    return "";
+}
+
+/// The big torus of the speed comparison, written by the generator and read back.
+Scene big_torus() {
+    const std::filesystem::path folder =
+        std::filesystem::temp_directory_path() /
+        ("exactpixels-test-fast-paths-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    write_generated_model(big_torus_model(), folder);
+    write_file_atomically(folder / "big_torus.toml", "scene", big_torus_scene());
+    const Scene scene = load_scene(folder / "big_torus.toml");
+    std::filesystem::remove_all(folder);
+    return scene;
 }
 
 /// The TOML number that reads back as x exactly (fmt's shortest round trip).
@@ -123,14 +190,7 @@ TEST_CASE("the fast paths draw every shipped scene as the teaching path does") {
 }
 
 TEST_CASE("the fast paths draw the big torus as the teaching path does") {
-    const std::filesystem::path folder =
-        std::filesystem::temp_directory_path() /
-        ("exactpixels-test-fast-paths-" + std::to_string(::getpid()));
-    std::filesystem::create_directories(folder);
-    write_generated_model(big_torus_model(), folder);
-    write_file_atomically(folder / "big_torus.toml", "scene", big_torus_scene());
-    const Scene scene = load_scene(folder / "big_torus.toml");
-    std::filesystem::remove_all(folder);
+    const Scene scene = big_torus();
     REQUIRE(scene.meshes.size() == 1);
     CHECK(scene.meshes[0].triangles.size() == 102400);
     // A closed grid of 400 x 128 quads: each position is shared by six corners, and
@@ -170,6 +230,61 @@ TEST_CASE("the fast paths draw the big torus as the teaching path does") {
             check_same_report(fast.report, plain.report);
         }
     }
+}
+
+TEST_CASE("any number of threads draws every shipped scene and the big torus as one") {
+    const std::filesystem::path folder = shipped_scene_folder();
+    int scenes = 0, renders = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        if (entry.path().extension() != ".toml") {
+            continue;
+        }
+        INFO(entry.path().string());
+        renders += check_threads_are_one(load_scene(entry.path()));
+        scenes += 1;
+    }
+    CHECK(scenes >= 7);
+    Scene narrow = load_scene(folder / "horizon.toml"); // corners far off screen
+    narrow.camera.fov_degrees = 5.0;
+    renders += check_threads_are_one(narrow);
+    renders += check_threads_are_one(big_torus());
+    MESSAGE((scenes + 2) << " scenes, " << renders << " threaded renders compared");
+}
+
+TEST_CASE("any number of threads refuses a bad scene with the message of one") {
+    // Texture coordinates past the mapper's limit on one triangle in every 499 of the
+    // big torus, each a different value: one thread meets the first in scene order, and
+    // every thread count names the same one, whichever band it lies in.
+    Scene scene = big_torus();
+    std::vector<std::array<SceneVertex, 3>>& triangles = scene.meshes[0].triangles;
+    for (std::size_t t = 250; t < triangles.size(); t += 499) {
+        triangles[t][1].uv.x = 1e31 * static_cast<double>(t);
+    }
+    const std::string one = render_error(scene, 1);
+    CHECK(one.find("texture coordinate") != std::string::npos);
+    for (int threads : checked_threads) {
+        INFO(threads << " threads");
+        CHECK(render_error(scene, threads) == one);
+    }
+    MESSAGE("one thread: " << one);
+}
+
+TEST_CASE("a bad thread count is refused before any work") {
+    const Scene scene = load_scene(shipped_scene_folder() / "horizon.toml");
+    for (int threads : {0, -1, max_threads + 1}) {
+        FastPaths fast;
+        fast.threads = threads;
+        CHECK_THROWS_WITH_AS(
+            render_scene(scene, nullptr, fast),
+            fmt::format("thread count {} is outside 1 .. {}", threads, max_threads)
+                .c_str(),
+            Error);
+    }
+    const auto result = exactpixels::testing::run_command(
+        exactpixels::testing::cli_path() + " render --threads 65 -o /dev/null");
+    CHECK(result.exit_code == 2);
+    CHECK(result.err == "exactpixels render: thread count 65 is outside 1 .. 64\n");
+    CHECK(result.out.empty());
 }
 
 TEST_CASE("share_positions lists each distinct position once, bit for bit") {

@@ -6,7 +6,10 @@
 # repetition), the fixed cost of a frame with nothing in it on its own rows and the
 # ratios both as measured and with it subtracted, the frame check of every llvmpipe run
 # (its frame against ours, after timing), instructions of one frame counted by
-# valgrind's callgrind for both sides, and the renderer's per-stage report.
+# valgrind's callgrind for both sides, and the renderer's per-stage report. Then two
+# threads each: the full and empty frames with `--threads=2` (ours with
+# FastPaths::threads = 2, llvmpipe with LP_NUM_THREADS=2), pinned to two cores, in
+# wall-clock time, the same repetitions.
 # Usage (from the repository root, after building bench_ch07_big_scene in BUILD_DIR):
 #   chapters/07-scenes/big_scene.sh BUILD_DIR [OUTPUT.md]
 # BIG_SCENE_REPETITIONS (default 5) sets the repetitions; fewer only to try the script:
@@ -39,15 +42,25 @@ $pin "$bench" --benchmark_repetitions="$repetitions" \
     echo "big_scene.sh: bench_ch07_big_scene failed" >&2
     exit 1
 }
+pin2=
+if command -v taskset >/dev/null && [ "$(nproc)" -ge 2 ]; then pin2="taskset -c 0,1"; fi
+$pin2 "$bench" --threads=2 --benchmark_repetitions="$repetitions" \
+    --benchmark_enable_random_interleaving=true \
+    --benchmark_out="$scratch/times2.csv" --benchmark_out_format=csv >/dev/null 2>&1 || {
+    echo "big_scene.sh: bench_ch07_big_scene --threads=2 failed" >&2
+    exit 1
+}
 load_end=$(cut -d' ' -f1-3 /proc/loadavg)
 # Column $2 (a header name: cpu_time, or a counter such as coverage_diff) of the row
-# named $1 (such as "ours/full/process_time_median").
+# named $1 (such as "ours/full/process_time_median"), in the file $3 (default: the
+# one-core run's).
 column() {
     awk -F, -v n="\"$1\"" -v c="$2" '
         $1 == "name" { for (i = 1; i <= NF; i++) { h = $i; gsub(/"/, "", h); at[h] = i } }
-        $1 == n { print $(at[c]); exit }' "$scratch/times.csv"
+        $1 == n { print $(at[c]); exit }' "${3:-$scratch/times.csv}"
 }
-errors=$(awk -F, '$9 == "true" { print $1 ": " $10 }' "$scratch/times.csv")
+errors=$(awk -F, '$9 == "true" { print $1 ": " $10 }' "$scratch/times.csv" \
+    "$scratch/times2.csv")
 if [ -n "$errors" ]; then
     echo "big_scene.sh: runs reported errors:" >&2
     echo "$errors" >&2
@@ -60,9 +73,19 @@ ms_max() { column "$1/process_time_max" cpu_time | awk '{ printf "%.3f", $1 }'; 
 # A frame-check counter of llvmpipe's run NAME.
 check() { column "llvmpipe/$1/process_time_median" "$2" | awk '{ printf "%d", $1 }'; }
 ratio() { awk "BEGIN { printf \"%.2f\", $1 / $2 }"; }
+# The same of the two-thread run NAME, in wall-clock time.
+ms2() {
+    column "$1/real_time_$2" real_time "$scratch/times2.csv" | awk '{ printf "%.3f", $1 }'
+}
 # Ours over llvmpipe with each side's empty frame ($2) subtracted from run $1.
 ratio_less() {
     ratio "($(ms ours/$1) - $(ms ours/$2))" "($(ms llvmpipe/$1) - $(ms llvmpipe/$2))"
+}
+# Rows "$1" and "$1 less empty": ours ($2) over llvmpipe ($3), as measured and with
+# each side's empty frame (ours $4, llvmpipe $5) subtracted from its own.
+ratio_rows() {
+    echo "| $1 | $(ratio "$2" "$3") |"
+    echo "| $1 less empty | $(ratio "($2 - $4)" "($3 - $5)") |"
 }
 percent() { awk "BEGIN { printf \"%.1f\", 100 * $1 / $2 }"; }
 # The empty run whose fixed cost run $1 pays: with depth or without.
@@ -137,6 +160,31 @@ instructions() {
     done
     echo "| ours full over ours flat | $(ratio "$(ms ours/full)" "$(ms ours/flat)") |"
     echo
+    echo "Two threads each (ours: FastPaths::threads = 2, the triangles binned into" \
+         "bands of 64 rows; llvmpipe: LP_NUM_THREADS=2), pinned to two cores, the full" \
+         "scene and the empty frame: wall-clock ms per frame, $repetitions interleaved" \
+         "repetitions (min, max, median), and ours over llvmpipe as measured and less" \
+         "each side's empty frame:"
+    echo
+    echo "| run | min | max | median |"
+    echo "|:--|--:|--:|--:|"
+    for run in full empty; do
+        for side in ours llvmpipe; do
+            echo "| two threads $side $run | $(ms2 "$side/${run}_2_threads" min) |" \
+                 "$(ms2 "$side/${run}_2_threads" max) |" \
+                 "$(ms2 "$side/${run}_2_threads" median) |"
+        done
+    done
+    full2_ours=$(ms2 ours/full_2_threads median)
+    full2_lp=$(ms2 llvmpipe/full_2_threads median)
+    empty2_ours=$(ms2 ours/empty_2_threads median)
+    empty2_lp=$(ms2 llvmpipe/empty_2_threads median)
+    echo
+    echo "| run | ratio |"
+    echo "|:--|--:|"
+    ratio_rows "time ratio full two threads" "$full2_ours" "$full2_lp" "$empty2_ours" \
+        "$empty2_lp"
+    echo
     echo "The frame check of each llvmpipe run, after its timed loop: its last frame" \
          "against our render of the same scene, pixel by pixel; a pixel is covered when" \
          "it keeps its colour over a second background. Pixels our frame covers, pixels" \
@@ -173,9 +221,7 @@ instructions() {
     echo "| instructions ours flat | $ours_flat |"
     echo "| instructions ours empty | $ours_empty |"
     echo "| instructions llvmpipe empty | $lp_empty |"
-    echo "| instruction ratio full | $(ratio "$ours_full" "$lp_full") |"
-    echo "| instruction ratio full less empty |" \
-         "$(ratio "($ours_full - $ours_empty)" "($lp_full - $lp_empty)") |"
+    ratio_rows "instruction ratio full" "$ours_full" "$lp_full" "$ours_empty" "$lp_empty"
     echo
     echo "Ours on the full scene with only some fast paths (FastPaths): none (the teaching" \
          "path), each one alone, and the two without exact_lanes; all of them is" \

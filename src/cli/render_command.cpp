@@ -3,6 +3,7 @@
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/base/png.hpp"
+#include "exactpixels/fast/worker_pool.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 
@@ -21,6 +22,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
         std::string output; // the PNG to write (not given: the scene's name with .png)
         bool report = false;
         bool check = false;
+        int threads = 1; // FastPaths::threads
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
@@ -34,8 +36,13 @@ void add_render_command(CLI::App& app, int& exit_code) {
                       "Print what ran: triangles, pixels, divides and time per stage");
     command->add_flag("--check", options->check,
                       "Also render the exact reference and print the texel error");
+    command->add_option("--threads", options->threads,
+                        fmt::format("Draw with this many threads (1 .. {}; default 1): "
+                                    "the same picture and report counts for any number",
+                                    max_threads));
     command->callback([options, output_option, &exit_code] {
         report_errors("render", exit_code, [&] {
+            check_thread_count(options->threads); // before the scene is read
             const std::filesystem::path scene_path =
                 options->scene.empty() ? shipped_scenes().front()
                                        : std::filesystem::path(options->scene);
@@ -46,7 +53,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
                     : std::filesystem::path(scene_path.stem().string() + ".png");
             const std::vector<std::filesystem::path> inputs = scene_inputs(scene);
             check_output(output, "PNG", inputs); // not a scene, texture or device
-            const RenderResult result = render_scene(scene);
+            FastPaths fast;
+            fast.threads = options->threads;
+            const RenderResult result = render_scene(scene, nullptr, fast);
             if (options->report) {
                 write_standard_output(format_report(result.report));
             }

@@ -19,14 +19,17 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
-#include <thread>
 #include <vector>
+#ifndef __wasi__
+#include <thread>
+#endif
 
 namespace exactpixels {
 
 /// The most threads a WorkerPool (and so any renderer built on one) accepts.
 inline constexpr int max_threads = 64;
 
+#ifndef __wasi__ // WebAssembly without threads (the live figures) has no pool
 /// Threads started once that run jobs together: f(thread_index) on each, then wait.
 class WorkerPool {
   public:
@@ -61,5 +64,6 @@ class WorkerPool {
     /// std::jthread and its stop token, which LLVM's libc++ 14 lacks.
     std::vector<std::thread> workers_;
 };
+#endif
 
 } // namespace exactpixels

@@ -1,6 +1,7 @@
 #include "exactpixels/scene/scene_renderer.hpp"
 
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/fast/worker_pool.hpp"
 #include "exactpixels/raster/fill_work.hpp"
 #include "exactpixels/scene/depth_buffer.hpp"
 #include "exactpixels/scene/render_report.hpp"
@@ -11,7 +12,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <numeric>
 #include <optional>
+#include <span>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace exactpixels {
@@ -35,14 +46,311 @@ void check_fill_work(const Scene& scene, const SceneGeometry& geometry) {
     }
 }
 
+/// Whether mesh i's vertex colours are interpolated perspective-correct: the scene asks
+/// for it, or `auto` and the screen path's bound exceeds the budget. The largest bound
+/// goes into the report.
+bool colour_corrected(const Scene& scene, const SceneGeometry& geometry, std::size_t i,
+                      RenderReport& report) {
+    bool corrected = scene.options.colours == ColourInterpolation::perspective;
+    if (mesh_stages(scene, scene.meshes[i]).colour) { // the screen path's bound
+        const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
+        for (std::size_t k = 0; k < triangles.size(); ++k) {
+            const ScreenTriangle& t = triangles[k];
+            const double bound =
+                colour_error_bound({t.corners[0].w, t.corners[1].w, t.corners[2].w},
+                                   geometry.shading[i][k].colours);
+            report.colour_bound = std::max(report.colour_bound, bound);
+            corrected =
+                corrected || (scene.options.colours == ColourInterpolation::automatic &&
+                              bound > scene.options.budget);
+        }
+    }
+    return corrected;
+}
+
+/// What every mesh's MeshContext is made from: the frame and what the meshes share.
+struct Frame {
+    const Scene& scene;
+    const SceneGeometry& geometry;
+    Framebuffer& image;
+    TexelMap* coordinates;
+    DepthBuffer* depth;
+    std::vector<MipChain>& chains; ///< per texture, filled on demand
+    FastPaths fast;
+};
+
+/// Mesh i's context, counting into `report` (its full_chain is the caller's to set).
+MeshContext mesh_context(const Frame& f, std::size_t i, RenderReport& report,
+                         bool corrected) {
+    const Scene& scene = f.scene;
+    const SceneMesh& mesh = scene.meshes[i];
+    const bool lit = !scene.lights.empty();
+    MeshContext m{scene,
+                  mesh,
+                  mesh_stages(scene, mesh),
+                  mesh.texture ? &scene.textures[*mesh.texture].texture : nullptr,
+                  f.image,
+                  f.coordinates,
+                  report,
+                  f.depth,
+                  corrected,
+                  {},
+                  {},
+                  mesh.texture ? &f.chains[*mesh.texture] : nullptr,
+                  nullptr,
+                  lit && mesh_shading(scene, mesh) == Shading::phong ? &f.geometry.lights
+                                                                     : nullptr,
+                  Material{mesh.specular, mesh.shininess},
+                  to_rgba8(mesh.colour),
+                  true};
+    m.masked_fetch = f.fast.masked_fetch && m.texture != nullptr &&
+                     can_fetch_masked(*m.texture, mesh.wrap);
+    m.lanes = f.fast.exact_lanes ? chosen_simd() : SimdVariant::portable;
+    return m;
+}
+
+/// The rows of one band of the threaded driver. 64: the covered bits of a TexelMap (a
+/// std::vector<bool>, in 64-bit words) of 64 rows fill whole words, so two bands never
+/// write one word.
+constexpr int band_rows = 64;
+
+/// One triangle in a band's bin.
+struct Binned {
+    std::uint32_t mesh = 0;     ///< its mesh
+    std::uint32_t triangle = 0; ///< its index in the mesh's triangles
+    bool owned = false;  ///< the first band it is in: it counts the per-triangle counts
+    bool shared = false; ///< it is in more than one band
+};
+
+/// Triangle (mesh, triangle) as one number, in scene order.
+std::uint64_t scene_order(const Binned& b) {
+    return (std::uint64_t{b.mesh} << 32) | b.triangle;
+}
+
+/// The bins: per band of band_rows rows, the triangles that may cover a pixel centre in
+/// it, in scene order. Row y's centre y + 1/2 lies between the snapped corners' top and
+/// bottom, each within 1/512 px of the corner: y from floor(top - 1/2 - 1/256) to
+/// floor(bottom - 1/2 + 1/256). A triangle below or above the image goes to the last
+/// or first band.
+std::vector<std::vector<Binned>> bin_by_rows(const SceneGeometry& geometry, int height) {
+    std::vector<std::vector<Binned>> bins(
+        static_cast<std::size_t>((height + band_rows - 1) / band_rows));
+    const double last_row = height - 1;
+    for (std::size_t i = 0; i < geometry.meshes.size(); ++i) {
+        const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
+        for (std::size_t k = 0; k < triangles.size(); ++k) {
+            const std::array<TexturedVertex, 3>& c = triangles[k].corners;
+            const double top =
+                std::min({c[0].position.y, c[1].position.y, c[2].position.y});
+            const double bottom =
+                std::max({c[0].position.y, c[1].position.y, c[2].position.y});
+            const double margin = 0.5 + 1.0 / 256.0;
+            const int first =
+                static_cast<int>(std::clamp(std::floor(top - margin), 0.0, last_row)) /
+                band_rows;
+            const int last = static_cast<int>(std::clamp(
+                                 std::floor(bottom - 0.5 + 1.0 / 256.0), 0.0, last_row)) /
+                             band_rows;
+            for (int b = first; b <= last; ++b) {
+                bins[static_cast<std::size_t>(b)].push_back(
+                    {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k),
+                     b == first, last > first});
+            }
+        }
+    }
+    return bins;
+}
+
+/// What a band drew: its counts, the mappers each of its shared triangles used there
+/// (bit k: MapperKind k), counted once per triangle after the bands, and its first error.
+struct BandResult {
+    RenderReport report;
+    std::vector<std::pair<std::uint64_t, unsigned>> shared_mappers;
+    std::uint64_t error_at = ~std::uint64_t{0}; ///< scene_order of the failing triangle
+    std::string error;                          ///< its message, as render_scene's
+};
+
+/// One mesh's triangles `part` of a band, as draw_mesh draws them. False after an error.
+bool draw_band_part(MeshContext& m, const Frame& f, std::span<const Binned> part,
+                    BandResult& out) {
+    const std::size_t i = part.front().mesh;
+    const bool direct = draws_direct(m, f.fast.lean_spans);
+    m.visible.resize(static_cast<std::size_t>(f.image.width()));
+    const RenderReport before = out.report;
+    const Clock::time_point t0 = Clock::now();
+    const std::size_t interval = timed_triangle_interval(part.size());
+    for (std::size_t n = 0; n < part.size(); ++n) {
+        const Binned& b = part[n];
+        m.timed = n % interval == 0;
+        m.counts_triangle = b.owned;
+        const std::vector<ShadedCorners>& shading = f.geometry.shading[i];
+        std::array<long long, 5> used{};
+        for (std::size_t kind = 0; kind < used.size(); ++kind) {
+            used[kind] = out.report.mappers[kind].triangles;
+        }
+        try {
+            draw_one_triangle(m, f.geometry.meshes[i][b.triangle],
+                              shading.empty() ? nullptr : &shading[b.triangle], direct);
+        } catch (const Error& error) {
+            out.error_at = scene_order(b);
+            out.error = fmt::format("{}: {}", m.mesh.origin, error.what());
+            return false;
+        }
+        if (b.shared) { // counted once per triangle after the bands
+            unsigned mask = 0;
+            for (std::size_t kind = 0; kind < used.size(); ++kind) {
+                WorkCount& counter = out.report.mappers[kind];
+                mask |= counter.triangles != used[kind] ? 1U << kind : 0U;
+                counter.triangles = used[kind];
+            }
+            out.shared_mappers.emplace_back(scene_order(b), mask);
+        }
+    }
+    share_drawing_time(out.report, before, seconds_since(t0));
+    return true;
+}
+
+/// Draws band `band`'s bin mesh by mesh; `whole` says which textures' chains are whole.
+BandResult draw_band(const Frame& f, const std::vector<char>& corrected, bool* whole,
+                     std::span<const Binned> bin, int band) {
+    BandResult out;
+    bool no_chain = false;
+    for (std::size_t at = 0, end = 0; at < bin.size(); at = end) {
+        end = at;
+        while (end < bin.size() && bin[end].mesh == bin[at].mesh) {
+            ++end;
+        }
+        const std::size_t i = bin[at].mesh;
+        MeshContext m = mesh_context(f, i, out.report, corrected[i] != 0);
+        const std::optional<std::size_t> texture = f.scene.meshes[i].texture;
+        m.full_chain = texture ? &whole[*texture] : &no_chain;
+        m.first_row = band * band_rows;
+        m.end_row = m.first_row + band_rows;
+        if (!draw_band_part(m, f, bin.subspan(at, end - at), out)) {
+            break;
+        }
+    }
+    return out;
+}
+
+/// Adds the drawing stages' counts and times of `part` to `report`.
+void add_drawing(RenderReport& report, const RenderReport& part) {
+    const auto add = [](WorkCount& a, const WorkCount& b) {
+        a.triangles += b.triangles;
+        a.spans += b.spans;
+        a.pixels += b.pixels;
+        a.divides += b.divides;
+        a.seconds += b.seconds;
+    };
+    for (auto stage :
+         {&RenderReport::depth, &RenderReport::hidden, &RenderReport::raster,
+          &RenderReport::flat, &RenderReport::colour, &RenderReport::colour_perspective,
+          &RenderReport::texture, &RenderReport::auto_choice, &RenderReport::filter,
+          &RenderReport::lighting}) {
+        add(report.*stage, part.*stage);
+    }
+    for (std::size_t k = 0; k < report.mappers.size(); ++k) {
+        add(report.mappers[k], part.mappers[k]);
+    }
+    for (std::size_t k = 0; k < report.filter_triangles.size(); ++k) {
+        report.filter_triangles[k] += part.filter_triangles[k];
+    }
+    report.mip_chains += part.mip_chains;
+}
+
+/// The bands' results into `report` in band order; the mappers of a triangle in several
+/// bands counted once; the first error in scene order thrown.
+void merge_bands(std::vector<BandResult>& bands, RenderReport& report) {
+    const auto first_error = std::min_element(
+        bands.begin(), bands.end(),
+        [](const BandResult& a, const BandResult& b) { return a.error_at < b.error_at; });
+    if (first_error != bands.end() && !first_error->error.empty()) {
+        throw Error(first_error->error);
+    }
+    std::vector<std::pair<std::uint64_t, unsigned>> shared;
+    for (BandResult& band : bands) {
+        add_drawing(report, band.report);
+        shared.insert(shared.end(), band.shared_mappers.begin(),
+                      band.shared_mappers.end());
+    }
+    std::sort(shared.begin(), shared.end());
+    for (std::size_t at = 0, end = 0; at < shared.size(); at = end) {
+        unsigned mask = 0;
+        for (end = at; end < shared.size() && shared[end].first == shared[at].first;
+             ++end) {
+            mask |= shared[end].second;
+        }
+        for (std::size_t kind = 0; kind < report.mappers.size(); ++kind) {
+            report.mappers[kind].triangles += (mask >> kind) & 1U;
+        }
+    }
+}
+
+//> draw-threaded
+/// The threaded driver (FastPaths::threads > 1): the chains the filter stage will read
+/// made first, in scene order; the triangles binned into bands of rows (bin_by_rows);
+/// the threads take the bands one at a time, the fullest first, and draw each band's
+/// triangles in scene order, their spans in its rows only; the bands' counts added in
+/// band order. Returns
+/// false, having drawn nothing, when making a chain meets a bad triangle: the book's
+/// loop then finds the first error in scene order.
+bool draw_threaded(const Frame& f, RenderReport& report) {
+    const std::size_t meshes = f.scene.meshes.size();
+    std::vector<char> corrected(meshes);
+    std::unique_ptr<bool[]> whole(new bool[f.scene.textures.size() + 1]());
+    for (std::size_t i = 0; i < meshes; ++i) {
+        corrected[i] = colour_corrected(f.scene, f.geometry, i, report);
+        MeshContext m = mesh_context(f, i, report, corrected[i] != 0);
+        m.full_chain = m.texture != nullptr ? &whole[*m.mesh.texture] : nullptr;
+        try {
+            if (m.full_chain != nullptr && m.stages.texture &&
+                f.scene.options.filter != SceneFilter::nearest) {
+                prepare_mesh_chain(m, f.geometry.meshes[i]); // before any thread reads it
+            }
+        } catch (const Error&) {
+            return false;
+        }
+    }
+    const std::vector<std::vector<Binned>> bins =
+        bin_by_rows(f.geometry, f.image.height());
+    std::vector<std::size_t> fullest(bins.size()); // taken fullest first: they even out
+    std::iota(fullest.begin(), fullest.end(), std::size_t{0});
+    std::stable_sort(fullest.begin(), fullest.end(), [&](std::size_t a, std::size_t b) {
+        return bins[a].size() > bins[b].size();
+    });
+    std::vector<BandResult> bands(bins.size());
+    std::atomic<std::size_t> next{0};
+    const std::function<void(int)> take_bands = [&](int) {
+        for (std::size_t n = next++; n < bins.size(); n = next++) {
+            const std::size_t b = fullest[n];
+            bands[b] = draw_band(f, corrected, whole.get(), bins[b], static_cast<int>(b));
+        }
+    };
+#ifdef __wasi__ // WebAssembly without threads (the live figures): one takes them all
+    take_bands(0);
+#else
+    WorkerPool(f.fast.threads).run(take_bands);
+#endif
+    merge_bands(bands, report);
+    return true;
+}
+//< draw-threaded
+
 } // namespace
 
+void check_thread_count(int threads) {
+    if (threads < 1 || threads > max_threads) {
+        throw Error(
+            fmt::format("thread count {} is outside 1 .. {}", threads, max_threads));
+    }
+}
+
 RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths fast) {
+    check_thread_count(fast.threads); // before any work
     const Clock::time_point start = Clock::now();
     RenderResult result{
         Framebuffer(scene.width, scene.height, to_rgba8(scene.background)), {}};
     RenderReport& report = result.report;
-    const bool lit = !scene.lights.empty();
     const SceneGeometry geometry = run_geometry(scene, report);
     check_fill_work(scene, geometry); // before the first pixel is drawn
     const DepthPlan depth_plan = plan_depth(scene.options.depth, geometry.footprints,
@@ -55,44 +363,17 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
     if (depth_plan.on) {
         depth.emplace(scene.width, scene.height);
     }
-    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    const Frame frame{
+        scene,  geometry, result.image, coordinates, depth ? &*depth : nullptr,
+        chains, fast};
+    if (fast.threads > 1 && draw_threaded(frame, report)) {
+        report.seconds = seconds_since(start);
+        return result;
+    }
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) { // the book's loop
         const SceneMesh& mesh = scene.meshes[i];
-        bool corrected = scene.options.colours == ColourInterpolation::perspective;
-        if (mesh_stages(scene, mesh).colour) { // the screen path's bound, vs the budget
-            const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
-            for (std::size_t k = 0; k < triangles.size(); ++k) {
-                const ScreenTriangle& t = triangles[k];
-                const double bound =
-                    colour_error_bound({t.corners[0].w, t.corners[1].w, t.corners[2].w},
-                                       geometry.shading[i][k].colours);
-                report.colour_bound = std::max(report.colour_bound, bound);
-                corrected = corrected ||
-                            (scene.options.colours == ColourInterpolation::automatic &&
-                             bound > scene.options.budget);
-            }
-        }
-        MeshContext m{scene,
-                      mesh,
-                      mesh_stages(scene, mesh),
-                      mesh.texture ? &scene.textures[*mesh.texture].texture : nullptr,
-                      result.image,
-                      coordinates,
-                      report,
-                      depth ? &*depth : nullptr,
-                      corrected,
-                      {},
-                      {},
-                      mesh.texture ? &chains[*mesh.texture] : nullptr,
-                      nullptr,
-                      lit && mesh_shading(scene, mesh) == Shading::phong
-                          ? &geometry.lights
-                          : nullptr,
-                      Material{mesh.specular, mesh.shininess},
-                      to_rgba8(mesh.colour),
-                      true};
-        m.masked_fetch = fast.masked_fetch && m.texture != nullptr &&
-                         can_fetch_masked(*m.texture, mesh.wrap);
-        m.lanes = fast.exact_lanes ? chosen_simd() : SimdVariant::portable;
+        MeshContext m =
+            mesh_context(frame, i, report, colour_corrected(scene, geometry, i, report));
         bool full_chain = mesh.texture && full_chains[*mesh.texture];
         m.full_chain = &full_chain;
         try {

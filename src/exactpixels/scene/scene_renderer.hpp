@@ -69,6 +69,11 @@ struct FastPaths {
     /// the vector instruction set chosen_simd picks (map_span_exact_lanes) instead of
     /// one pixel at a time.
     bool exact_lanes = true;
+    /// Drawing: with more than one, the threaded driver (scene_renderer.cpp) bins the
+    /// triangles into bands of rows and draws the bands on this many threads, from one
+    /// to max_threads, each band's triangles in scene order: the same pixels,
+    /// coordinates and counts for any number. One is the book's loop, mesh by mesh.
+    int threads = 1;
 };
 
 /// Every fast path off: the teaching path.
@@ -136,6 +141,10 @@ struct RenderResult {
 /// counts are the same either way.
 RenderResult render_scene(const Scene& scene, TexelMap* coordinates = nullptr,
                           FastPaths fast = {});
+
+/// Throws Error naming `threads` unless it is a thread count render_scene takes, from
+/// one to max_threads (worker_pool.hpp). render_scene checks it before any work.
+void check_thread_count(int threads);
 
 /// Bytes a TexelMap holds per pixel: the covered bit, the texel indices i and j, and the
 /// coordinates u and v.

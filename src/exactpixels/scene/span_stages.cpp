@@ -10,6 +10,7 @@
 #include "exactpixels/texture/perspective.hpp"
 #include "exactpixels/texture/rounding.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cassert>
 #include <cmath>
@@ -429,6 +430,9 @@ Filter prepare_filter(MeshContext& m, const TrianglePlanes& planes) {
 
 /// Counts a triangle into every stage that will run on it.
 void count_triangle(MeshContext& m, Filter filter) {
+    if (!m.counts_triangle) {
+        return; // another band of the threaded driver counts it
+    }
     RenderReport& report = m.report;
     report.raster.triangles += 1;
     report.depth.triangles += m.depth != nullptr;
@@ -577,8 +581,11 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle,
     StageTimer timer{m.timed};
     const Clock::time_point start = timer.now();
     std::array<bool, 5> mapper_used{};
-    const Viewport screen{m.frame.width(), m.frame.height()};
+    const Viewport screen{m.frame.width(), std::min(m.frame.height(), m.end_row)};
     scanline_spans(planes.snapped, screen, [&](Span s) {
+        if (s.y < m.first_row) {
+            return; // above the threaded driver's band
+        }
         const int count = s.x_end - s.x_begin;
         m.report.raster.spans += 1;
         m.report.raster.pixels += count;
@@ -638,6 +645,29 @@ void draw_mesh(MeshContext& m, const std::vector<ScreenTriangle>& triangles,
         }
     }
     share_drawing_time(m.report, before, seconds_since(t0));
+}
+
+bool draws_direct(const MeshContext& m, bool lean_spans) {
+    return lean_spans && lean_drawable(m);
+}
+
+void draw_one_triangle(MeshContext& m, const ScreenTriangle& triangle,
+                       const ShadedCorners* shading, bool direct) {
+    if (direct) {
+        draw_triangle<true>(m, triangle, shading);
+    } else {
+        draw_triangle<false>(m, triangle, shading);
+    }
+}
+
+void prepare_mesh_chain(MeshContext& m, const std::vector<ScreenTriangle>& triangles) {
+    for (const ScreenTriangle& triangle : triangles) {
+        if (*m.full_chain) {
+            return; // nothing a later triangle asks for can change it
+        }
+        const TrianglePlanes planes(m, triangle, nullptr);
+        prepare_filter(m, planes);
+    }
 }
 
 } // namespace exactpixels

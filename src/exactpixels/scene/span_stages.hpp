@@ -15,6 +15,7 @@
 #include "exactpixels/scene/scene_renderer.hpp"
 #include "exactpixels/texture/mipmap.hpp"
 
+#include <limits>
 #include <vector>
 
 namespace exactpixels {
@@ -41,6 +42,14 @@ struct MeshContext {
     bool masked_fetch = false; ///< FastPaths::masked_fetch, and the texture allows it
     /// FastPaths::exact_lanes: the exact mapper's instruction set (portable: plain loop)
     SimdVariant lanes = SimdVariant::portable;
+    /// The first row drawn: 0, except in a band of the threaded driver
+    /// (scene_renderer.cpp), which draws only the spans in its own rows.
+    int first_row = 0;
+    /// The row after the last drawn: all of them, except in a band.
+    int end_row = std::numeric_limits<int>::max();
+    /// Whether the triangle being drawn is counted into the per-triangle counts: always,
+    /// except in the bands of the threaded driver that share it with a band above.
+    bool counts_triangle = true;
 };
 
 /// Draws `triangles`, one mesh's, with their ShadedCorners `shading` (one per triangle
@@ -51,5 +60,19 @@ struct MeshContext {
 /// the mapper's exact range.
 void draw_mesh(MeshContext& m, const std::vector<ScreenTriangle>& triangles,
                const std::vector<ShadedCorners>& shading, bool lean_spans);
+
+/// Whether draw_mesh draws the mesh of `m` through the direct span (lean_spans on, and
+/// the mesh's stages allow it).
+bool draws_direct(const MeshContext& m, bool lean_spans);
+
+/// One triangle as draw_mesh draws each (the direct span where `direct`), with its
+/// ShadedCorners or nullptr: the threaded driver's step. Throws as draw_mesh does.
+void draw_one_triangle(MeshContext& m, const ScreenTriangle& triangle,
+                       const ShadedCorners* shading, bool direct);
+
+/// Makes the chain of a mesh with a filter stage what drawing `triangles` in order
+/// leaves it (prepare_filter on each, until the chain is whole), so that the threaded
+/// driver's bands only read it. Throws as draw_mesh does for a bad triangle.
+void prepare_mesh_chain(MeshContext& m, const std::vector<ScreenTriangle>& triangles);
 
 } // namespace exactpixels
