@@ -3,6 +3,7 @@
 #include "exactpixels/base/error.hpp"
 #include "exactpixels/fast/block_masks.hpp"
 #include "exactpixels/fast/depth_lanes.hpp"
+#include "exactpixels/fast/depth_lanes_kernel.hpp"
 #include "exactpixels/fast/row_runs.hpp"
 #include "exactpixels/fast/sign_lanes4.hpp"
 #include "exactpixels/fast/tiny_triangle.hpp"
@@ -81,16 +82,26 @@ void plot(const RenderTarget& t, const FlatTriangle& tri, int x, int y) {
 }
 //< plot-pixel
 
-/// Draws the run s of `tri`: one fill without depth, four depth tests at a time with it
-/// (depth_lanes.hpp: the bits plot writes).
-void plot_run(const RenderTarget& t, const FlatTriangle& tri, Span s) {
+/// A triangle's runs ready to draw: its plane and colour, and the depth kernel of the
+/// chosen instruction set (made once per triangle, used on every run).
+struct RunDrawer {
+    RunPlane plane;   ///< the depth plane and the colour
+    DepthRunFn depth; ///< depth_run_kernel(chosen_simd()); none without depth
+    RunDrawer(const FlatTriangle& tri, DepthRunFn kernel)
+        : plane{tri.depth.z0, tri.depth.dzdx, tri.depth.dzdy, tri.colour}, depth(kernel) {
+    }
+};
+
+/// Draws the run s: one fill without depth, a register of depth tests at a time with it
+/// (depth_lanes_kernel.hpp: the bits plot writes).
+void plot_run(const RenderTarget& t, const RunDrawer& d, Span s) {
     if (t.depth == nullptr) {
-        fill_run(t.colour + index(t, s.x_begin, s.y), s.x_end - s.x_begin, tri.colour);
+        fill_run(t.colour + index(t, s.x_begin, s.y), s.x_end - s.x_begin,
+                 d.plane.colour);
         return;
     }
     const std::size_t row = index(t, 0, s.y);
-    depth_run(tri.depth, tri.colour, s.y, s.x_begin, s.x_end, t.depth + row,
-              t.colour + row);
+    d.depth(d.plane, s.y, s.x_begin, s.x_end, t.depth + row, t.colour + row);
 }
 
 Viewport viewport_of(const RenderTarget& t) {
@@ -178,7 +189,9 @@ void draw_runs(const RenderTarget& target, const FlatTriangle& tri) {
     if (!s) {
         return;
     }
-    traverse_runs_stepped(*s, r, [&](Span run) { plot_run(target, tri, run); });
+    const RunDrawer d(tri, target.depth != nullptr ? depth_run_kernel(chosen_simd())
+                                                   : nullptr);
+    traverse_runs_stepped(*s, r, [&](Span run) { plot_run(target, d, run); });
 }
 
 void draw_masks(const RenderTarget& target, const FlatTriangle& tri) {
@@ -278,7 +291,9 @@ struct TileGrid {
     /// The tiles of a width x height frame (the last row and column may be cut).
     TileGrid(int width, int height)
         : across((width + tile_size - 1) / tile_size),
-          count(static_cast<std::size_t>(across * ((height + tile_size - 1) / tile_size))) {}
+          count(
+              static_cast<std::size_t>(across * ((height + tile_size - 1) / tile_size))) {
+    }
 
     /// Calls f(tile) for every tile that b meets.
     template <class TileFn> void for_each_tile(const PixelRect& b, TileFn&& f) const {
@@ -330,13 +345,14 @@ void bin_chunk(const RenderTarget& target, std::span<const FlatTriangle> triangl
 /// Drawing one tile's triangles of one chunk, in order, each tested against the whole
 /// tile first (@eq:edge-block): outside, nothing; inside, plain runs; else exact runs.
 void draw_tile(const RenderTarget& target, std::span<const FlatTriangle> triangles,
-               std::span<const Prepared> prepared, const TileGrid& grid,
-               std::size_t tile, const ChunkBins& from) {
+               std::span<const Prepared> prepared, const TileGrid& grid, std::size_t tile,
+               const ChunkBins& from, DepthRunFn kernel) {
     for (std::uint32_t k = from.first[tile]; k < from.first[tile + 1]; ++k) {
         const FlatTriangle& tri = triangles[from.bins[k]];
         const Prepared& p = prepared[from.bins[k]];
         const PixelRect r = grid.clip(p.bounds, tile);
-        const auto run = [&](Span s) { plot_run(target, tri, s); };
+        const RunDrawer d(tri, kernel);
+        const auto run = [&](Span s) { plot_run(target, d, s); };
         if (small(r)) {
             if (!draw_tiny(target, tri, r)) {
                 walk(target, tri, p.edges, r);
@@ -417,6 +433,7 @@ void TiledRenderer::draw(const RenderTarget& target,
     state_->start(triangles.size(), chunks, grid.count);
     const std::span<Prepared> prepared(state_->prepared);
     const std::span<const ChunkBins> in_order(state_->chunks.data(), chunks);
+    const DepthRunFn kernel = depth_run_kernel(chosen_simd()); // before any thread starts
     pool_.run([&](int thread) {
         // Binning, by every thread at once: the triangles in `chunks` contiguous slices
         // of the submission order, taken from a shared counter, each into its own bins.
@@ -433,7 +450,7 @@ void TiledRenderer::draw(const RenderTarget& target,
         // other).
         state_->draw_bands(thread, grid.count, [&](std::size_t tile) {
             for (const ChunkBins& from : in_order) {
-                draw_tile(target, triangles, prepared, grid, tile, from);
+                draw_tile(target, triangles, prepared, grid, tile, from, kernel);
             }
         });
     });

@@ -79,7 +79,8 @@ inline constexpr int tile_size = 64;
 void draw_reference(const RenderTarget& target, std::span<const FlatTriangle> triangles);
 
 /// One triangle, the same pixels as draw_reference, in covered runs (row_runs.hpp):
-/// a run without depth is one std::fill_n.
+/// a run without depth is one fill_run, one with depth goes to the depth kernel of
+/// chosen_simd()'s instruction set (depth_lanes_kernel.hpp).
 void draw_runs(const RenderTarget& target, const FlatTriangle& triangle);
 
 /// One triangle, the same pixels as draw_reference, in 8 x 8 masks (block_masks.hpp):
