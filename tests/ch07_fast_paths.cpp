@@ -223,7 +223,8 @@ TEST_CASE("the fast paths draw the big torus as the teaching path does") {
         for (int path = 0; path < 3; ++path) {
             INFO("fast path " << path << (s == &scene ? ", depth on" : ", depth off"));
             FastPaths alone = teaching_path;
-            bool* const flags[] = {&alone.masked_fetch, &alone.lean_spans, &alone.exact_lanes};
+            bool* const flags[] = {&alone.masked_fetch, &alone.lean_spans,
+                                   &alone.exact_lanes};
             *flags[path] = true;
             const RenderResult fast = render_scene(*s, nullptr, alone);
             CHECK(fast.image == plain.image);
@@ -503,6 +504,59 @@ void check_same_plane(const ScreenPlane& a, const ScreenPlane& b) {
     CHECK(a.value == b.value);
     CHECK(a.g.dx == b.g.dx);
     CHECK(a.g.dy == b.g.dy);
+}
+
+/// The same double, bit for bit (0.0 and -0.0 differ).
+bool same_bits(double a, double b) {
+    return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+TEST_CASE("closed_form_gradients gives each value's closed_form_gradient, bit for bit") {
+    // The renderer's setup takes two or three gradients over one triangle at once, in
+    // vector lanes: each must be the one-value gradient's bits, on ordinary, huge and
+    // tiny triangles, collinear and coincident corners, and values of any size.
+    std::mt19937_64 random(34);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const auto number = [&](double scale) { // a signed value with a random exponent
+        const double magnitude =
+            std::ldexp(unit(random), static_cast<int>(unit(random) * 60.0) - 30);
+        return (unit(random) < 0.5 ? -1.0 : 1.0) * std::min(magnitude, 1.0) * scale;
+    };
+    const auto snapped = [&](double scale) { // a corner on the 1/256 px grid
+        return to_pixels(snap_to_subpixel(Point2{number(scale), number(scale)}));
+    };
+    int degenerate = 0;
+    for (int n = 0; n < 50000; ++n) {
+        const double scale = n % 3 == 0 ? 1048575.0 : n % 3 == 1 ? 1300.0 : 2.0;
+        std::array<Point2, 3> p{snapped(scale), snapped(scale), snapped(scale)};
+        if (n % 7 == 0) { // the third corner on the line through the first two
+            p[2] = p[0] + (p[1] - p[0]) * 2.0;
+        } else if (n % 11 == 0) {
+            p[1] = p[0]; // two corners at one point
+        } else if (n % 13 == 0) {
+            p = {Point2{number(1e6), number(1e6)}, Point2{number(1.0), number(1e-3)},
+                 Point2{number(1e-6), number(1e6)}}; // off the grid: rounding's corners
+        }
+        std::array<std::array<double, 3>, 3> c{};
+        for (auto& value : c) {
+            value = {number(1e3), number(1e3), number(1e3)};
+        }
+        const std::array<Gradient<double>, 3> three = closed_form_gradients<3>(p, c);
+        const std::array<Gradient<double>, 2> two =
+            closed_form_gradients<2>(p, {c[0], c[1]});
+        for (std::size_t i = 0; i < 3; ++i) {
+            const Gradient<double> alone = closed_form_gradient(p, c[i]);
+            INFO(n, " value ", i);
+            REQUIRE(same_bits(three[i].dx, alone.dx));
+            REQUIRE(same_bits(three[i].dy, alone.dy));
+            if (i < 2) {
+                REQUIRE(same_bits(two[i].dx, alone.dx));
+                REQUIRE(same_bits(two[i].dy, alone.dy));
+            }
+        }
+        degenerate += closed_form_gradient(p, c[0]).dx == 0.0;
+    }
+    CHECK(degenerate > 5000); // the collinear and coincident corners were tried
 }
 
 TEST_CASE("texture planes and rounding from shared quotients are those of the corners") {

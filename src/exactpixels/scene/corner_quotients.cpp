@@ -4,6 +4,44 @@
 
 namespace exactpixels {
 
+//> gradients-at-once
+template <std::size_t N>
+std::array<Gradient<double>, N>
+closed_form_gradients(const std::array<Point2, 3>& p,
+                      const std::array<std::array<double, 3>, N>& c) {
+    static_assert(N >= 1 && N <= 4);
+    // Four doubles (no function returns one: without AVX that would change the ABI).
+    using Lanes = double __attribute__((vector_size(32)));
+    const auto at = [&](std::size_t i, std::size_t k) { return i < N ? c[i][k] : 0.0; };
+    const double dx2 = p[1].x - p[0].x, dy2 = p[1].y - p[0].y;
+    const double dx3 = p[2].x - p[0].x, dy3 = p[2].y - p[0].y;
+    const double area2 = dx2 * dy3 - dx3 * dy2;
+    std::array<Gradient<double>, N> g{};
+    if (area2 == 0.0) {
+        return g; // collinear or coincident corners: no plane, as the one-value form
+    }
+    const Lanes c0{at(0, 0), at(1, 0), at(2, 0), at(3, 0)}; // spare lanes 0
+    const Lanes dc2 = Lanes{at(0, 1), at(1, 1), at(2, 1), at(3, 1)} - c0;
+    const Lanes dc3 = Lanes{at(0, 2), at(1, 2), at(2, 2), at(3, 2)} - c0;
+    const Lanes a{area2, area2, area2, area2};
+    const Lanes gx =
+        (dc2 * Lanes{dy3, dy3, dy3, dy3} - dc3 * Lanes{dy2, dy2, dy2, dy2}) / a;
+    const Lanes gy =
+        (dc3 * Lanes{dx2, dx2, dx2, dx2} - dc2 * Lanes{dx3, dx3, dx3, dx3}) / a;
+    for (std::size_t i = 0; i < N; ++i) {
+        g[i] = {gx[i], gy[i]};
+    }
+    return g;
+}
+//< gradients-at-once
+
+template std::array<Gradient<double>, 2>
+closed_form_gradients<2>(const std::array<Point2, 3>&,
+                         const std::array<std::array<double, 3>, 2>&);
+template std::array<Gradient<double>, 3>
+closed_form_gradients<3>(const std::array<Point2, 3>&,
+                         const std::array<std::array<double, 3>, 3>&);
+
 CornerQuotients corner_quotients(const std::array<TexturedVertex, 3>& v) {
     CornerQuotients q{};
     for (std::size_t k = 0; k < 3; ++k) {
@@ -18,19 +56,30 @@ TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
                              const std::array<TexturedVertex, 3>& v,
                              const CornerQuotients& q, const ScreenPlane& one_w,
                              bool affine) {
+    const auto [du_w, dv_w] = closed_form_gradients<2>(corners, {q.u_w, q.v_w});
     TexturePlanes planes{
-        plane_through(corners, q.u_w), plane_through(corners, q.v_w), one_w, {}, {}};
+        {corners[0], q.u_w[0], du_w}, {corners[0], q.v_w[0], dv_w}, one_w, {}, {}};
     if (affine) {
-        planes.u = plane_through(corners, {v[0].uv.x, v[1].uv.x, v[2].uv.x});
-        planes.v = plane_through(corners, {v[0].uv.y, v[1].uv.y, v[2].uv.y});
+        const std::array<double, 3> u{v[0].uv.x, v[1].uv.x, v[2].uv.x},
+            t{v[0].uv.y, v[1].uv.y, v[2].uv.y};
+        const auto [du, dt] = closed_form_gradients<2>(corners, {u, t});
+        planes.u = {corners[0], u[0], du};
+        planes.v = {corners[0], t[0], dt};
     }
     return planes;
 }
 
 TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v,
                               const CornerQuotients& q) {
-    const auto [u, t] = projected_coordinates(v, q.u_w, q.v_w, q.one_w, centroid(v));
-    return texel_rounding(choose_rule(u), choose_rule(t));
+    // projected_coordinates(v, q.u_w, q.v_w, q.one_w, centroid(v)), its three
+    // gradients at once.
+    const std::array<Point2, 3> p{v[0].position, v[1].position, v[2].position};
+    const auto [dq, du_w, dv_w] = closed_form_gradients<3>(p, {q.one_w, q.u_w, q.v_w});
+    const Point2 d = centroid(v) - v[0].position;
+    const ProjectedCoordinate<double> u{q.u_w[0], q.one_w[0], du_w, dq},
+        t{q.v_w[0], q.one_w[0], dv_w, dq};
+    return texel_rounding(choose_rule(moved_by(u, d.x, d.y)),
+                          choose_rule(moved_by(t, d.x, d.y)));
 }
 
 } // namespace exactpixels
