@@ -826,7 +826,9 @@ TEST_CASE("the affine bound over a whole triangle holds on random triangles") {
     CHECK(!triangle_affine_fits(edge, 0.999));
 }
 
-TEST_CASE("auto maps a triangle affine whole where its bound fits, per span elsewhere") {
+// Without the texture stage (the stub of ch07-plan-mesh) no mapper runs: it grades that.
+TEST_CASE("auto maps a triangle affine whole where its bound fits, per span elsewhere" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     // The horizon's triangles reach the horizon: none fits, and nothing changes there.
     for (const std::string name : {"corridor", "horizon", "near_plane", "boxes", "lit"}) {
         INFO(name);
