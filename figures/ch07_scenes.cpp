@@ -31,29 +31,41 @@ int main(int argc, char** argv) {
             "| scene | mapper | divides | time (ms) | worst error (texels) "
             "| mean error (texels) |\n|---|---|---:|---:|---:|---:|\n";
         double removed_least = 100.0, removed_most = 0.0; // percent of exact's divides
+        std::string worst; // auto's worst texel error per scene, by triangle and by span
+        double worst_any = 0.0, budget = 1e300; // the smallest budget of those scenes
         for (const std::filesystem::path& path : shipped_scenes()) {
             const Scene scene = load_scene(path);
             const std::string name = path.stem().string();
             reports += fmt::format("**{}** (`{}`)\n\n```{{.text}}\n{}```\n\n", name,
                                    path.filename().string(),
                                    format_report(render_scene(scene).report));
+            if (scene.camera.projection == Projection::perspective) {
+                budget = std::min(budget, scene.options.budget);
+            }
             if (scene.camera.projection != Projection::perspective ||
                 render_scene(scene).report.texture.pixels == 0) {
                 continue;
             }
             double divides[2] = {0, 0}; // auto, exact
-            for (const char* mapper : {"auto", "exact", "affine"}) {
+            for (const char* mapper : {"auto", "auto per span", "exact", "affine"}) {
                 Scene variant = scene;
                 const std::string word = mapper;
-                variant.options.mapper = {word == "auto",
-                                          parse_mapper(word).value_or(Mapper{})};
+                const bool automatic = word.starts_with("auto");
+                variant.options.mapper = {
+                    automatic, parse_mapper(word).value_or(Mapper{}), word == "auto"};
                 const TexelError e = check_against_exact(variant);
                 const auto count = render_scene(variant).report.divides();
                 table +=
                     fmt::format("| {} | {} | {} | {:.2f} | {:.3f} | {:.4f} |\n", name,
                                 mapper, count, best_ms(variant, 7), e.worst, e.mean);
-                if (word != "affine") {
+                if (word == "auto" || word == "exact") {
                     divides[word == "exact"] = double(count);
+                }
+                if (automatic) { // the worst error with and without the triangle test
+                    worst +=
+                        fmt::format("worst_{}_{} {}\n",
+                                    word == "auto" ? "triangle" : "span", name, e.worst);
+                    worst_any = std::max(worst_any, e.worst);
                 }
             }
             // The share of exact's divides that auto removes, smallest and largest.
@@ -118,8 +130,10 @@ int main(int argc, char** argv) {
                           fmt::format("# auto against exact on the perspective scenes "
                                       "(divides: deterministic counts)\n"
                                       "auto_divides_removed_least_percent {}\n"
-                                      "auto_divides_removed_most_percent {}\n",
-                                      removed_least, removed_most));
+                                      "auto_divides_removed_most_percent {}\n"
+                                      "budget {}\nworst_auto_any {}\n{}",
+                                      removed_least, removed_most, budget, worst_any,
+                                      worst));
         std::printf("wrote %s and %s\n", (folder / "ch07_reports.md").c_str(),
                     (folder / "ch07_auto_vs_exact.md").c_str());
     } catch (const Error& error) {

@@ -741,6 +741,32 @@ TEST_CASE("the boxes scene looks the same in every order of its meshes") {
 
 // ---- Perspective-correct vertex colours (@sec:scene-colours) ----
 
+namespace {
+
+/// The largest difference, at the points of a grid of n steps of screen barycentrics,
+/// between the screen-linear and the perspective-correct interpolation of each of
+/// `values` (its three corner values) over corners at depths w.
+double worst_screen_error(const std::array<double, 3>& w,
+                          const std::vector<std::array<double, 3>>& values, int n) {
+    double worst = 0.0;
+    for (int i = 0; i <= n; ++i) {
+        for (int j = 0; i + j <= n; ++j) {
+            const std::array<double, 3> l{double(i) / n, double(j) / n,
+                                          double(n - i - j) / n};
+            const double q = l[0] / w[0] + l[1] / w[1] + l[2] / w[2];
+            for (const std::array<double, 3>& c : values) {
+                const double screen = l[0] * c[0] + l[1] * c[1] + l[2] * c[2];
+                const double exact =
+                    (l[0] * c[0] / w[0] + l[1] * c[1] / w[1] + l[2] * c[2] / w[2]) / q;
+                worst = std::max(worst, std::abs(screen - exact));
+            }
+        }
+    }
+    return worst;
+}
+
+} // namespace
+
 TEST_CASE("the screen-colour error bound holds on random triangles") {
     std::mt19937_64 rng(17);
     std::uniform_real_distribution<double> depth(1.0, 30.0), unit(0.0, 1.0);
@@ -752,29 +778,76 @@ TEST_CASE("the screen-colour error bound holds on random triangles") {
             colour = {unit(rng), unit(rng), unit(rng)};
         }
         const double bound = colour_error_bound(w, c);
-        double worst = 0.0; // over a grid of screen barycentrics
-        const int n = 64;
-        for (int i = 0; i <= n; ++i) {
-            for (int j = 0; i + j <= n; ++j) {
-                const std::array<double, 3> l{double(i) / n, double(j) / n,
-                                              double(n - i - j) / n};
-                const double q = l[0] / w[0] + l[1] / w[1] + l[2] / w[2];
-                for (int k = 0; k < 3; ++k) {
-                    const double screen =
-                        l[0] * c[0][k] + l[1] * c[1][k] + l[2] * c[2][k];
-                    const double exact = (l[0] * c[0][k] / w[0] + l[1] * c[1][k] / w[1] +
-                                          l[2] * c[2][k] / w[2]) /
-                                         q;
-                    worst = std::max(worst, 255.0 * std::abs(screen - exact));
-                }
-            }
+        std::vector<std::array<double, 3>> channels(3);
+        for (std::size_t k = 0; k < 3; ++k) {
+            channels[k] = {c[0][k], c[1][k], c[2][k]};
         }
+        const double worst = 255.0 * worst_screen_error(w, channels, 64);
         CHECK(worst <= bound * (1.0 + 1e-12));
         closest = std::max(closest, worst / bound);
     }
     CHECK(closest > 0.3); // not a loose bound: within a factor of 3.4 somewhere
     CHECK(colour_error_bound({2.0, 2.0, 2.0}, {Colour{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}) ==
           0.0);
+}
+
+TEST_CASE("the affine bound over a whole triangle holds on random triangles") {
+    std::mt19937_64 rng(34);
+    std::uniform_real_distribution<double> ratio(0.0, 6.0), unit(0.0, 1.0),
+        texels(-300.0, 300.0);
+    double closest = 0.0; // the largest measured / bound seen
+    int agree = 0;        // triangle_affine_fits against the bound itself
+    for (int trial = 0; trial < 400; ++trial) {
+        std::array<TexturedVertex, 3> c{};
+        for (TexturedVertex& v : c) { // depth ratios up to e^6 = 403
+            v = {{0.0, 0.0}, 0.5 * std::exp(ratio(rng)), {texels(rng), texels(rng)}};
+        }
+        const double bound = triangle_affine_error_bound(c);
+        const double worst = worst_screen_error(
+            {c[0].w, c[1].w, c[2].w},
+            {{c[0].uv.x, c[1].uv.x, c[2].uv.x}, {c[0].uv.y, c[1].uv.y, c[2].uv.y}}, 96);
+        CHECK(worst <= bound * (1.0 + 1e-9) + 1e-9);
+        closest = std::max(closest, worst / bound);
+        const double budget = bound * (0.5 + unit(rng)); // half to one and a half
+        agree += triangle_affine_fits(c, budget) == (bound <= budget);
+    }
+    CHECK(closest > 0.95); // tight: the grid comes within 5 % of it somewhere
+    CHECK(agree == 400);
+    // Constant depth: affine is exact, the bound 0 and any budget fits.
+    const std::array<TexturedVertex, 3> flat{
+        {{{0, 0}, 2.0, {0, 0}}, {{1, 0}, 2.0, {500, 0}}, {{0, 1}, 2.0, {0, 900}}}};
+    CHECK(triangle_affine_error_bound(flat) == 0.0);
+    CHECK(triangle_affine_fits(flat, 1e-9));
+    // An edge from w = 1 to w = 4 over 3 texels: the bound is 3 (2 - 1) / (2 + 1) = 1.
+    const std::array<TexturedVertex, 3> edge{
+        {{{0, 0}, 1.0, {0, 0}}, {{1, 0}, 4.0, {3, 0}}, {{0, 1}, 1.0, {0, 0}}}};
+    CHECK(triangle_affine_error_bound(edge) == 1.0);
+    CHECK(triangle_affine_fits(edge, 1.0));
+    CHECK(!triangle_affine_fits(edge, 0.999));
+}
+
+// Without the texture stage (the stub of ch07-plan-mesh) no mapper runs: it grades that.
+TEST_CASE("auto maps a triangle affine whole where its bound fits, per span elsewhere" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
+    // The horizon's triangles reach the horizon: none fits, and nothing changes there.
+    for (const std::string name : {"corridor", "horizon", "near_plane", "boxes", "lit"}) {
+        INFO(name);
+        const Scene scene = shipped(name);
+        Scene per_span = scene;
+        per_span.options.mapper.per_triangle = false;
+        const RenderReport now = render_scene(scene).report;
+        const RenderReport before = render_scene(per_span).report;
+        const auto affine = static_cast<std::size_t>(MapperKind::affine);
+        // Per span, affine runs only where the depth is constant (and is not auto's).
+        const bool changes = name != "horizon";
+        CHECK((now.mappers[affine].pixels > before.mappers[affine].pixels) == changes);
+        CHECK((now.divides() < before.divides()) == changes);
+        CHECK(now.divides() <= before.divides());
+        CHECK(now.texture.pixels == before.texture.pixels);
+        // Both within the budget against the exact reference.
+        CHECK(check_against_exact(scene).worst <= scene.options.budget + 1e-6);
+        CHECK(check_against_exact(per_span).worst <= scene.options.budget + 1e-6);
+    }
 }
 
 namespace {

@@ -58,10 +58,15 @@ struct SceneVertex {
     glm::dvec3 normal = {0.0, 0.0, 0.0};
 };
 
-/// The mapper a scene asks for: one of chapter 3's, or `auto` (choose per span).
+/// The mapper a scene asks for: one of chapter 3's, or `auto` (choose per triangle or
+/// per span).
 struct MapperChoice {
-    bool automatic = true; ///< choose per span within the error budget
+    bool automatic = true; ///< choose per triangle or span within the error budget
     Mapper mapper = {};    ///< the mapper when not automatic
+    /// auto: affine on the whole triangle where its bound fits the budget
+    /// (@eq:scene-triangle-bound), per span elsewhere; false: per span everywhere (the
+    /// choice before the triangle test, for the chapter's comparison)
+    bool per_triangle = true;
 };
 
 /// Whether the renderer runs a depth stage (@sec:scene-depth).

@@ -124,6 +124,42 @@ AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget) {
 }
 //< choose-span-mapper
 
+namespace {
+
+/// The depths' extremes and the larger corner range of u and v.
+struct TriangleSpread {
+    double w_min, w_max, extent;
+};
+
+TriangleSpread spread(const std::array<TexturedVertex, 3>& c) {
+    const auto range = [](double a, double b, double d) {
+        return std::max({a, b, d}) - std::min({a, b, d});
+    };
+    return {std::min({c[0].w, c[1].w, c[2].w}), std::max({c[0].w, c[1].w, c[2].w}),
+            std::max(range(c[0].uv.x, c[1].uv.x, c[2].uv.x),
+                     range(c[0].uv.y, c[1].uv.y, c[2].uv.y))};
+}
+
+} // namespace
+
+double triangle_affine_error_bound(const std::array<TexturedVertex, 3>& corners) {
+    const TriangleSpread t = spread(corners);
+    assert(t.w_min > 0.0);
+    return t.extent * affine_error_bound(t.w_max / t.w_min);
+}
+
+//> triangle-affine-fits
+bool triangle_affine_fits(const std::array<TexturedVertex, 3>& corners, double budget) {
+    assert(budget > 0.0);
+    const TriangleSpread t = spread(corners);
+    // D (s - 1) / (s + 1) <= B with s = sqrt(w_max / w_min) >= 1: always when D <= B,
+    // else exactly when s <= (D + B) / (D - B), that is
+    // w_max (D - B)^2 <= w_min (D + B)^2.
+    const double d = t.extent, b = budget;
+    return d <= b || t.w_max * (d - b) * (d - b) <= t.w_min * (d + b) * (d + b);
+}
+//< triangle-affine-fits
+
 //> mapper-divides
 long long mapper_divides(Mapper mapper, int count) {
     const long long pieces = (count + mapper.piece - 1) / mapper.piece;

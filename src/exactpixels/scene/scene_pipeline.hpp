@@ -1,8 +1,9 @@
 // scene_pipeline.hpp: which stages a mesh needs, and which mapper `auto` picks for a
-// span.
+// triangle or a span.
 //
 // Usage:
 //   MeshStages stages = plan_mesh(mesh);                // what this mesh pays for
+//   bool whole = triangle_affine_fits(corners, 0.5);    // auto: affine on all of it
 //   AutoChoice c = choose_span_mapper(span, 0.5);       // auto: cheapest within 0.5
 //   long long d = mapper_divides(c.mapper, span.count); // divides that mapper performs
 //
@@ -69,6 +70,16 @@ struct AutoChoice {
 /// subdivided piece), the quadratic, subdivided pieces of halving length, and exact.
 /// budget > 0.
 AutoChoice choose_span_mapper(const PerspectiveSpan<double>& s, double budget);
+
+/// The worst texel error of the affine mapper over a whole triangle whose corners have
+/// depths w > 0 and texture coordinates uv, against the perspective-correct
+/// coordinates (@eq:scene-triangle-bound): the larger corner range of u and of v times
+/// (sqrt r - 1) / (sqrt r + 1), r = w_max / w_min.
+double triangle_affine_error_bound(const std::array<TexturedVertex, 3>& corners);
+
+/// Whether triangle_affine_error_bound(corners) <= budget, decided without a divide or
+/// a square root. budget > 0.
+bool triangle_affine_fits(const std::array<TexturedVertex, 3>& corners, double budget);
 
 /// How many divides chapter 3's mapper performs on a span of `count` pixels (the same
 /// for every precision): exact count; affine 0; subdivided 1 + 3 P; quadratic 10;

@@ -29,6 +29,9 @@ Rgba8 multiply(Rgba8 texel, const Colour& c) {
 /// What the texture stage sets up once per triangle.
 struct TextureSetup {
     bool affine_exact = false; ///< the depths are equal: affine is exact (and free)
+    /// auto: affine's bound over the whole triangle fits the budget, so every span of
+    /// it is affine (@eq:scene-triangle-bound)
+    bool affine_fits = false;
     /// u/w, v/w, 1/w; u and v where affine runs. Not zeroed first: texture_setup sets
     /// what is read, and zeroing the five planes cost the big torus's frame 2 % of its
     /// time (perf).
@@ -79,10 +82,13 @@ TextureSetup texture_setup(const RenderOptions& options,
     TextureSetup setup;
     setup.affine_exact =
         constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
-    // The spans use affine on every span or on none (auto never picks affine where
-    // w varies): its planes and rounding only where it runs.
+    // auto: the whole triangle affine where its bound fits (no divide), else per span.
+    setup.affine_fits = options.mapper.automatic && options.mapper.per_triangle &&
+                        !setup.affine_exact && triangle_affine_fits(tv, options.budget);
+    // The spans use affine on every span or on none (auto's per-span choice never picks
+    // affine): its planes and rounding only where it runs.
     const bool affine_only = options.mapper.automatic
-                                 ? setup.affine_exact
+                                 ? setup.affine_exact || setup.affine_fits
                                  : options.mapper.mapper.kind == MapperKind::affine;
     const CornerQuotients quotients = corner_quotients(tv);
     setup.planes = texture_planes(p, tv, quotients, one_w, affine_only);
@@ -233,7 +239,8 @@ struct MappedSpan {
 };
 
 /// The mapper a span gets: the scene's, affine where the depth is constant (exact there
-/// and no divide), or auto's choice within the budget.
+/// and no divide), or auto's choice within the budget: affine where the triangle's bound
+/// fits, else the span's own choice.
 MappedSpan span_mapper(const RenderOptions& options, const TextureSetup& setup,
                        const PerspectiveSpan<double>& ps) {
     const MapperChoice& wanted = options.mapper;
@@ -243,6 +250,9 @@ MappedSpan span_mapper(const RenderOptions& options, const TextureSetup& setup,
     }
     if (!wanted.automatic) {
         return {wanted.mapper};
+    }
+    if (setup.affine_fits) { // chosen once for the triangle, without a divide
+        return {{MapperKind::affine, 2}, true, 0};
     }
     const AutoChoice choice = choose_span_mapper(ps, options.budget);
     return {choice.mapper, true, choice.divides};
