@@ -106,7 +106,7 @@ TEST_CASE("the supersampled reference at one sample per pixel is the nearest ren
 
 // A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
 TEST_CASE("the renderer filters 8-bit texels as sRGB codes, in linear light" *
-          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     // Chapter 8's rule, in the renderer: an 8-bit texel is an sRGB code, and filtering
     // averages light. A 64 x 64 checkerboard of 1-texel squares (codes 235 and 40) on a
     // 16 x 16 orthographic square is minified 4 : 1, level 2 exactly, where every texel
