@@ -154,10 +154,10 @@ double wall(int area, int threads) {
 
 } // namespace
 
-TEST_CASE("claim: two threads beat one from 80 px up, by 1.75 to 2.3 times") {
+TEST_CASE("claim: two threads beat one from 80 px up, by 1.5 to 2.3 times") {
     for (const int area : {80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(wall(area, 2) > 1.75 * wall(area, 1));
+        CHECK(wall(area, 2) > 1.5 * wall(area, 1));
         CHECK(wall(area, 2) < 2.3 * wall(area, 1));
     }
 }
@@ -284,13 +284,15 @@ TEST_CASE("claim: llvmpipe covers the textured sets exactly; texels differ next 
     }
 }
 
-TEST_CASE("claim: textured runs draw 1.1 to 2 times llvmpipe's rate at every size") {
+TEST_CASE("claim: textured runs lead llvmpipe at every size, over 3x from 1000 px up") {
     for (const int area : {3, 15, 80, 1000, 65536}) {
         INFO(area << " px");
         const double ratio = textured("runs", area) / textured("llvmpipe", area);
-        CHECK(ratio > 1.1); // ahead, but short of the 3x target
-        CHECK(ratio < 2.0);
+        CHECK(ratio > 1.1);
+        CHECK(ratio > textured("runs", 3) / textured("llvmpipe", 3) - 1e-12); // least at 3
     }
+    CHECK(textured("runs", 1000) > 3.0 * textured("llvmpipe", 1000));
+    CHECK(textured("runs", 65536) > 3.0 * textured("llvmpipe", 65536));
 }
 
 TEST_CASE("claim: textured runs gain on the teaching path mostly from 80 px up") {
@@ -298,22 +300,22 @@ TEST_CASE("claim: textured runs gain on the teaching path mostly from 80 px up")
         INFO(area << " px");
         const double ratio = textured("runs", area) / textured("teaching", area);
         CHECK(ratio > 0.85);
-        CHECK(ratio < 1.25);
+        CHECK(ratio < 2.0);
     }
-    CHECK(textured("runs", 80) > 1.3 * textured("teaching", 80));
-    CHECK(textured("runs", 1000) > 2.5 * textured("teaching", 1000));
-    CHECK(textured("runs", 65536) > 3.5 * textured("teaching", 65536));
+    CHECK(textured("runs", 80) > 2.5 * textured("teaching", 80));
+    CHECK(textured("runs", 1000) > 5.0 * textured("teaching", 1000));
+    CHECK(textured("runs", 65536) > 8.0 * textured("teaching", 65536));
 }
 
-TEST_CASE("claim: at 1000 px textured runs execute about two thirds of llvmpipe's") {
+TEST_CASE("claim: at 1000 px textured runs execute about a third of llvmpipe's") {
     const BenchmarkRuns r = read_benchmark_csv(data / "ch10_textured_instructions.csv");
     const auto per_triangle = [&](const char* name) {
         return r.value(name, "instructions_per_triangle");
     };
     const double ratio =
         per_triangle("textured/runs/1000") / per_triangle("textured/llvmpipe/1000");
-    CHECK(ratio > 0.6);
-    CHECK(ratio < 0.75);
+    CHECK(ratio > 0.25);
+    CHECK(ratio < 0.4);
     // and at 3 px fewer than llvmpipe too, though over 1400 per triangle
     CHECK(per_triangle("textured/runs/3") > 1400);
     CHECK(per_triangle("textured/runs/3") < per_triangle("textured/llvmpipe/3"));
