@@ -252,7 +252,10 @@ TEST_CASE("any number of threads draws every shipped scene and the big torus as 
     MESSAGE((scenes + 2) << " scenes, " << renders << " threaded renders compared");
 }
 
-TEST_CASE("any number of threads refuses a bad scene with the message of one") {
+// A stub of ch07-plan-mesh (no stage runs) maps no texture coordinate, so no triangle is
+// refused: the test grades that exercise.
+TEST_CASE("any number of threads refuses a bad scene with the message of one" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     // Texture coordinates past the mapper's limit on one triangle in every 499 of the
     // big torus, each a different value: one thread meets the first in scene order, and
     // every thread count names the same one, whichever band it lies in.

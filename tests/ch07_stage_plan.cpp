@@ -49,7 +49,7 @@ TEST_CASE("without a light no lighting stage runs and the shipped scenes are unc
 }
 
 TEST_CASE("a model named by several meshes is read once and its texture held once" *
-          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     // tests/fixtures/models/three_cubes.toml names cube.obj three times, spelled three
     // ways, moved apart by its translate: three cubes of two materials each.
     const Scene scene = load_scene(models / "three_cubes.toml");
