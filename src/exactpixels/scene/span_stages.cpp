@@ -300,9 +300,10 @@ inline bool seen(const char* visible, int k) {
 depth_stage(DepthBuffer& depth, const ScreenPlane& nearness, Span s, char* visible) {
     const int count = s.x_end - s.x_begin;
     const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
+    const ScreenPlane q = nearness; // a copy: writing visible[k] cannot change it
     int shown = 0;
     for (int k = 0; k < count; ++k) {
-        const float key = nearness_key(nearness.at(x + k, y));
+        const float key = nearness_key(q.at(x + k, y));
         const bool seen = depth.test_and_write(s.x_begin + k, s.y, key);
         visible[k] = seen;
         shown += seen;
