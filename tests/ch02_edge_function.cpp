@@ -191,6 +191,10 @@ TEST_CASE("snapping rounds 256 v to the nearest integer exactly, halves up") {
     CHECK(snap_to_subpixel(0.5 / 256.0) == 1);   // a half rounds up
     CHECK(snap_to_subpixel(-0.5 / 256.0) == 0);  // towards +infinity
     CHECK(snap_to_subpixel(-1.5 / 256.0) == -1); // likewise
+    CHECK(snap_in_range({-1.5 / 256.0, -0.0}) == FixedPoint2{-1, 0});
+    CHECK(snap_in_range({-max_fixed_coordinate_px, max_fixed_coordinate_px}) ==
+          FixedPoint2{-max_fixed_coordinate, max_fixed_coordinate});
+    CHECK(snap_in_range({-below_half, -3.0 / 256.0}) == FixedPoint2{0, -3});
     // Every neighbour of every half-integer tried, against the exact fraction.
     std::mt19937_64 rng(15);
     std::uniform_int_distribution<std::int64_t> k(-max_fixed_coordinate,
@@ -204,6 +208,11 @@ TEST_CASE("snapping rounds 256 v to the nearest integer exactly, halves up") {
              {half, std::nextafter(half, -1e300), std::nextafter(half, 1e300), any(rng),
               std::ldexp(any(rng), -40), -below_half, below_half}) {
             REQUIRE(Integer{snap_to_subpixel(v)} == exact_snap(v));
+            if (std::abs(v) <= max_fixed_coordinate_px) { // snap_in_range's own floor
+                const FixedPoint2 both = snap_in_range({v, -v});
+                REQUIRE(Integer{both.x} == exact_snap(v));
+                REQUIRE(Integer{both.y} == exact_snap(-v));
+            }
             ++checked;
         }
     }

@@ -11,6 +11,8 @@
 
 #include "exactpixels/base/types.hpp"
 
+#include <cassert>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -66,7 +68,13 @@ class Framebuffer {
     friend bool operator==(const Framebuffer&, const Framebuffer&) = default;
 
   private:
-    std::size_t index(int x, int y) const;
+    /// The element of pixel (x, y). (Inline: called once per span, out of line it cost
+    /// the big torus's frame 0.8M instructions.)
+    std::size_t index(int x, int y) const {
+        assert(contains(x, y));
+        return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
+               static_cast<std::size_t>(x);
+    }
 
     int width_;
     int height_;
