@@ -233,6 +233,76 @@ TEST_CASE("the fast paths draw the big torus as the teaching path does") {
     }
 }
 
+TEST_CASE("the direct span's affine texels are the teaching path's") {
+    // The big torus maps every triangle affine (auto); the direct span (lean_spans) then
+    // steps u and v itself and takes each texel index with its span's rounding set up
+    // once. Its texture coordinates moved and stretched (negative slopes: rule 2's
+    // ceil; past 2^30 texels: the library's floor), some corners thrown far off screen
+    // or next to another's (thin and empty triangles), affine forced by the scene or
+    // chosen by auto, rounding on and off: the same pixels and counts as the teaching
+    // path.
+    const Scene torus = big_torus();
+    std::mt19937_64 random(36);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    struct Stretch {
+        double scale, offset;
+    };
+    int renders = 0;
+    for (const Stretch stretch : {Stretch{1.0, 0.0}, Stretch{-3.75, 1000.5},
+                                  Stretch{1e6, 2e9}, Stretch{-1e6, -2e9}}) {
+        Scene scene = torus;
+        SceneMesh& mesh = scene.meshes[0];
+        for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                TexCoord& uv = mesh.triangles[t][k].uv;
+                uv = {uv.x * stretch.scale + stretch.offset,
+                      uv.y * stretch.scale - stretch.offset};
+            }
+            if (t % 211 == 0) { // far off screen, in the view or out
+                mesh.triangles[t][t % 3].position *= 1.0 + 40.0 * unit(random);
+            } else if (t % 223 == 0) { // one corner next to another: a point on screen
+                mesh.triangles[t][1].position =
+                    mesh.triangles[t][0].position * (1 + 1e-9);
+            } else if (t % 227 == 0) { // next to the middle of an edge: a line on screen
+                mesh.triangles[t][2].position =
+                    0.5 *
+                    (mesh.triangles[t][0].position + mesh.triangles[t][1].position) *
+                    (1 + 1e-9);
+            }
+        }
+        share_positions(mesh);
+        for (int variant = 0; variant < 4; ++variant) {
+            Scene s = scene;
+            s.options.rounding = variant % 2 == 0;
+            if (variant >= 2) { // affine forced, every triangle
+                s.options.mapper.automatic = false;
+                s.options.mapper.mapper = {MapperKind::affine, 2};
+            }
+            INFO("stretch ", stretch.scale, ", variant ", variant);
+            const RenderResult plain = render_scene(s, nullptr, teaching_path);
+            FastPaths lean = teaching_path;
+            lean.lean_spans = true;
+            const RenderResult fast = render_scene(s, nullptr, lean);
+            CHECK(fast.image == plain.image);
+            check_same_report(fast.report, plain.report);
+            const RenderResult all = render_scene(s);
+            CHECK(all.image == plain.image);
+            check_same_report(all.report, plain.report);
+            // Most pixels affine on the whole triangle (auto, where the stretch leaves
+            // the bound fitting), all where forced.
+            const long long affine =
+                plain.report.mappers[static_cast<std::size_t>(MapperKind::affine)].pixels;
+            if (variant >= 2) {
+                CHECK(affine == plain.report.texture.pixels);
+            } else if (std::abs(stretch.scale) < 10.0) {
+                CHECK(affine > plain.report.texture.pixels / 2);
+            }
+            renders += 1;
+        }
+    }
+    CHECK(renders == 16);
+}
+
 TEST_CASE("any number of threads draws every shipped scene and the big torus as one") {
     const std::filesystem::path folder = shipped_scene_folder();
     int scenes = 0, renders = 0;
@@ -602,7 +672,58 @@ TEST_CASE("texture planes and rounding from shared quotients are those of the co
         const TexelRounding from_q = choose_rounding(v, q);
         CHECK(from_q.u_modifier == alone.u_modifier);
         CHECK(from_q.v_modifier == alone.v_modifier);
+        // A triangle mapped affine: its planes and rounding alone, gradients at once.
+        const auto [u, t] = affine_planes(p, v);
+        check_same_plane(u, shared.u);
+        check_same_plane(t, shared.v);
+        const TexelRounding affine = choose_rounding(v, MapperKind::affine);
+        const TexelRounding at_once = choose_affine_rounding(v);
+        CHECK(at_once.u_modifier == affine.u_modifier);
+        CHECK(at_once.v_modifier == affine.v_modifier);
     }
+}
+
+TEST_CASE("the affine setup at once is chapter 3's and 4's on flat and thin triangles") {
+    // Collinear and coincident corners (no plane: zero gradients), a constant u or v
+    // (zero gradient, rule from dy or the default), and huge values.
+    std::mt19937_64 random(35);
+    std::uniform_real_distribution<double> position(-1e6, 1e6), depth(0.05, 400.0),
+        coordinate(-1e9, 1e9);
+    int flat = 0;
+    for (int n = 0; n < 20000; ++n) {
+        std::array<TexturedVertex, 3> v{};
+        for (std::size_t k = 0; k < 3; ++k) {
+            v[k] = {{position(random), position(random)},
+                    depth(random),
+                    {coordinate(random), coordinate(random)}};
+        }
+        if (n % 3 == 0) {
+            v[2].position = v[0].position + (v[1].position - v[0].position) * 0.5;
+        } else if (n % 3 == 1) {
+            v[1].position = v[0].position;
+        }
+        if (n % 4 == 0) {
+            v[1].uv.x = v[2].uv.x = v[0].uv.x; // u constant
+        }
+        if (n % 5 == 0) {
+            v[2].uv.y = v[0].uv.y; // v constant along one edge
+        }
+        std::array<Point2, 3> p{};
+        for (std::size_t k = 0; k < 3; ++k) {
+            p[k] = to_pixels(snap_to_subpixel(v[k].position));
+        }
+        INFO(n);
+        const TexturePlanes planes = texture_planes(p, v);
+        const auto [u, t] = affine_planes(p, v);
+        check_same_plane(u, planes.u);
+        check_same_plane(t, planes.v);
+        const TexelRounding affine = choose_rounding(v, MapperKind::affine);
+        const TexelRounding at_once = choose_affine_rounding(v);
+        CHECK(at_once.u_modifier == affine.u_modifier);
+        CHECK(at_once.v_modifier == affine.v_modifier);
+        flat += planes.u.g.dx == 0.0 && planes.u.g.dy == 0.0;
+    }
+    CHECK(flat > 10000);
 }
 
 TEST_CASE("the geometry stage stops a corner that is not finite, naming the triangle") {

@@ -1,6 +1,7 @@
 #include "exactpixels/scene/corner_quotients.hpp"
 
 #include <cstddef>
+#include <tuple>
 
 namespace exactpixels {
 
@@ -60,13 +61,28 @@ TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
     TexturePlanes planes{
         {corners[0], q.u_w[0], du_w}, {corners[0], q.v_w[0], dv_w}, one_w, {}, {}};
     if (affine) {
-        const std::array<double, 3> u{v[0].uv.x, v[1].uv.x, v[2].uv.x},
-            t{v[0].uv.y, v[1].uv.y, v[2].uv.y};
-        const auto [du, dt] = closed_form_gradients<2>(corners, {u, t});
-        planes.u = {corners[0], u[0], du};
-        planes.v = {corners[0], t[0], dt};
+        std::tie(planes.u, planes.v) = affine_planes(corners, v);
     }
     return planes;
+}
+
+std::pair<ScreenPlane, ScreenPlane>
+affine_planes(const std::array<Point2, 3>& corners,
+              const std::array<TexturedVertex, 3>& v) {
+    const std::array<double, 3> u{v[0].uv.x, v[1].uv.x, v[2].uv.x},
+        t{v[0].uv.y, v[1].uv.y, v[2].uv.y};
+    const auto [du, dt] = closed_form_gradients<2>(corners, {u, t});
+    return {{corners[0], u[0], du}, {corners[0], t[0], dt}};
+}
+
+TexelRounding choose_affine_rounding(const std::array<TexturedVertex, 3>& v) {
+    // choose_rounding(v, MapperKind::affine): the gradients of u and v over the
+    // unsnapped corners.
+    const std::array<Point2, 3> p{v[0].position, v[1].position, v[2].position};
+    const auto [du, dv] = closed_form_gradients<2>(
+        p, {std::array<double, 3>{v[0].uv.x, v[1].uv.x, v[2].uv.x},
+            std::array<double, 3>{v[0].uv.y, v[1].uv.y, v[2].uv.y}});
+    return choose_rounding(du, dv);
 }
 
 TexelRounding choose_rounding(const std::array<TexturedVertex, 3>& v,

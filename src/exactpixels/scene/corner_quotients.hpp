@@ -20,6 +20,7 @@
 #include "exactpixels/texture/texture_mapper.hpp"
 
 #include <array>
+#include <utility>
 
 namespace exactpixels {
 
@@ -50,6 +51,15 @@ TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
                              const std::array<TexturedVertex, 3>& v,
                              const CornerQuotients& q, const ScreenPlane& one_w,
                              bool affine);
+
+/// The planes u and v of chapter 3's texture_planes(corners, v) (the affine mapper's),
+/// value for value, their gradients set up at once.
+std::pair<ScreenPlane, ScreenPlane> affine_planes(const std::array<Point2, 3>& corners,
+                                                  const std::array<TexturedVertex, 3>& v);
+
+/// Chapter 4's choose_rounding(v, MapperKind::affine), its two gradients set up at
+/// once: the same rounding.
+TexelRounding choose_affine_rounding(const std::array<TexturedVertex, 3>& v);
 
 /// Chapter 4's choose_rounding(v) from the quotients q = corner_quotients(v): the same
 /// rounding.

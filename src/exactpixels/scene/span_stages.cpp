@@ -15,6 +15,7 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 namespace exactpixels {
 
@@ -26,15 +27,26 @@ Rgba8 multiply(Rgba8 texel, const Colour& c) {
         Colour{texel.r / 255.0 * c.r, texel.g / 255.0 * c.g, texel.b / 255.0 * c.b});
 }
 
+/// A span's mapper, and what auto's choice of it cost.
+struct MappedSpan {
+    Mapper mapper;                ///< the mapper that ran
+    bool chosen = false;          ///< whether auto chose it (on this span)
+    long long choice_divides = 0; ///< auto's divides when it chose
+};
+
 /// What the texture stage sets up once per triangle.
 struct TextureSetup {
     bool affine_exact = false; ///< the depths are equal: affine is exact (and free)
     /// auto: affine's bound over the whole triangle fits the budget, so every span of
     /// it is affine (@eq:scene-triangle-bound)
     bool affine_fits = false;
-    /// u/w, v/w, 1/w; u and v where affine runs. Not zeroed first: texture_setup sets
-    /// what is read, and zeroing the five planes cost the big torus's frame 2 % of its
-    /// time (perf).
+    /// Whether every span gets the same mapper, `mapped` (all but auto's per-span
+    /// choice): chosen once here instead of on each span.
+    bool per_triangle = false;
+    MappedSpan mapped; ///< the mapper of every span, where per_triangle
+    /// u/w, v/w, 1/w where a perspective mapper may run; u and v where affine runs. Not
+    /// zeroed first: texture_setup sets what is read, and zeroing the five planes cost
+    /// the big torus's frame 2 % of its time (perf).
     TexturePlanes planes;
     TexelRounding perspective_rounding{}, affine_rounding{}; ///< chapter 4's choice
 };
@@ -85,19 +97,28 @@ TextureSetup texture_setup(const RenderOptions& options,
     // auto: the whole triangle affine where its bound fits (no divide), else per span.
     setup.affine_fits = options.mapper.automatic && options.mapper.per_triangle &&
                         !setup.affine_exact && triangle_affine_fits(tv, options.budget);
+    const MapperChoice& wanted = options.mapper;
+    if (setup.affine_exact &&
+        (wanted.automatic || wanted.mapper.kind == MapperKind::affine)) {
+        setup.per_triangle = true, setup.mapped = {{MapperKind::affine, 2}};
+    } else if (!wanted.automatic) {
+        setup.per_triangle = true, setup.mapped = {wanted.mapper};
+    } else if (setup.affine_fits) { // chosen once for the triangle, without a divide
+        setup.per_triangle = true, setup.mapped = {{MapperKind::affine, 2}, true, 0};
+    }
     // The spans use affine on every span or on none (auto's per-span choice never picks
-    // affine): its planes and rounding only where it runs.
-    const bool affine_only = options.mapper.automatic
-                                 ? setup.affine_exact || setup.affine_fits
-                                 : options.mapper.mapper.kind == MapperKind::affine;
-    const CornerQuotients quotients = corner_quotients(tv);
-    setup.planes = texture_planes(p, tv, quotients, one_w, affine_only);
-    if (options.rounding) { // chapter 4: ties go right, or down
-        if (affine_only) {
-            setup.affine_rounding = choose_rounding(tv, MapperKind::affine);
-        } else {
-            setup.perspective_rounding = choose_rounding(tv, quotients);
+    // affine): its planes and rounding only where it runs, and only its.
+    if (setup.per_triangle && setup.mapped.mapper.kind == MapperKind::affine) {
+        std::tie(setup.planes.u, setup.planes.v) = affine_planes(p, tv);
+        if (options.rounding) { // chapter 4: ties go right, or down
+            setup.affine_rounding = choose_affine_rounding(tv);
         }
+        return setup; // u/w, v/w and 1/w unset: no span reads them
+    }
+    const CornerQuotients quotients = corner_quotients(tv);
+    setup.planes = texture_planes(p, tv, quotients, one_w, false);
+    if (options.rounding) {
+        setup.perspective_rounding = choose_rounding(tv, quotients);
     }
     return setup;
 }
@@ -231,28 +252,13 @@ class TrianglePlanes {
     LightingPlanes lighting_;
 };
 
-/// A span's mapper, and what auto's choice of it cost.
-struct MappedSpan {
-    Mapper mapper;                ///< the mapper that ran
-    bool chosen = false;          ///< whether auto chose it (on this span)
-    long long choice_divides = 0; ///< auto's divides when it chose
-};
-
-/// The mapper a span gets: the scene's, affine where the depth is constant (exact there
-/// and no divide), or auto's choice within the budget: affine where the triangle's bound
-/// fits, else the span's own choice.
+/// The mapper a span gets: the triangle's (texture_setup chose it: the scene's, affine
+/// where the depth is constant, exact there and no divide, or auto's affine where the
+/// triangle's bound fits), else auto's choice on the span within the budget.
 MappedSpan span_mapper(const RenderOptions& options, const TextureSetup& setup,
                        const PerspectiveSpan<double>& ps) {
-    const MapperChoice& wanted = options.mapper;
-    if (setup.affine_exact &&
-        (wanted.automatic || wanted.mapper.kind == MapperKind::affine)) {
-        return {{MapperKind::affine, 2}};
-    }
-    if (!wanted.automatic) {
-        return {wanted.mapper};
-    }
-    if (setup.affine_fits) { // chosen once for the triangle, without a divide
-        return {{MapperKind::affine, 2}, true, 0};
+    if (setup.per_triangle) {
+        return setup.mapped;
     }
     const AutoChoice choice = choose_span_mapper(ps, options.budget);
     return {choice.mapper, true, choice.divides};
@@ -272,7 +278,11 @@ MappedSpan span_mapper(const RenderOptions& options, const TextureSetup& setup,
     }
     const auto kind = static_cast<std::size_t>(mapped.mapper.kind);
     WorkCount& counter = report.mappers[kind];
-    const long long divides = mapper_divides(mapped.mapper, count);
+    // mapper_divides's count; affine's none without the call (most spans of the big
+    // torus)
+    const long long divides = mapped.mapper.kind == MapperKind::affine
+                                  ? 0
+                                  : mapper_divides(mapped.mapper, count);
     counter.triangles += used[kind] ? 0 : 1;
     used[kind] = true;
     counter.spans += 1;
@@ -346,15 +356,17 @@ template <class TexelOut>
 [[gnu::always_inline]] inline MappedSpan
 texture_stage(const RenderOptions& options, const TextureSetup& texture, Span s,
               SimdVariant lanes, TexelOut&& texel) {
+    if (texture.per_triangle && texture.mapped.mapper.kind == MapperKind::affine) {
+        // Affine on the whole triangle: u and v step along the span, no 1/w is read.
+        map_span(texture.mapped.mapper, options.precision, texture.affine_rounding,
+                 PerspectiveSpan<double>{}, affine_span(texture.planes, s), texel);
+        return texture.mapped;
+    }
     const PerspectiveSpan<double> ps = perspective_span(texture.planes, s);
     const MappedSpan mapped =
         span_mapper(options, texture, ps); // auto: within the budget
-    const bool affine = mapped.mapper.kind == MapperKind::affine;
-    const TexelRounding r =
-        affine ? texture.affine_rounding : texture.perspective_rounding;
-    const AffineSpan<double> as =
-        affine ? affine_span(texture.planes, s) : AffineSpan<double>{};
-    map_texture_span(lanes, mapped.mapper, options.precision, r, ps, as, texel);
+    map_texture_span(lanes, mapped.mapper, options.precision,
+                     texture.perspective_rounding, ps, AffineSpan<double>{}, texel);
     return mapped;
 }
 //< texture-stage
@@ -472,6 +484,48 @@ void count_depth(RenderReport& report, int count, int shown) {
     report.hidden.pixels += count - shown;
 }
 
+/// real_texel_index(u, modifier) with the modifier's part worked out once (the direct
+/// span's): the same index for every u.
+class RealTexelIndex {
+  public:
+    explicit RealTexelIndex(std::int32_t modifier)
+        : floor_(modifier >= texel_scale / 2),
+          bias_(floor_ ? double(modifier - texel_scale / 2) / texel_scale
+                       : double(modifier - texel_scale / 2 + 1) / texel_scale) {}
+    int operator()(double u) const {
+        const bool small = std::abs(u) < 0x1p30; // false for NaN too
+        const double x = u + bias_;
+        if (floor_) {
+            return small ? floor_to_int(x) : static_cast<int>(std::floor(x));
+        }
+        return (small ? ceil_to_int(x) : static_cast<int>(std::ceil(x))) - 1;
+    }
+
+  private:
+    bool floor_;  ///< rule 1's floor(u + bias), else ceil(u + bias) - 1
+    double bias_; ///< the modifier's offset in texels
+};
+
+/// The direct span's texels where the whole triangle is mapped affine in double:
+/// map_span's affine mapper (u and v stepped from pixel 0, indices by real_texel_index),
+/// inline, its rounding set up once per span and a hidden pixel's index not taken.
+[[gnu::always_inline]] inline void direct_affine_span(const TextureSetup& texture, Span s,
+                                                      const char* visible,
+                                                      const Texture& texels, bool masked,
+                                                      Wrap wrap, Rgba8* out) {
+    const AffineSpan<double> as = affine_span(texture.planes, s);
+    const RealTexelIndex index_u(texture.affine_rounding.u_modifier),
+        index_v(texture.affine_rounding.v_modifier);
+    double u = as.u, v = as.v;
+    for (int k = 0; k < as.count; ++k) {
+        if (seen(visible, k)) {
+            out[k] = texel_at(texels, masked, wrap, index_u(u), index_v(v));
+        }
+        u += as.du;
+        v += as.dv;
+    }
+}
+
 /// The direct span (FastPaths::lean_spans, for a mesh lean_drawable accepts): the one
 /// stage that makes the colour, nearest texels or the flat colour, writes each visible
 /// pixel straight to the frame; a hidden pixel's texel is not read.
@@ -498,6 +552,15 @@ void count_depth(RenderReport& report, int count, int shown) {
     const Wrap wrap = m.mesh.wrap;
     const bool masked = m.masked_fetch;
     double spent = 0.0;
+    if (texture.per_triangle && texture.mapped.mapper.kind == MapperKind::affine &&
+        m.scene.options.precision == Precision::float64) {
+        timer.timed(spent, [&] {
+            direct_affine_span(texture, s, visible, texels, masked, wrap, out);
+            return 0;
+        });
+        count_mapped_span(m.report, texture.mapped, count, spent, used);
+        return;
+    }
     const MappedSpan mapped = timer.timed(spent, [&] {
         return texture_stage(m.scene.options, texture, s, m.lanes,
                              [&](int k, int i, int j, double, double) {

@@ -73,19 +73,6 @@ TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
     return planes;
 }
 
-PerspectiveSpan<double> perspective_span(const TexturePlanes& planes, Span s) {
-    const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
-    return {planes.u_w.at(x, y), planes.v_w.at(x, y), planes.one_w.at(x, y),
-            planes.u_w.g.dx,     planes.v_w.g.dx,     planes.one_w.g.dx,
-            s.x_end - s.x_begin};
-}
-
-AffineSpan<double> affine_span(const TexturePlanes& planes, Span s) {
-    const double x = s.x_begin + 0.5, y = s.y + 0.5;
-    return {planes.u.at(x, y), planes.v.at(x, y), planes.u.g.dx, planes.v.g.dx,
-            s.x_end - s.x_begin};
-}
-
 namespace {
 
 //> for-each-textured-pixel

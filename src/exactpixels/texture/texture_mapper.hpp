@@ -157,11 +157,21 @@ TexturePlanes texture_planes(const std::array<Point2, 3>& corners,
                              const std::array<TexturedVertex, 3>& v, bool affine = true);
 
 /// One row span's setup for the perspective mappers: the planes at the first pixel's
-/// centre (x_begin + 0.5, y + 0.5) and their steps per pixel.
-PerspectiveSpan<double> perspective_span(const TexturePlanes& planes, Span s);
+/// centre (x_begin + 0.5, y + 0.5) and their steps per pixel. (Inline: the scene
+/// renderer sets one up per span.)
+inline PerspectiveSpan<double> perspective_span(const TexturePlanes& planes, Span s) {
+    const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
+    return {planes.u_w.at(x, y), planes.v_w.at(x, y), planes.one_w.at(x, y),
+            planes.u_w.g.dx,     planes.v_w.g.dx,     planes.one_w.g.dx,
+            s.x_end - s.x_begin};
+}
 
 /// The same for the affine mapper.
-AffineSpan<double> affine_span(const TexturePlanes& planes, Span s);
+inline AffineSpan<double> affine_span(const TexturePlanes& planes, Span s) {
+    const double x = s.x_begin + 0.5, y = s.y + 0.5;
+    return {planes.u.at(x, y), planes.v.at(x, y), planes.u.g.dx, planes.v.g.dx,
+            s.x_end - s.x_begin};
+}
 
 /// Runs `mapper` on one span in the inner-loop arithmetic `precision` and calls
 /// texel(k, i, j, u, v) for its pixel k = 0, 1, ...: the texel indices picked with the
