@@ -66,4 +66,21 @@ class WorkerPool {
 };
 #endif
 
+/// Runs f(t) for t = 0 .. threads - 1 (1 .. max_threads) and returns when all have
+/// returned, rethrowing as WorkerPool::run does: on a process-wide WorkerPool of
+/// `threads` threads, made on first use, kept from call to call (a renderer drawing frame
+/// after frame starts no thread) and made anew when the count changes; its threads
+/// sleep between calls and are joined at exit. A call made while that pool runs (from
+/// another thread, or from inside f) gets a pool of its own for the call. Without
+/// threads (WebAssembly) f(0), f(1), ... run one after another on the caller.
+#ifndef __wasi__
+void run_on_shared_pool(int threads, const std::function<void(int)>& f);
+#else
+inline void run_on_shared_pool(int threads, const std::function<void(int)>& f) {
+    for (int t = 0; t < threads; ++t) {
+        f(t);
+    }
+}
+#endif
+
 } // namespace exactpixels

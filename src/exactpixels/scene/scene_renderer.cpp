@@ -326,11 +326,7 @@ bool draw_threaded(const Frame& f, RenderReport& report) {
             bands[b] = draw_band(f, corrected, whole.get(), bins[b], static_cast<int>(b));
         }
     };
-#ifdef __wasi__ // WebAssembly without threads (the live figures): one takes them all
-    take_bands(0);
-#else
-    WorkerPool(f.fast.threads).run(take_bands);
-#endif
+    run_on_shared_pool(f.fast.threads, take_bands); // threads kept from frame to frame
     merge_bands(bands, report);
     return true;
 }
@@ -351,7 +347,7 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
     RenderResult result{
         Framebuffer(scene.width, scene.height, to_rgba8(scene.background)), {}};
     RenderReport& report = result.report;
-    const SceneGeometry geometry = run_geometry(scene, report);
+    const SceneGeometry geometry = run_geometry(scene, report, fast.threads);
     check_fill_work(scene, geometry); // before the first pixel is drawn
     const DepthPlan depth_plan = plan_depth(scene.options.depth, geometry.footprints,
                                             Viewport{scene.width, scene.height});

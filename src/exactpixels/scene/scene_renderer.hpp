@@ -117,8 +117,10 @@ struct SceneGeometry {
 /// (near, far, the guard band), and back-face culled (a triangle not clipped before it
 /// is lit). Counts go to `report` (geometry, rejected, clipping, culling, lit_vertices,
 /// the lighting fields). Throws Error naming the mesh when a corner projects to a value
-/// that is not finite.
-SceneGeometry run_geometry(const Scene& scene, RenderReport& report);
+/// that is not finite. With `threads` > 1 (1 .. max_threads) the positions and then the
+/// triangles are split among that many threads (run_on_shared_pool) and each thread's
+/// part joined in order: the same geometry, counts and first error for any number.
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads = 1);
 
 /// The fill work of each mesh of `geometry` (fill_work.hpp): the pixels of its
 /// triangles' bounding boxes inside `image`. render_scene refuses a scene whose sum
