@@ -24,6 +24,7 @@
 #include <memory>
 #include <numeric>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 namespace exactpixels {
@@ -223,22 +224,25 @@ struct StageSetup {
 };
 
 /// A mesh position as the geometry stage moves it, once for all the corners at it.
+/// (No default values: MeshPass's list of them is made without writing it, and
+/// move_position writes every field.)
 struct MovedPosition {
-    glm::dvec3 view;        ///< view space
-    Point2 at;              ///< on screen (where `projected`)
-    double w = 0.0;         ///< project_vertex's depth (where `projected`)
-    double one_w = 0.0;     ///< 1/w, as check_finite computes it
-    double nearness = 0.0;  ///< 1/w (perspective) or -z (orthographic)
-    std::uint32_t code = 0; ///< the planes it lies outside (OutcodePlanes)
-    bool projected = false; ///< inside every clipping plane, and project_vertex took it
-    bool finite = false;    ///< projected, and at, w and 1/w within the precision's limit
+    glm::dvec3 view;    ///< view space
+    Point2 at;          ///< on screen (where `projected`)
+    double w;           ///< project_vertex's depth (where `projected`)
+    double one_w;       ///< 1/w, as check_finite computes it
+    double nearness;    ///< 1/w (perspective) or -z (orthographic)
+    std::uint32_t code; ///< the planes it lies outside (OutcodePlanes)
+    bool projected;     ///< inside every clipping plane, and project_vertex took it
+    bool finite;        ///< projected, and at, w and 1/w within the precision's limit
 };
+static_assert(std::is_trivially_default_constructible_v<MovedPosition>);
 
 /// Position p moved: to view space, its outcode, and where no clipping plane has it
 /// outside (only then is a corner at it projected as it is) project_vertex's value and
 /// check_finite's tests of it (all but u/w and v/w, which belong to a corner).
 MovedPosition move_position(const StageSetup& s, const glm::dvec3& p) {
-    MovedPosition m;
+    MovedPosition m{}; // zero where not projected
     m.view = to_view(s.camera, p - s.camera.eye);
     m.code = outcode(s.codes, m.view);
     const bool finite =
@@ -329,7 +333,7 @@ class MeshPass {
     SharedPositions own; ///< the mesh's positions indexed here, when it has no index
     const std::vector<glm::dvec3>* positions = nullptr; ///< the mesh's or own's
     const std::vector<std::array<std::uint32_t, 3>>* corners = nullptr; ///< likewise
-    std::vector<MovedPosition> moved; ///< per position
+    std::unique_ptr<MovedPosition[]> moved; ///< per position, by move_positions
 };
 
 MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
@@ -359,7 +363,7 @@ MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
         corners = &own.corners;
     }
     assert(index_matches(mesh.triangles, *positions, *corners));
-    moved.resize(positions->size()); // filled by move_positions
+    moved.reset(new MovedPosition[positions->size()]); // unwritten: move_positions fills
 }
 
 TexturedVertex MeshPass::checked(const TexturedVertex& corner, std::size_t index) const {
@@ -562,25 +566,6 @@ void add_geometry_counts(RenderReport& report, const RenderReport& part) {
     report.lit_vertices += part.lit_vertices;
 }
 
-/// The pieces of the items first .. end - 1 of a list made of `sizes[0]` items, then
-/// `sizes[1]`, ...: f(list, first, end) per list it meets, in order.
-template <class F>
-void each_stretch(const std::vector<std::size_t>& sizes, std::size_t first,
-                  std::size_t end, F f) {
-    std::size_t start = 0; // of list i in the whole
-    for (std::size_t i = 0; i < sizes.size() && start < end; start += sizes[i++]) {
-        const std::size_t a = std::max(first, start), b = std::min(end, start + sizes[i]);
-        if (a < b) {
-            f(i, a - start, b - start);
-        }
-    }
-}
-
-/// Item t's share of `count` items split evenly among `threads`: its first.
-std::size_t share(std::size_t count, int t, int threads) {
-    return count * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
-}
-
 /// The threaded geometry stage: every mesh's positions, all meshes as one list, split
 /// evenly among the threads and moved; then every mesh's triangles likewise, each
 /// thread's stretch of a mesh decided in order into a part of its own; the parts joined
@@ -593,43 +578,38 @@ void run_meshes_threaded(std::vector<std::unique_ptr<MeshPass>>& passes,
         positions.push_back(pass->position_count());
         triangles.push_back(pass->triangle_count());
     }
-    const std::size_t all_positions =
-        std::accumulate(positions.begin(), positions.end(), std::size_t{0});
-    const std::size_t all_triangles =
-        std::accumulate(triangles.begin(), triangles.end(), std::size_t{0});
     std::vector<std::vector<GeometryPart>> parts(static_cast<std::size_t>(threads));
     std::vector<double> moving(static_cast<std::size_t>(threads)); // seconds
     run_on_shared_pool(threads, [&](int t) {
         const Clock::time_point t0 = Clock::now();
-        each_stretch(positions, share(all_positions, t, threads),
-                     share(all_positions, t + 1, threads),
-                     [&](std::size_t i, std::size_t a, std::size_t b) {
-                         passes[i]->move_positions(a, b);
-                     });
+        for_thread_stretch(positions, t, threads,
+                           [&](std::size_t i, std::size_t a, std::size_t b) {
+                               passes[i]->move_positions(a, b);
+                           });
         moving[static_cast<std::size_t>(t)] = seconds_since(t0);
     });
     report.geometry.seconds += std::accumulate(moving.begin(), moving.end(), 0.0);
     run_on_shared_pool(threads, [&](int t) {
         std::vector<GeometryPart>& mine = parts[static_cast<std::size_t>(t)];
         bool failed = false;
-        each_stretch(triangles, share(all_triangles, t, threads),
-                     share(all_triangles, t + 1, threads),
-                     [&](std::size_t i, std::size_t a, std::size_t b) {
-                         if (failed) {
-                             return;
-                         }
-                         GeometryPart& part = mine.emplace_back();
-                         part.mesh = i;
-                         MeshOutput to{part.out, part.shading, part.box, part.report};
-                         const Clock::time_point t0 = Clock::now();
-                         try {
-                             passes[i]->triangles(a, b, to);
-                         } catch (const Error& error) {
-                             part.error = error;
-                             failed = true;
-                         }
-                         part.report.geometry.seconds += seconds_since(t0);
-                     });
+        for_thread_stretch(triangles, t, threads,
+                           [&](std::size_t i, std::size_t a, std::size_t b) {
+                               if (failed) {
+                                   return;
+                               }
+                               GeometryPart& part = mine.emplace_back();
+                               part.mesh = i;
+                               MeshOutput to{part.out, part.shading, part.box,
+                                             part.report};
+                               const Clock::time_point t0 = Clock::now();
+                               try {
+                                   passes[i]->triangles(a, b, to);
+                               } catch (const Error& error) {
+                                   part.error = error;
+                                   failed = true;
+                               }
+                               part.report.geometry.seconds += seconds_since(t0);
+                           });
     });
     for (std::vector<GeometryPart>& thread_parts : parts) { // in scene order
         for (GeometryPart& part : thread_parts) {
