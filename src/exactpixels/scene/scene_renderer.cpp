@@ -161,6 +161,9 @@ struct Binned {
     bool shared = false; ///< it is in more than one band
 };
 
+/// Per band of band_rows rows, its triangles in scene order.
+using Bins = std::vector<std::vector<Binned>>;
+
 /// Triangle (mesh, triangle) as one number, in scene order.
 std::uint64_t scene_order(const Binned& b) {
     return (std::uint64_t{b.mesh} << 32) | b.triangle;
@@ -168,7 +171,7 @@ std::uint64_t scene_order(const Binned& b) {
 
 /// Bins triangles `from` .. `to` - 1 of mesh i into `bins` (see bin_by_rows).
 void bin_triangles(const SceneGeometry& geometry, int height, std::size_t i,
-                   std::size_t from, std::size_t to, std::vector<std::vector<Binned>>& bins) {
+                   std::size_t from, std::size_t to, Bins& bins) {
     const double last_row = height - 1;
     const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
     for (std::size_t k = from; k < to; ++k) {
@@ -197,12 +200,10 @@ void bin_triangles(const SceneGeometry& geometry, int height, std::size_t i,
 /// floor(bottom - 1/2 + 1/256). A triangle below or above the image goes to the last
 /// or first band. Thread t of `threads` bins its stretch of the triangles in scene order
 /// (for_thread_stretch) into bins of its own, bins[t][band].
-std::vector<std::vector<std::vector<Binned>>>
-bin_by_rows(const SceneGeometry& geometry, int height, int threads) {
-    std::vector<std::vector<std::vector<Binned>>> bins(
-        static_cast<std::size_t>(threads),
-        std::vector<std::vector<Binned>>(
-            static_cast<std::size_t>((height + band_rows - 1) / band_rows)));
+std::vector<Bins> bin_by_rows(const SceneGeometry& geometry, int height, int threads) {
+    std::vector<Bins> bins(static_cast<std::size_t>(threads),
+                           Bins(static_cast<std::size_t>((height + band_rows - 1) /
+                                                         band_rows)));
     const std::vector<std::size_t> counts = triangle_counts(geometry);
     run_on_shared_pool(threads, [&](int thread) {
         for_thread_stretch(counts, thread, threads,
@@ -341,10 +342,10 @@ void merge_bands(std::vector<BandResult>& bands, RenderReport& report) {
 
 //> draw-threaded
 /// The threaded driver (FastPaths::threads > 1): the chains the filter stage will read
-/// made first, in scene order; the triangles binned into bands of rows (bin_by_rows);
-/// the threads take the bands one at a time, the fullest first, and draw each band's
-/// triangles in scene order, their spans in its rows only; the bands' counts added in
-/// band order. Returns
+/// made first, in scene order; each thread bins its share of the triangles into bands of
+/// rows (bin_by_rows); the threads take the bands one at a time, the fullest first,
+/// join each band's parts in thread order and draw its triangles in scene order, their
+/// spans in its rows only; the bands' counts added in band order. Returns
 /// false, having drawn nothing, when making a chain meets a bad triangle: the book's
 /// loop then finds the first error in scene order.
 bool draw_threaded(const Frame& f, RenderReport& report) {
@@ -364,11 +365,11 @@ bool draw_threaded(const Frame& f, RenderReport& report) {
             return false;
         }
     }
-    const std::vector<std::vector<std::vector<Binned>>> parts =
+    const std::vector<Bins> parts = // per thread
         bin_by_rows(f.geometry, f.image.height(), f.fast.threads);
     std::vector<std::size_t> sizes(parts[0].size()); // per band
     for (std::size_t b = 0; b < sizes.size(); ++b) {
-        for (const std::vector<std::vector<Binned>>& part : parts) {
+        for (const Bins& part : parts) {
             sizes[b] += part[b].size();
         }
     }
@@ -383,7 +384,7 @@ bool draw_threaded(const Frame& f, RenderReport& report) {
             const std::size_t b = fullest[n];
             std::vector<Binned> bin; // the threads' parts in order: scene order
             bin.reserve(sizes[b]);
-            for (const std::vector<std::vector<Binned>>& part : parts) {
+            for (const Bins& part : parts) {
                 bin.insert(bin.end(), part[b].begin(), part[b].end());
             }
             bands[b] = draw_band(f, corrected, whole.get(), bin, static_cast<int>(b));
