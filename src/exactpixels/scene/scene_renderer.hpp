@@ -69,10 +69,12 @@ struct FastPaths {
     /// the vector instruction set chosen_simd picks (map_span_exact_lanes) instead of
     /// one pixel at a time.
     bool exact_lanes = true;
-    /// Drawing: with more than one, the threaded driver (scene_renderer.cpp) bins the
-    /// triangles into bands of rows and draws the bands on this many threads, from one
-    /// to max_threads, each band's triangles in scene order: the same pixels,
-    /// coordinates and counts for any number. One is the book's loop, mesh by mesh.
+    /// Threads: with more than one, the geometry stage, the fill work and the binning
+    /// are shared out among this many threads (from one to max_threads; a process-wide
+    /// pool kept from frame to frame, run_on_shared_pool), and the threaded driver
+    /// (scene_renderer.cpp) draws the bands of rows on them, each band's triangles in
+    /// scene order: the same pixels, coordinates, counts and first error for any number.
+    /// One is the book's loop, mesh by mesh.
     int threads = 1;
 };
 
