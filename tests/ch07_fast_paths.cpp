@@ -32,6 +32,7 @@
 #include <array>
 #include <bit>
 #include <climits>
+#include <cstring>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -158,6 +159,58 @@ Scene big_torus() {
     const Scene scene = load_scene(folder / "big_torus.toml");
     std::filesystem::remove_all(folder);
     return scene;
+}
+
+/// Whether two lists hold the same values, bit for bit.
+template <class T> bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+/// Runs the geometry stage on the scene, and on it lit, with each of checked_threads
+/// threads, and checks that every list, footprint and count is one thread's, bit for
+/// bit. Returns the number of threaded runs compared.
+int check_geometry_threads(const Scene& unlit) {
+    Scene lit = unlit;
+    lit.lights.push_back(SceneLight{});
+    int compared = 0;
+    for (const Scene* scene : {&unlit, static_cast<const Scene*>(&lit)}) {
+        RenderReport one_report;
+        const SceneGeometry one = run_geometry(*scene, one_report);
+        for (int threads : checked_threads) {
+            INFO(threads << " threads, " << (scene == &lit ? "lit" : "unlit"));
+            RenderReport report;
+            const SceneGeometry geometry = run_geometry(*scene, report, threads);
+            REQUIRE(geometry.meshes.size() == one.meshes.size());
+            for (std::size_t i = 0; i < one.meshes.size(); ++i) {
+                INFO("mesh " << i);
+                CHECK(same_bits(geometry.meshes[i], one.meshes[i]));
+                CHECK(same_bits(geometry.shading[i], one.shading[i]));
+                const ScreenBox &a = geometry.footprints[i].box,
+                                b = one.footprints[i].box;
+                CHECK(std::memcmp(&a, &b, sizeof a) == 0);
+                CHECK(geometry.footprints[i].name == one.footprints[i].name);
+                CHECK(geometry.footprints[i].can_overlap_itself ==
+                      one.footprints[i].can_overlap_itself);
+            }
+            check_same_report(report, one_report);
+            CHECK(report.gouraud_meshes == one_report.gouraud_meshes);
+            CHECK(report.phong_meshes == one_report.phong_meshes);
+            compared += 1;
+        }
+    }
+    return compared;
+}
+
+/// The message run_geometry throws for the scene with `threads` threads, or "" if none.
+std::string geometry_error(const Scene& scene, int threads) {
+    RenderReport report;
+    try {
+        run_geometry(scene, report, threads);
+    } catch (const Error& error) {
+        return error.what();
+    }
+    return "";
 }
 
 /// The TOML number that reads back as x exactly (fmt's shortest round trip).
@@ -322,6 +375,78 @@ TEST_CASE("any number of threads draws every shipped scene and the big torus as 
     MESSAGE((scenes + 2) << " scenes, " << renders << " threaded renders compared");
 }
 
+TEST_CASE("any number of threads runs the geometry stage as one") {
+    const std::filesystem::path folder = shipped_scene_folder();
+    int compared = 0;
+    Scene all; // every shipped scene's meshes in one scene, seen by horizon's camera
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        if (entry.path().extension() != ".toml") {
+            continue;
+        }
+        INFO(entry.path().string());
+        const Scene scene = load_scene(entry.path());
+        compared += check_geometry_threads(scene);
+        if (entry.path().filename() == "horizon.toml") {
+            const std::vector<SceneMesh> meshes = std::move(all.meshes);
+            all = scene;
+            all.meshes.insert(all.meshes.begin(), meshes.begin(), meshes.end());
+        } else {
+            all.meshes.insert(all.meshes.end(), scene.meshes.begin(), scene.meshes.end());
+        }
+    }
+    for (SceneMesh& mesh : all.meshes) {
+        mesh.texture.reset(); // the textures are horizon's
+    }
+    compared += check_geometry_threads(all); // threads' stretches cross meshes
+    Scene narrow = load_scene(folder / "horizon.toml"); // corners far off screen
+    narrow.camera.fov_degrees = 5.0;
+    compared += check_geometry_threads(narrow);
+    compared += check_geometry_threads(big_torus());
+    MESSAGE(compared << " threaded geometry runs compared");
+}
+
+TEST_CASE("any number of threads names the geometry stage's first error as one") {
+    // Texture coordinates whose u/w leaves float on scattered triangles of the big
+    // torus in float precision (a different index each): the first in scene order is
+    // named whichever thread's stretch holds it, also when a thread before it and a
+    // thread after it meet one too.
+    const Scene torus = big_torus();
+    const std::size_t count = torus.meshes.at(0).triangles.size();
+    const auto poisoned = [&](const std::vector<std::size_t>& at) {
+        Scene scene = torus;
+        scene.options.precision = Precision::float32;
+        for (std::size_t t : at) {
+            scene.meshes[0].triangles[t][2].uv.x = 1e300;
+        }
+        return scene;
+    };
+    const std::vector<std::vector<std::size_t>> cases = {
+        {count / 7, count / 3, count / 2, count - 1}, // in the first stretches
+        {count - 1, count / 2 + 1, count / 2},        // the first in the second half
+        {count / 3 + 1},                              // at the edge of a stretch
+        {count - 3, count - 2},                       // in the last stretch only
+    };
+    for (const std::vector<std::size_t>& at : cases) {
+        const Scene scene = poisoned(at);
+        const std::string one = geometry_error(scene, 1);
+        CHECK(one.find("not finite in float") != std::string::npos);
+        for (int threads : checked_threads) {
+            INFO(threads << " threads: " << one);
+            CHECK(geometry_error(scene, threads) == one);
+        }
+    }
+    // Two meshes: an error late in the first beats one early in the second.
+    Scene two = poisoned({count - 5});
+    two.meshes.push_back(poisoned({0, 1}).meshes[0]);
+    const std::string one = geometry_error(two, 1);
+    CHECK(one.find(fmt::format("triangle {}:", count - 5)) != std::string::npos);
+    for (int threads : checked_threads) {
+        INFO(threads << " threads");
+        CHECK(geometry_error(two, threads) == one);
+    }
+    MESSAGE("one thread: " << one);
+}
+
 // A stub of ch07-plan-mesh (no stage runs) maps no texture coordinate, so no triangle is
 // refused: the test grades that exercise.
 TEST_CASE("any number of threads refuses a bad scene with the message of one" *
@@ -478,6 +603,7 @@ TEST_CASE(
             positions, uvs);
         const Scene scene = parse_scene(toml, "edges.toml", ".");
         check_fast_is_teaching(scene);
+        check_geometry_threads(scene); // rejected, cut and culled in every stretch
         // The counts the view volume's plane tests give, corner by corner, triangle by
         // triangle (outside_one, then any_outside), as chapter 6 states them.
         const CameraFrame frame = camera_frame(scene.camera);

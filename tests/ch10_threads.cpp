@@ -74,6 +74,76 @@ TEST_CASE("a worker pool hands on the lowest thread's exception after all finish
     CHECK_THROWS_AS(WorkerPool(max_threads + 1), Error);
 }
 
+TEST_CASE("the shared pool runs every index once at any count, inside itself and "
+          "beside another caller") {
+    const auto check_run = [](int threads) { // each index exactly once, all finished
+        std::vector<std::atomic<int>> runs(static_cast<std::size_t>(threads));
+        run_on_shared_pool(threads, [&](int t) { ++runs[static_cast<std::size_t>(t)]; });
+        return std::all_of(runs.begin(), runs.end(), [](const auto& n) { return n == 1; });
+    };
+    for (const int threads : {2, 3, 2, 1, 7, 7}) { // the pool remade when the count changes
+        INFO(threads << " threads");
+        CHECK(check_run(threads));
+    }
+    // A job that asks for threads of its own gets a pool of its own: no deadlock.
+    std::atomic<int> inner{0};
+    run_on_shared_pool(2, [&](int t) {
+        if (t == 1) {
+            inner += check_run(3) ? 1 : 0;
+        }
+    });
+    CHECK(inner == 1);
+    // Two callers at once: one runs on the shared pool, the other on a pool of its own.
+    std::atomic<int> good{0};
+    const auto caller = [&] {
+        for (int round = 0; round < 50; ++round) {
+            good += check_run(2) ? 1 : 0;
+        }
+    };
+    std::thread other(caller);
+    caller();
+    other.join();
+    CHECK(good == 100);
+    // The lowest index's exception, and the pool works after it.
+    CHECK_THROWS_WITH_AS(run_on_shared_pool(3,
+                                            [](int t) {
+                                                if (t >= 1) {
+                                                    throw Error("thread " +
+                                                                std::to_string(t));
+                                                }
+                                            }),
+                         "thread 1", Error);
+    CHECK(check_run(3));
+}
+
+TEST_CASE("thread shares split a list of lists evenly and in order") {
+    const std::vector<std::size_t> sizes = {5, 0, 3, 9, 1, 0};
+    for (const int threads : {1, 2, 3, 7, 19}) {
+        INFO(threads << " threads");
+        std::vector<std::pair<std::size_t, std::size_t>> seen; // (list, item), in order
+        for (int t = 0; t < threads; ++t) {
+            std::size_t items = 0;
+            for_thread_stretch(sizes, t, threads,
+                               [&](std::size_t i, std::size_t first, std::size_t end) {
+                                   CHECK(first < end);
+                                   CHECK(end <= sizes[i]);
+                                   for (std::size_t k = first; k < end; ++k) {
+                                       seen.emplace_back(i, k);
+                                   }
+                                   items += end - first;
+                               });
+            CHECK(items == thread_share(18, t + 1, threads) - thread_share(18, t, threads));
+        }
+        std::vector<std::pair<std::size_t, std::size_t>> all;
+        for (std::size_t i = 0; i < sizes.size(); ++i) {
+            for (std::size_t k = 0; k < sizes[i]; ++k) {
+                all.emplace_back(i, k);
+            }
+        }
+        CHECK(seen == all); // every item once, in order
+    }
+}
+
 namespace {
 
 /// The colour and depth buffers after `how` drew into a width x height target.

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cassert>
 #include <chrono>
+#include <memory>
 
 namespace exactpixels {
 
@@ -106,5 +107,22 @@ void WorkerPool::run(const std::function<void(int)>& f) {
     }
 }
 //< worker-pool
+
+void run_on_shared_pool(int threads, const std::function<void(int)>& f) {
+    static std::atomic<bool> in_use{false}; // one caller at a time runs on `shared`
+    static std::unique_ptr<WorkerPool> shared;
+    if (in_use.exchange(true, std::memory_order_acquire)) { // busy: a pool of its own
+        WorkerPool(threads).run(f);
+        return;
+    }
+    struct Release { // however this call ends
+        ~Release() { in_use.store(false, std::memory_order_release); }
+    } release;
+    if (!shared || shared->size() != threads) {
+        shared.reset(); // its threads joined before new ones start
+        shared = std::make_unique<WorkerPool>(threads);
+    }
+    shared->run(f);
+}
 
 } // namespace exactpixels

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <functional>
@@ -64,6 +65,51 @@ class WorkerPool {
     /// std::jthread and its stop token, which LLVM's libc++ 14 lacks.
     std::vector<std::thread> workers_;
 };
+#endif
+
+/// Thread t's first item when `count` items are split evenly among `threads` threads:
+/// thread t takes items thread_share(count, t, threads) up to (not including)
+/// thread_share(count, t + 1, threads).
+inline std::size_t thread_share(std::size_t count, int t, int threads) {
+    return count * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
+}
+
+/// Thread t's stretch of a list made of sizes[0] items, then sizes[1] items, ..., split
+/// evenly among `threads` threads (thread_share): f(i, first, end) for each list i the
+/// stretch meets, in order, with its items first .. end - 1 of list i.
+template <class F>
+void for_thread_stretch(const std::vector<std::size_t>& sizes, int t, int threads, F f) {
+    std::size_t all = 0;
+    for (const std::size_t size : sizes) {
+        all += size;
+    }
+    const std::size_t first = thread_share(all, t, threads);
+    const std::size_t end = thread_share(all, t + 1, threads);
+    std::size_t start = 0; // of list i in the whole
+    for (std::size_t i = 0; i < sizes.size() && start < end; start += sizes[i++]) {
+        const std::size_t a = first > start ? first : start;
+        const std::size_t b = end < start + sizes[i] ? end : start + sizes[i];
+        if (a < b) {
+            f(i, a - start, b - start);
+        }
+    }
+}
+
+/// Runs f(t) for t = 0 .. threads - 1 (1 .. max_threads) and returns when all have
+/// returned, rethrowing as WorkerPool::run does: on a process-wide WorkerPool of
+/// `threads` threads, made on first use, kept from call to call (a renderer drawing frame
+/// after frame starts no thread) and made anew when the count changes; its threads
+/// sleep between calls and are joined at exit. A call made while that pool runs (from
+/// another thread, or from inside f) gets a pool of its own for the call. Without
+/// threads (WebAssembly) f(0), f(1), ... run one after another on the caller.
+#ifndef __wasi__
+void run_on_shared_pool(int threads, const std::function<void(int)>& f);
+#else
+inline void run_on_shared_pool(int threads, const std::function<void(int)>& f) {
+    for (int t = 0; t < threads; ++t) {
+        f(t);
+    }
+}
 #endif
 
 } // namespace exactpixels

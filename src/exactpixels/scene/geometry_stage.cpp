@@ -3,6 +3,7 @@
 // outcode, projected and checked once; each triangle is then rejected, lit per vertex,
 // clipped and culled from its corners' outcodes, projections and attributes.
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/fast/worker_pool.hpp"
 #include "exactpixels/raster/fill_work.hpp"
 #include "exactpixels/scene/camera.hpp"
 #include "exactpixels/scene/lighting.hpp"
@@ -14,11 +15,16 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
+#include <numeric>
+#include <optional>
+#include <type_traits>
 #include <vector>
 
 namespace exactpixels {
@@ -218,22 +224,25 @@ struct StageSetup {
 };
 
 /// A mesh position as the geometry stage moves it, once for all the corners at it.
+/// (No default values: MeshPass's list of them is made without writing it, and
+/// move_position writes every field.)
 struct MovedPosition {
-    glm::dvec3 view;        ///< view space
-    Point2 at;              ///< on screen (where `projected`)
-    double w = 0.0;         ///< project_vertex's depth (where `projected`)
-    double one_w = 0.0;     ///< 1/w, as check_finite computes it
-    double nearness = 0.0;  ///< 1/w (perspective) or -z (orthographic)
-    std::uint32_t code = 0; ///< the planes it lies outside (OutcodePlanes)
-    bool projected = false; ///< inside every clipping plane, and project_vertex took it
-    bool finite = false;    ///< projected, and at, w and 1/w within the precision's limit
+    glm::dvec3 view;    ///< view space
+    Point2 at;          ///< on screen (where `projected`)
+    double w;           ///< project_vertex's depth (where `projected`)
+    double one_w;       ///< 1/w, as check_finite computes it
+    double nearness;    ///< 1/w (perspective) or -z (orthographic)
+    std::uint32_t code; ///< the planes it lies outside (OutcodePlanes)
+    bool projected;     ///< inside every clipping plane, and project_vertex took it
+    bool finite;        ///< projected, and at, w and 1/w within the precision's limit
 };
+static_assert(std::is_trivially_default_constructible_v<MovedPosition>);
 
 /// Position p moved: to view space, its outcode, and where no clipping plane has it
 /// outside (only then is a corner at it projected as it is) project_vertex's value and
 /// check_finite's tests of it (all but u/w and v/w, which belong to a corner).
 MovedPosition move_position(const StageSetup& s, const glm::dvec3& p) {
-    MovedPosition m;
+    MovedPosition m{}; // zero where not projected
     m.view = to_view(s.camera, p - s.camera.eye);
     m.code = outcode(s.codes, m.view);
     const bool finite =
@@ -280,6 +289,15 @@ index_matches(const std::vector<std::array<SceneVertex, 3>>& triangles,
 /// The three moved positions at a triangle's corners.
 using MovedCorners = std::array<const MovedPosition*, 3>;
 
+/// Where the geometry stage puts what a run of a mesh's triangles makes: the mesh's own
+/// lists in SceneGeometry, or (threaded) one thread's part, joined in order after.
+struct MeshOutput {
+    std::vector<ScreenTriangle>& out;
+    std::vector<ShadedCorners>& shading; ///< filled only where the mesh is `shaded`
+    ScreenBox& box;                      ///< the mesh's footprint
+    RenderReport& report;
+};
+
 /// The geometry stage on one mesh: its positions moved once, then its triangles
 /// decided, lit, cut and stored.
 class MeshPass {
@@ -288,34 +306,42 @@ class MeshPass {
              RenderReport& report, SceneGeometry& geometry);
     void run();
 
+    // The threaded stage's two steps (run_geometry with threads > 1).
+    std::size_t position_count() const { return positions->size(); }
+    std::size_t triangle_count() const { return mesh.triangles.size(); }
+    /// Positions first .. end - 1 moved, into `moved` (made position_count() long).
+    void move_positions(std::size_t first, std::size_t end);
+    /// Triangles first .. end - 1 decided in order into `to`, once every position moved.
+    void triangles(std::size_t first, std::size_t end, MeshOutput& to) const;
+
   private:
-    void triangle(std::size_t index);
+    void triangle(std::size_t index, MeshOutput& to) const;
     void check_corners(std::size_t index, const MovedCorners& m) const;
     void light(std::size_t index, const std::array<glm::dvec3, 3>& points,
-               std::array<Colour, 3>& colours, std::array<glm::dvec3, 3>& normals);
-    void cut_triangle(std::size_t index, const MovedCorners& m);
-    void keep_piece(std::size_t index, const ClippedCorners& piece);
+               std::array<Colour, 3>& colours, std::array<glm::dvec3, 3>& normals,
+               RenderReport& report) const;
+    void cut_triangle(std::size_t index, const MovedCorners& m, MeshOutput& to) const;
+    void keep_piece(std::size_t index, const ClippedCorners& piece, MeshOutput& to) const;
     TexturedVertex checked(const TexturedVertex& corner, std::size_t index) const;
 
     const StageSetup& s;
     const SceneMesh& mesh;
-    RenderReport& report;
-    std::vector<ScreenTriangle>& out;
-    std::vector<ShadedCorners>& shading; ///< filled only where `shaded`
-    MeshFootprint& footprint;
+    MeshOutput lists; ///< the mesh's lists in SceneGeometry, and the report
     bool with_colours = false, gouraud = false, phong = false;
     bool shaded = false; ///< the colour or the lighting stage reads ShadedCorners
     std::vector<CornerNormals> normals; ///< world space, per triangle (lit meshes)
     SharedPositions own; ///< the mesh's positions indexed here, when it has no index
     const std::vector<glm::dvec3>* positions = nullptr; ///< the mesh's or own's
     const std::vector<std::array<std::uint32_t, 3>>* corners = nullptr; ///< likewise
-    std::vector<MovedPosition> moved;                                   ///< per position
+    std::unique_ptr<MovedPosition[]> moved; ///< per position, by move_positions
 };
 
 MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
                    RenderReport& r, SceneGeometry& geometry)
-    : s(setup), mesh(m), report(r), out(geometry.meshes[i]), shading(geometry.shading[i]),
-      footprint(geometry.footprints[i]) {
+    : s(setup), mesh(m), lists{geometry.meshes[i], geometry.shading[i],
+                               geometry.footprints[i].box, r} {
+    RenderReport& report = lists.report;
+    MeshFootprint& footprint = geometry.footprints[i];
     with_colours = mesh_stages(s.scene, mesh).colour;
     shaded = with_colours || s.lit;
     gouraud = s.lit && mesh_shading(s.scene, mesh) == Shading::gouraud;
@@ -337,6 +363,7 @@ MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
         corners = &own.corners;
     }
     assert(index_matches(mesh.triangles, *positions, *corners));
+    moved.reset(new MovedPosition[positions->size()]); // unwritten: move_positions fills
 }
 
 TexturedVertex MeshPass::checked(const TexturedVertex& corner, std::size_t index) const {
@@ -352,57 +379,64 @@ TexturedVertex MeshPass::checked(const TexturedVertex& corner, std::size_t index
 /// Every position moved once, then every triangle.
 void MeshPass::run() {
     const Clock::time_point t0 = Clock::now(); // the whole mesh: clocks cost time
-    moved.reserve(positions->size());
-    for (const glm::dvec3& p : *positions) {
-        moved.push_back(move_position(s, p));
-    }
-    out.reserve(mesh.triangles.size() / 2); // a closed mesh shows about half
-    shading.reserve(shaded ? out.capacity() : 0);
-    for (std::size_t index = 0; index < mesh.triangles.size(); ++index) {
-        triangle(index);
-    }
-    report.geometry.seconds += seconds_since(t0);
+    move_positions(0, position_count());
+    triangles(0, triangle_count(), lists);
+    lists.report.geometry.seconds += seconds_since(t0);
 }
 
 /// One triangle: rejected when its corners' outcodes share a plane of the screen or
 /// the depth range, cut when one of them is outside a clipping plane, else projected
 /// as it is, culled, stored and lit.
-void MeshPass::triangle(std::size_t index) {
+void MeshPass::triangle(std::size_t index, MeshOutput& to) const {
     const std::array<std::uint32_t, 3>& at = (*corners)[index];
     const MovedCorners m{&moved[at[0]], &moved[at[1]], &moved[at[2]]};
-    report.geometry.triangles += 1;
+    to.report.geometry.triangles += 1;
     if ((m[0]->code & m[1]->code & m[2]->code & s.codes.reject) != 0) {
-        report.rejected.triangles += 1; // all outside one plane: covers no pixel
+        to.report.rejected.triangles += 1; // all outside one plane: covers no pixel
         return;
     }
     if (((m[0]->code | m[1]->code | m[2]->code) & s.codes.clip) != 0) {
-        cut_triangle(index, m); // lit, then cut into pieces
+        cut_triangle(index, m, to); // lit, then cut into pieces
         return;
     }
     check_corners(index, m); // projected as they are: each finite, or an error
     if (mesh.cull_back && screen_area2(m[0]->at, m[1]->at, m[2]->at) >= 0.0) {
-        report.culling.triangles += 1; // before it is lit
+        to.report.culling.triangles += 1; // before it is lit
         return;
     }
     const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
-    ScreenTriangle& t = out.emplace_back();
+    ScreenTriangle& t = to.out.emplace_back();
     for (std::size_t k = 0; k < 3; ++k) {
         t.corners[k] = {m[k]->at, m[k]->w, triangle[k].uv};
         t.nearness[k] = m[k]->nearness;
-        footprint.box.add(m[k]->at);
+        to.box.add(m[k]->at);
     }
     if (shaded) {
-        ShadedCorners& c = shading.emplace_back();
+        ShadedCorners& c = to.shading.emplace_back();
         for (std::size_t k = 0; k < 3; ++k) {
             c.points[k] = m[k]->view;
             c.colours[k] = triangle[k].colour;
         }
         if (s.lit) {
-            light(index, c.points, c.colours, c.normals);
+            light(index, c.points, c.colours, c.normals, to.report);
         }
     }
 }
 //< geometry-mesh
+
+void MeshPass::move_positions(std::size_t first, std::size_t end) {
+    for (std::size_t p = first; p < end; ++p) {
+        moved[p] = move_position(s, (*positions)[p]);
+    }
+}
+
+void MeshPass::triangles(std::size_t first, std::size_t end, MeshOutput& to) const {
+    to.out.reserve(to.out.size() + (end - first) / 2); // a closed mesh shows about half
+    to.shading.reserve(shaded ? to.out.capacity() : 0);
+    for (std::size_t index = first; index < end; ++index) {
+        triangle(index, to);
+    }
+}
 
 /// Stops a triangle drawn uncut whose corner fails check_finite's tests, with its
 /// error (or project()'s, for a position not finite): the tests of the corner's
@@ -424,8 +458,8 @@ void MeshPass::check_corners(std::size_t index, const MovedCorners& m) const {
 /// The normals at the view-space `points` of a triangle, and under Gouraud the lit
 /// colours in place of `colours`.
 void MeshPass::light(std::size_t index, const std::array<glm::dvec3, 3>& points,
-                     std::array<Colour, 3>& colours,
-                     std::array<glm::dvec3, 3>& at_normals) {
+                     std::array<Colour, 3>& colours, std::array<glm::dvec3, 3>& at_normals,
+                     RenderReport& report) const {
     const Clock::time_point l0 = Clock::now();
     for (std::size_t k = 0; k < 3; ++k) {
         at_normals[k] = to_view(s.camera, normals[index][k]);
@@ -446,7 +480,8 @@ void MeshPass::light(std::size_t index, const std::array<glm::dvec3, 3>& points,
 }
 
 /// A triangle with a corner outside a clipping plane: lit, then cut into pieces.
-void MeshPass::cut_triangle(std::size_t index, const MovedCorners& m) {
+void MeshPass::cut_triangle(std::size_t index, const MovedCorners& m,
+                            MeshOutput& to) const {
     const std::array<SceneVertex, 3>& triangle = mesh.triangles[index];
     ClippedCorners whole{};
     for (std::size_t k = 0; k < 3; ++k) {
@@ -454,22 +489,24 @@ void MeshPass::cut_triangle(std::size_t index, const MovedCorners& m) {
         whole.colours[k] = triangle[k].colour;
     }
     if (s.lit) {
-        light(index, {m[0]->view, m[1]->view, m[2]->view}, whole.colours, whole.normals);
+        light(index, {m[0]->view, m[1]->view, m[2]->view}, whole.colours, whole.normals,
+              to.report);
     }
     //> clip-only-when-needed
     const Clock::time_point c0 = Clock::now(); // only a triangle that is cut pays
     const std::vector<ClippedCorners> pieces =
         clip_corners(whole, s.volume.clip, with_colours, phong);
-    report.clipping.triangles += 1;
-    report.clipping.seconds += seconds_since(c0);
+    to.report.clipping.triangles += 1;
+    to.report.clipping.seconds += seconds_since(c0);
     for (const ClippedCorners& piece : pieces) {
-        keep_piece(index, piece); // projected, checked, culled
+        keep_piece(index, piece, to); // projected, checked, culled
     }
     //< clip-only-when-needed
 }
 
 /// Projects, checks, culls and stores one piece of a triangle that was cut.
-void MeshPass::keep_piece(std::size_t index, const ClippedCorners& piece) {
+void MeshPass::keep_piece(std::size_t index, const ClippedCorners& piece,
+                          MeshOutput& to) const {
     ScreenTriangle t{};
     ShadedCorners c{};
     for (std::size_t k = 0; k < 3; ++k) {
@@ -481,15 +518,15 @@ void MeshPass::keep_piece(std::size_t index, const ClippedCorners& piece) {
     c.normals = piece.normals;
     if (mesh.cull_back && screen_area2(t.corners[0].position, t.corners[1].position,
                                        t.corners[2].position) >= 0.0) {
-        report.culling.triangles += 1; // a piece seen from behind
+        to.report.culling.triangles += 1; // a piece seen from behind
         return;
     }
     for (const TexturedVertex& v : t.corners) {
-        footprint.box.add(v.position);
+        to.box.add(v.position);
     }
-    out.push_back(t);
+    to.out.push_back(t);
     if (shaded) {
-        shading.push_back(c);
+        to.shading.push_back(c);
     }
 }
 
@@ -506,7 +543,104 @@ MeshStages mesh_stages(const Scene& scene, const SceneMesh& mesh) {
     return stages;
 }
 
-SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
+namespace {
+
+/// What one thread's stretch of one mesh's triangles made (run_geometry, threads > 1).
+struct GeometryPart {
+    std::size_t mesh = 0;
+    std::vector<ScreenTriangle> out;
+    std::vector<ShadedCorners> shading;
+    ScreenBox box;
+    RenderReport report; ///< the geometry stage's counts and times of the stretch
+    std::optional<Error> error; ///< the stretch's first error: it stopped there
+};
+
+/// Adds the geometry stage's per-triangle counts and times of `part` to `report`.
+void add_geometry_counts(RenderReport& report, const RenderReport& part) {
+    for (auto stage : {&RenderReport::geometry, &RenderReport::rejected,
+                       &RenderReport::clipping, &RenderReport::culling,
+                       &RenderReport::lighting}) {
+        (report.*stage).triangles += (part.*stage).triangles;
+        (report.*stage).seconds += (part.*stage).seconds;
+    }
+    report.lit_vertices += part.lit_vertices;
+}
+
+/// The threaded geometry stage: every mesh's positions, all meshes as one list, split
+/// evenly among the threads and moved; then every mesh's triangles likewise, each
+/// thread's stretch of a mesh decided in order into a part of its own; the parts joined
+/// in scene order, so the lists are the serial stage's; the first error in scene order
+/// thrown (a thread stops at its first: what follows it is not needed).
+void run_meshes_threaded(std::vector<std::unique_ptr<MeshPass>>& passes,
+                         SceneGeometry& geometry, RenderReport& report, int threads) {
+    std::vector<std::size_t> positions, triangles;
+    for (const auto& pass : passes) {
+        positions.push_back(pass->position_count());
+        triangles.push_back(pass->triangle_count());
+    }
+    std::vector<std::vector<GeometryPart>> parts(static_cast<std::size_t>(threads));
+    std::vector<double> moving(static_cast<std::size_t>(threads)); // seconds
+    run_on_shared_pool(threads, [&](int t) {
+        const Clock::time_point t0 = Clock::now();
+        for_thread_stretch(positions, t, threads,
+                           [&](std::size_t i, std::size_t a, std::size_t b) {
+                               passes[i]->move_positions(a, b);
+                           });
+        moving[static_cast<std::size_t>(t)] = seconds_since(t0);
+    });
+    report.geometry.seconds += std::accumulate(moving.begin(), moving.end(), 0.0);
+    run_on_shared_pool(threads, [&](int t) {
+        std::vector<GeometryPart>& mine = parts[static_cast<std::size_t>(t)];
+        bool failed = false;
+        for_thread_stretch(triangles, t, threads,
+                           [&](std::size_t i, std::size_t a, std::size_t b) {
+                               if (failed) {
+                                   return;
+                               }
+                               GeometryPart& part = mine.emplace_back();
+                               part.mesh = i;
+                               MeshOutput to{part.out, part.shading, part.box,
+                                             part.report};
+                               const Clock::time_point t0 = Clock::now();
+                               try {
+                                   passes[i]->triangles(a, b, to);
+                               } catch (const Error& error) {
+                                   part.error = error;
+                                   failed = true;
+                               }
+                               part.report.geometry.seconds += seconds_since(t0);
+                           });
+    });
+    for (std::vector<GeometryPart>& thread_parts : parts) { // in scene order
+        for (GeometryPart& part : thread_parts) {
+            if (part.error) {
+                throw *part.error;
+            }
+            std::vector<ScreenTriangle>& out = geometry.meshes[part.mesh];
+            std::vector<ShadedCorners>& shading = geometry.shading[part.mesh];
+            if (out.empty()) {
+                out = std::move(part.out);
+            } else {
+                out.insert(out.end(), part.out.begin(), part.out.end());
+            }
+            if (shading.empty()) {
+                shading = std::move(part.shading);
+            } else {
+                shading.insert(shading.end(), part.shading.begin(), part.shading.end());
+            }
+            ScreenBox& box = geometry.footprints[part.mesh].box; // min, max keep the first
+            box.x0 = std::min(box.x0, part.box.x0);
+            box.y0 = std::min(box.y0, part.box.y0);
+            box.x1 = std::max(box.x1, part.box.x1);
+            box.y1 = std::max(box.y1, part.box.y1);
+            add_geometry_counts(report, part.report);
+        }
+    }
+}
+
+} // namespace
+
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads) {
     SceneGeometry geometry;
     const CameraFrame camera = camera_frame(scene.camera);
     if (!scene.lights.empty()) {
@@ -521,9 +655,18 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report) {
     geometry.meshes.resize(scene.meshes.size());
     geometry.shading.resize(scene.meshes.size());
     geometry.footprints.resize(scene.meshes.size());
-    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-        MeshPass(setup, scene.meshes[i], i, report, geometry).run();
+    if (threads <= 1) {
+        for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+            MeshPass(setup, scene.meshes[i], i, report, geometry).run();
+        }
+        return geometry;
     }
+    std::vector<std::unique_ptr<MeshPass>> passes; // each mesh's setup, in order
+    for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+        passes.push_back(
+            std::make_unique<MeshPass>(setup, scene.meshes[i], i, report, geometry));
+    }
+    run_meshes_threaded(passes, geometry, report, threads);
     return geometry;
 }
 

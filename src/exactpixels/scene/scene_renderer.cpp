@@ -29,11 +29,50 @@ namespace exactpixels {
 
 namespace {
 
+/// The triangle counts of the meshes of `geometry`.
+std::vector<std::size_t> triangle_counts(const SceneGeometry& geometry) {
+    std::vector<std::size_t> counts;
+    for (const std::vector<ScreenTriangle>& mesh : geometry.meshes) {
+        counts.push_back(mesh.size());
+    }
+    return counts;
+}
+
+/// fill_work(geometry, image) on `threads` threads: each thread sums its stretch of the
+/// triangles per mesh, and the sums of whole numbers are added.
+std::vector<long long> fill_work_threaded(const SceneGeometry& geometry, Viewport image,
+                                          int threads) {
+    const std::vector<std::size_t> counts = triangle_counts(geometry);
+    std::vector<std::vector<long long>> sums(static_cast<std::size_t>(threads),
+                                             std::vector<long long>(counts.size()));
+    run_on_shared_pool(threads, [&](int t) {
+        for_thread_stretch(counts, t, threads,
+                           [&](std::size_t i, std::size_t first, std::size_t end) {
+                               long long& sum = sums[static_cast<std::size_t>(t)][i];
+                               for (std::size_t k = first; k < end; ++k) {
+                                   const auto& c = geometry.meshes[i][k].corners;
+                                   sum += fill_work({c[0].position, c[1].position,
+                                                     c[2].position},
+                                                    image);
+                               }
+                           });
+    });
+    std::vector<long long> work(counts.size());
+    for (const std::vector<long long>& thread_sums : sums) {
+        for (std::size_t i = 0; i < work.size(); ++i) {
+            work[i] += thread_sums[i];
+        }
+    }
+    return work;
+}
+
 /// Refuses, before anything is drawn, a scene whose triangles ask for more than
 /// max_fill_work pixels of drawing, naming the mesh that takes the sum past it.
-void check_fill_work(const Scene& scene, const SceneGeometry& geometry) {
-    const std::vector<long long> work =
-        fill_work(geometry, Viewport{scene.width, scene.height});
+void check_fill_work(const Scene& scene, const SceneGeometry& geometry, int threads) {
+    const Viewport image{scene.width, scene.height};
+    const std::vector<long long> work = threads > 1
+                                            ? fill_work_threaded(geometry, image, threads)
+                                            : fill_work(geometry, image);
     long long sum = 0;
     for (std::size_t i = 0; i < work.size(); ++i) {
         sum += work[i];
@@ -122,42 +161,57 @@ struct Binned {
     bool shared = false; ///< it is in more than one band
 };
 
+/// Per band of band_rows rows, its triangles in scene order.
+using Bins = std::vector<std::vector<Binned>>;
+
 /// Triangle (mesh, triangle) as one number, in scene order.
 std::uint64_t scene_order(const Binned& b) {
     return (std::uint64_t{b.mesh} << 32) | b.triangle;
+}
+
+/// Bins triangles `from` .. `to` - 1 of mesh i into `bins` (see bin_by_rows).
+void bin_triangles(const SceneGeometry& geometry, int height, std::size_t i,
+                   std::size_t from, std::size_t to, Bins& bins) {
+    const double last_row = height - 1;
+    const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
+    for (std::size_t k = from; k < to; ++k) {
+        const std::array<TexturedVertex, 3>& c = triangles[k].corners;
+        const double top = std::min({c[0].position.y, c[1].position.y, c[2].position.y});
+        const double bottom =
+            std::max({c[0].position.y, c[1].position.y, c[2].position.y});
+        const double margin = 0.5 + 1.0 / 256.0;
+        const int first =
+            static_cast<int>(std::clamp(std::floor(top - margin), 0.0, last_row)) /
+            band_rows;
+        const int last = static_cast<int>(std::clamp(
+                             std::floor(bottom - 0.5 + 1.0 / 256.0), 0.0, last_row)) /
+                         band_rows;
+        for (int b = first; b <= last; ++b) {
+            bins[static_cast<std::size_t>(b)].push_back(
+                {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k),
+                 b == first, last > first});
+        }
+    }
 }
 
 /// The bins: per band of band_rows rows, the triangles that may cover a pixel centre in
 /// it, in scene order. Row y's centre y + 1/2 lies between the snapped corners' top and
 /// bottom, each within 1/512 px of the corner: y from floor(top - 1/2 - 1/256) to
 /// floor(bottom - 1/2 + 1/256). A triangle below or above the image goes to the last
-/// or first band.
-std::vector<std::vector<Binned>> bin_by_rows(const SceneGeometry& geometry, int height) {
-    std::vector<std::vector<Binned>> bins(
-        static_cast<std::size_t>((height + band_rows - 1) / band_rows));
-    const double last_row = height - 1;
-    for (std::size_t i = 0; i < geometry.meshes.size(); ++i) {
-        const std::vector<ScreenTriangle>& triangles = geometry.meshes[i];
-        for (std::size_t k = 0; k < triangles.size(); ++k) {
-            const std::array<TexturedVertex, 3>& c = triangles[k].corners;
-            const double top =
-                std::min({c[0].position.y, c[1].position.y, c[2].position.y});
-            const double bottom =
-                std::max({c[0].position.y, c[1].position.y, c[2].position.y});
-            const double margin = 0.5 + 1.0 / 256.0;
-            const int first =
-                static_cast<int>(std::clamp(std::floor(top - margin), 0.0, last_row)) /
-                band_rows;
-            const int last = static_cast<int>(std::clamp(
-                                 std::floor(bottom - 0.5 + 1.0 / 256.0), 0.0, last_row)) /
-                             band_rows;
-            for (int b = first; b <= last; ++b) {
-                bins[static_cast<std::size_t>(b)].push_back(
-                    {static_cast<std::uint32_t>(i), static_cast<std::uint32_t>(k),
-                     b == first, last > first});
-            }
-        }
-    }
+/// or first band. Thread t of `threads` bins its stretch of the triangles in scene order
+/// (for_thread_stretch) into bins of its own, bins[t][band].
+std::vector<Bins> bin_by_rows(const SceneGeometry& geometry, int height, int threads) {
+    std::vector<Bins> bins(static_cast<std::size_t>(threads),
+                           Bins(static_cast<std::size_t>((height + band_rows - 1) /
+                                                         band_rows)));
+    const std::vector<std::size_t> counts = triangle_counts(geometry);
+    run_on_shared_pool(threads, [&](int thread) {
+        for_thread_stretch(counts, thread, threads,
+                           [&](std::size_t i, std::size_t first, std::size_t end) {
+                               bin_triangles(geometry, height, i, first, end,
+                                             bins[static_cast<std::size_t>(thread)]);
+                           });
+    });
     return bins;
 }
 
@@ -288,10 +342,10 @@ void merge_bands(std::vector<BandResult>& bands, RenderReport& report) {
 
 //> draw-threaded
 /// The threaded driver (FastPaths::threads > 1): the chains the filter stage will read
-/// made first, in scene order; the triangles binned into bands of rows (bin_by_rows);
-/// the threads take the bands one at a time, the fullest first, and draw each band's
-/// triangles in scene order, their spans in its rows only; the bands' counts added in
-/// band order. Returns
+/// made first, in scene order; each thread bins its share of the triangles into bands of
+/// rows (bin_by_rows); the threads take the bands one at a time, the fullest first,
+/// join each band's parts in thread order and draw its triangles in scene order, their
+/// spans in its rows only; the bands' counts added in band order. Returns
 /// false, having drawn nothing, when making a chain meets a bad triangle: the book's
 /// loop then finds the first error in scene order.
 bool draw_threaded(const Frame& f, RenderReport& report) {
@@ -311,26 +365,32 @@ bool draw_threaded(const Frame& f, RenderReport& report) {
             return false;
         }
     }
-    const std::vector<std::vector<Binned>> bins =
-        bin_by_rows(f.geometry, f.image.height());
-    std::vector<std::size_t> fullest(bins.size()); // taken fullest first: they even out
+    const std::vector<Bins> parts = // per thread
+        bin_by_rows(f.geometry, f.image.height(), f.fast.threads);
+    std::vector<std::size_t> sizes(parts[0].size()); // per band
+    for (std::size_t b = 0; b < sizes.size(); ++b) {
+        for (const Bins& part : parts) {
+            sizes[b] += part[b].size();
+        }
+    }
+    std::vector<std::size_t> fullest(sizes.size()); // taken fullest first: they even out
     std::iota(fullest.begin(), fullest.end(), std::size_t{0});
-    std::stable_sort(fullest.begin(), fullest.end(), [&](std::size_t a, std::size_t b) {
-        return bins[a].size() > bins[b].size();
-    });
-    std::vector<BandResult> bands(bins.size());
+    std::stable_sort(fullest.begin(), fullest.end(),
+                     [&](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; });
+    std::vector<BandResult> bands(sizes.size());
     std::atomic<std::size_t> next{0};
     const std::function<void(int)> take_bands = [&](int) {
-        for (std::size_t n = next++; n < bins.size(); n = next++) {
+        for (std::size_t n = next++; n < sizes.size(); n = next++) {
             const std::size_t b = fullest[n];
-            bands[b] = draw_band(f, corrected, whole.get(), bins[b], static_cast<int>(b));
+            std::vector<Binned> bin; // the threads' parts in order: scene order
+            bin.reserve(sizes[b]);
+            for (const Bins& part : parts) {
+                bin.insert(bin.end(), part[b].begin(), part[b].end());
+            }
+            bands[b] = draw_band(f, corrected, whole.get(), bin, static_cast<int>(b));
         }
     };
-#ifdef __wasi__ // WebAssembly without threads (the live figures): one takes them all
-    take_bands(0);
-#else
-    WorkerPool(f.fast.threads).run(take_bands);
-#endif
+    run_on_shared_pool(f.fast.threads, take_bands); // threads kept from frame to frame
     merge_bands(bands, report);
     return true;
 }
@@ -351,8 +411,8 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
     RenderResult result{
         Framebuffer(scene.width, scene.height, to_rgba8(scene.background)), {}};
     RenderReport& report = result.report;
-    const SceneGeometry geometry = run_geometry(scene, report);
-    check_fill_work(scene, geometry); // before the first pixel is drawn
+    const SceneGeometry geometry = run_geometry(scene, report, fast.threads);
+    check_fill_work(scene, geometry, fast.threads); // before the first pixel is drawn
     const DepthPlan depth_plan = plan_depth(scene.options.depth, geometry.footprints,
                                             Viewport{scene.width, scene.height});
     report.depth_on = depth_plan.on;

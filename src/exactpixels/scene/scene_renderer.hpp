@@ -69,10 +69,12 @@ struct FastPaths {
     /// the vector instruction set chosen_simd picks (map_span_exact_lanes) instead of
     /// one pixel at a time.
     bool exact_lanes = true;
-    /// Drawing: with more than one, the threaded driver (scene_renderer.cpp) bins the
-    /// triangles into bands of rows and draws the bands on this many threads, from one
-    /// to max_threads, each band's triangles in scene order: the same pixels,
-    /// coordinates and counts for any number. One is the book's loop, mesh by mesh.
+    /// Threads: with more than one, the geometry stage, the fill work and the binning
+    /// are shared out among this many threads (from one to max_threads; a process-wide
+    /// pool kept from frame to frame, run_on_shared_pool), and the threaded driver
+    /// (scene_renderer.cpp) draws the bands of rows on them, each band's triangles in
+    /// scene order: the same pixels, coordinates, counts and first error for any number.
+    /// One is the book's loop, mesh by mesh.
     int threads = 1;
 };
 
@@ -117,8 +119,10 @@ struct SceneGeometry {
 /// (near, far, the guard band), and back-face culled (a triangle not clipped before it
 /// is lit). Counts go to `report` (geometry, rejected, clipping, culling, lit_vertices,
 /// the lighting fields). Throws Error naming the mesh when a corner projects to a value
-/// that is not finite.
-SceneGeometry run_geometry(const Scene& scene, RenderReport& report);
+/// that is not finite. With `threads` > 1 (1 .. max_threads) the positions and then the
+/// triangles are split among that many threads (run_on_shared_pool) and each thread's
+/// part joined in order: the same geometry, counts and first error for any number.
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads = 1);
 
 /// The fill work of each mesh of `geometry` (fill_work.hpp): the pixels of its
 /// triangles' bounding boxes inside `image`. render_scene refuses a scene whose sum
