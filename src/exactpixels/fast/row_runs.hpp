@@ -211,16 +211,18 @@ inline std::pair<std::int64_t, std::int64_t> floor_div_near(std::int64_t a, std:
 }
 
 /// The fast variant of run_end (the same end; tested): one reciprocal in double instead
-/// of two 64-bit divisions. With f = floor(w / s), the first column is -f (s_x > 0) and
-/// the end f + 1 (s_x < 0), and e = w - f s either way.
+/// of two 64-bit divisions, both quotients by floor_div_near.
 inline RunEnd run_end_fast(std::int64_t w, std::int64_t step_x, std::int64_t step_y) {
     RunEnd end;
     end.s = step_x > 0 ? step_x : -step_x;
     const double inv = 1.0 / static_cast<double>(end.s);
     std::tie(end.q, end.r) = floor_div_near(step_y, end.s, inv);
-    const auto [f, e] = floor_div_near(w, end.s, inv);
-    end.k = step_x > 0 ? -f : f + 1;
+    //> gives-away ch10-run-of-row
+    const auto [f, e] = floor_div_near(w, end.s, inv); // f = floor(w / s), e = w - f s
+    end.k = step_x > 0 ? -f : f + 1;                    // as run_end's k, either sign
     end.e = e;
+    //| (void)w, (void)inv; // stub: k = e = 0, the end not found
+    //< gives-away ch10-run-of-row
     return end;
 }
 

@@ -189,9 +189,19 @@ void draw_runs(const RenderTarget& target, const FlatTriangle& tri) {
     if (!s) {
         return;
     }
-    const RunDrawer d(tri, target.depth != nullptr ? depth_run_kernel(chosen_simd())
-                                                   : nullptr);
-    traverse_runs_stepped(*s, r, [&](Span run) { plot_run(target, d, run); });
+    if (target.depth == nullptr) { // flat: plot_run's fill, decided once per triangle
+        traverse_runs_stepped(*s, r, [&](Span run) {
+            fill_run(target.colour + index(target, run.x_begin, run.y),
+                     run.x_end - run.x_begin, tri.colour);
+        });
+        return;
+    }
+    const RunDrawer d(tri, depth_run_kernel(chosen_simd())); // plot_run's depth half
+    traverse_runs_stepped(*s, r, [&](Span run) {
+        const std::size_t row = index(target, 0, run.y);
+        d.depth(d.plane, run.y, run.x_begin, run.x_end, target.depth + row,
+                target.colour + row);
+    });
 }
 
 void draw_masks(const RenderTarget& target, const FlatTriangle& tri) {
