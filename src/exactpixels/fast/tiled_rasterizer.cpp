@@ -53,10 +53,14 @@ void fill_run(Rgba8* first, int count, Rgba8 colour) {
         _mm_storeu_si128(reinterpret_cast<__m128i*>(first + count - 4), four);
         return;
     }
-#endif
+    if (count > 0) { // 1 to 3 pixels: the first, middle and last, which overlap
+        first[0] = first[count / 2] = first[count - 1] = colour;
+    }
+#else
     for (int i = 0; i < count; ++i) {
         first[i] = colour;
     }
+#endif
 }
 //< fill-run
 
