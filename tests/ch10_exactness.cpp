@@ -233,6 +233,81 @@ TEST_CASE("a run end stepped by quotient, remainder and carry is the exact divis
     CHECK(negative_q > 10000);
 }
 
+TEST_CASE("floor_div_near divides exactly without a division, up to the int64 extremes") {
+    // run_end_fast's quotient: floor_div's quotient and remainder, for divisors from 1 to
+    // 2^40 (a fixed-point edge's steps reach 2^37) and dividends of every size, on both
+    // sides of the 2^50 where the estimate gives way to the division, near the int64
+    // extremes, and the hardest for the estimate: a remainder of 0, 1 or s - 1, where
+    // a / s lies on or next to an integer.
+    std::mt19937_64 rng(1050);
+    const auto between = [&](std::int64_t lo, std::int64_t hi) {
+        return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng);
+    };
+    const std::int64_t limit = std::int64_t{1} << 50;
+    const std::int64_t big = std::numeric_limits<std::int64_t>::max() / 2;
+    long checked = 0;
+    const auto check = [&](std::int64_t a, std::int64_t s) {
+        const auto [q, r] = floor_div_near(a, s, 1.0 / static_cast<double>(s));
+        CAPTURE(a);
+        CAPTURE(s);
+        REQUIRE(q == floor_div(a, s));
+        REQUIRE(r == a - floor_div(a, s) * s);
+        ++checked;
+    };
+    const std::int64_t s_max[] = {8, std::int64_t{1} << 20, std::int64_t{1} << 37,
+                                  std::int64_t{1} << 40};
+    for (int trial = 0; trial < 200000; ++trial) {
+        const std::int64_t s = between(1, s_max[trial % 4]);
+        const int bits = static_cast<int>(between(0, 62));
+        const std::int64_t a_max = bits == 62 ? big : (std::int64_t{1} << bits);
+        check(between(-a_max, a_max), s);
+        // a = m s + rest near a multiple, with |a| up to just past 2^50
+        const std::int64_t m = between(-(limit + 4 * s) / s, (limit + 4 * s) / s);
+        for (const std::int64_t rest : {std::int64_t{0}, std::int64_t{1}, s - 1}) {
+            check(m * s + rest, s);
+        }
+        // the dividends on both sides of the bound
+        const std::int64_t edge = trial % 2 ? limit : -limit;
+        check(edge + between(-3, 3), s);
+    }
+    for (const std::int64_t s : {std::int64_t{1}, std::int64_t{2}, std::int64_t{3},
+                                 std::int64_t{7}, (std::int64_t{1} << 37) - 1}) {
+        for (const std::int64_t a :
+             {std::numeric_limits<std::int64_t>::min() + 1,
+              std::numeric_limits<std::int64_t>::max(), limit - 1, -(limit - 1), limit,
+              -limit, std::int64_t{0}, std::int64_t{-1}}) {
+            check(a, s);
+        }
+    }
+    CHECK(checked > 1000000);
+}
+
+TEST_CASE("run_end_fast starts every end where run_end's divisions do") {
+    // The first row of traverse_runs_stepped: the same column, remainder, quotient and
+    // remainder of s_y as run_end, for steps of both signs from 1 to 2^37 and values up
+    // to 2^60 (@eq:edge-range), across the 2^50 where floor_div_near divides.
+    std::mt19937_64 rng(1051);
+    const auto between = [&](std::int64_t lo, std::int64_t hi) {
+        return std::uniform_int_distribution<std::int64_t>(lo, hi)(rng);
+    };
+    for (int trial = 0; trial < 200000; ++trial) {
+        const std::int64_t s = between(1, std::int64_t{1} << between(0, 37));
+        const std::int64_t s_x = trial % 2 ? s : -s;
+        const std::int64_t s_y = between(-(std::int64_t{1} << 37), std::int64_t{1} << 37);
+        const std::int64_t w_max = std::int64_t{1} << between(0, 60);
+        const std::int64_t w = between(-w_max, w_max);
+        const RunEnd exact = run_end(w, s_x, s_y), fast = run_end_fast(w, s_x, s_y);
+        CAPTURE(w);
+        CAPTURE(s_x);
+        CAPTURE(s_y);
+        REQUIRE(fast.k == exact.k);
+        REQUIRE(fast.e == exact.e);
+        REQUIRE(fast.s == exact.s);
+        REQUIRE(fast.q == exact.q);
+        REQUIRE(fast.r == exact.r);
+    }
+}
+
 TEST_CASE(
     "the double estimate of a run's end is one column off below 2^52, two up to 2^60") {
     // Exercise 2 of chapter 10: run_of_row_fast starts each edge's end from the double

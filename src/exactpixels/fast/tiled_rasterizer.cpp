@@ -53,10 +53,14 @@ void fill_run(Rgba8* first, int count, Rgba8 colour) {
         _mm_storeu_si128(reinterpret_cast<__m128i*>(first + count - 4), four);
         return;
     }
-#endif
+    if (count > 0) { // 1 to 3 pixels: the first, middle and last, which overlap
+        first[0] = first[count / 2] = first[count - 1] = colour;
+    }
+#else
     for (int i = 0; i < count; ++i) {
         first[i] = colour;
     }
+#endif
 }
 //< fill-run
 
@@ -189,9 +193,19 @@ void draw_runs(const RenderTarget& target, const FlatTriangle& tri) {
     if (!s) {
         return;
     }
-    const RunDrawer d(tri, target.depth != nullptr ? depth_run_kernel(chosen_simd())
-                                                   : nullptr);
-    traverse_runs_stepped(*s, r, [&](Span run) { plot_run(target, d, run); });
+    if (target.depth == nullptr) { // flat: plot_run's fill, decided once per triangle
+        traverse_runs_stepped(*s, r, [&](Span run) {
+            fill_run(target.colour + index(target, run.x_begin, run.y),
+                     run.x_end - run.x_begin, tri.colour);
+        });
+        return;
+    }
+    const RunDrawer d(tri, depth_run_kernel(chosen_simd())); // plot_run's depth half
+    traverse_runs_stepped(*s, r, [&](Span run) {
+        const std::size_t row = index(target, 0, run.y);
+        d.depth(d.plane, run.y, run.x_begin, run.x_end, target.depth + row,
+                target.colour + row);
+    });
 }
 
 void draw_masks(const RenderTarget& target, const FlatTriangle& tri) {
