@@ -340,3 +340,27 @@ TEST_CASE("floor_to_int, ceil_to_int, round_to_int and the texel index equal lib
     CHECK(round_differs == 0);
     CHECK(index_differs == 0);
 }
+
+TEST_CASE("a texel index past int's range is held to it, the same on every CPU") {
+    // |u| up to texture_coordinate_limit (1e30 in double) passes the mappers' checks,
+    // but an index past 2^31 is no int: both rules hold it to int's range (a plain
+    // conversion is undefined there), and NaN gives the lowest.
+    constexpr int lowest = std::numeric_limits<int>::min();
+    constexpr int highest = std::numeric_limits<int>::max();
+    for (const std::int32_t modifier : {texel_scale / 2, texel_scale / 2 - 1}) {
+        INFO("modifier " << modifier);
+        for (const double u : {0x1p31, 3e9, 1e30}) {
+            CHECK(real_texel_index(u, modifier) == highest);
+            CHECK(real_texel_index(-u - 1.0, modifier) == lowest);
+        }
+        CHECK(real_texel_index(std::nan(""), modifier) == lowest);
+        // Just inside the range, the index is the library's, exactly.
+        CHECK(real_texel_index(0x1p31 - 2.0, modifier) ==
+              texel_index_by_library(0x1p31 - 2.0, modifier));
+        CHECK(real_texel_index(-0x1p31 + 2.0, modifier) ==
+              texel_index_by_library(-0x1p31 + 2.0, modifier));
+    }
+    CHECK(saturated_int(-0x1p31) == lowest);
+    CHECK(saturated_int(0x1p31 - 1.0) == highest);
+    CHECK(saturated_int(-5.0) == -5);
+}

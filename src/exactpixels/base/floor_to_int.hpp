@@ -45,4 +45,15 @@ inline int round_to_int(double x) {
 }
 //< floor-to-int
 
+/// An integral double (a floor or ceil) as an int, held to int's range: INT_MIN below it
+/// and for NaN, INT_MAX above. A plain conversion of a value beyond the range is
+/// undefined (x86-64 gives INT_MIN either way, ARM64 saturates), so a texel index of a
+/// coordinate past 2^31 texels would differ from CPU to CPU.
+inline int saturated_int(double integral) {
+    if (!(integral >= -2147483648.0)) { // false for NaN too
+        return -2147483647 - 1;
+    }
+    return integral > 2147483647.0 ? 2147483647 : static_cast<int>(integral);
+}
+
 } // namespace exactpixels

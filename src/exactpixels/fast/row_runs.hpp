@@ -199,8 +199,8 @@ inline std::pair<std::int64_t, std::int64_t> floor_div_near(std::int64_t a, std:
                                                             double inv) {
     constexpr std::int64_t near_limit = std::int64_t{1} << 50;
     if (a <= -near_limit || a >= near_limit) { // beyond the bound: the exact division
-        const std::int64_t q = floor_div(a, s);
-        return {q, a - q * s};
+        const std::int64_t r = a % s; // a - q s with q = floor(a / s) could overflow
+        return {floor_div(a, s), r < 0 ? r + s : r};
     }
     constexpr double round = 0x1.8p52; // 1.5 * 2^52: sums keep no fraction bits
     const double nearest = (static_cast<double>(a) * inv + round) - round;

@@ -496,9 +496,9 @@ class RealTexelIndex {
         const bool small = std::abs(u) < 0x1p30; // false for NaN too
         const double x = u + bias_;
         if (floor_) {
-            return small ? floor_to_int(x) : static_cast<int>(std::floor(x));
+            return small ? floor_to_int(x) : saturated_int(std::floor(x));
         }
-        return (small ? ceil_to_int(x) : static_cast<int>(std::ceil(x))) - 1;
+        return small ? ceil_to_int(x) - 1 : saturated_int(std::ceil(x) - 1.0);
     }
 
   private:

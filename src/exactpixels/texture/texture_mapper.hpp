@@ -101,12 +101,12 @@ constexpr int fixed_texel_index(std::int32_t U, std::int32_t modifier) {
     const bool small = std::abs(u) < 0x1p30;            // false for NaN too
     if (offset >= 0) {
         const double x = u + double(offset) / texel_scale;
-        return small ? floor_to_int(x) : static_cast<int>(std::floor(x));
+        return small ? floor_to_int(x) : saturated_int(std::floor(x));
     }
     // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1: with rule 2's
     // modifier this is ceil(u) - 1.
     const double x = u + double(offset + 1) / texel_scale;
-    return (small ? ceil_to_int(x) : static_cast<int>(std::ceil(x))) - 1;
+    return small ? ceil_to_int(x) - 1 : saturated_int(std::ceil(x) - 1.0);
 }
 
 /// The texel indices a mapper chose for each pixel of a frame (before wrapping).
