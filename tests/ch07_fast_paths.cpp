@@ -32,9 +32,9 @@
 #include <array>
 #include <bit>
 #include <climits>
-#include <cstring>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <random>
@@ -286,7 +286,10 @@ TEST_CASE("the fast paths draw the big torus as the teaching path does") {
     }
 }
 
-TEST_CASE("the direct span's affine texels are the teaching path's") {
+// A stub of ch07-plan-mesh (no texture stage) leaves no affine pixel to count, so it
+// grades that exercise.
+TEST_CASE("the direct span's affine texels are the teaching path's" *
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     // The big torus maps every triangle affine (auto); the direct span (lean_spans) then
     // steps u and v itself and takes each texel index with its span's rounding set up
     // once. Its texture coordinates moved and stretched (negative slopes: rule 2's
@@ -397,7 +400,7 @@ TEST_CASE("any number of threads runs the geometry stage as one") {
     for (SceneMesh& mesh : all.meshes) {
         mesh.texture.reset(); // the textures are horizon's
     }
-    compared += check_geometry_threads(all); // threads' stretches cross meshes
+    compared += check_geometry_threads(all);            // threads' stretches cross meshes
     Scene narrow = load_scene(folder / "horizon.toml"); // corners far off screen
     narrow.camera.fov_degrees = 5.0;
     compared += check_geometry_threads(narrow);
@@ -705,6 +708,20 @@ void check_same_plane(const ScreenPlane& a, const ScreenPlane& b) {
     CHECK(a.g.dy == b.g.dy);
 }
 
+/// A triangle mapped affine set up alone (affine_planes, choose_affine_rounding) gives
+/// the u and v planes of chapter 3's full setup `planes` and chapter 4's affine rounding.
+void check_affine_setup(const std::array<Point2, 3>& p,
+                        const std::array<TexturedVertex, 3>& v,
+                        const TexturePlanes& planes) {
+    const auto [u, t] = affine_planes(p, v);
+    check_same_plane(u, planes.u);
+    check_same_plane(t, planes.v);
+    const TexelRounding affine = choose_rounding(v, MapperKind::affine);
+    const TexelRounding at_once = choose_affine_rounding(v);
+    CHECK(at_once.u_modifier == affine.u_modifier);
+    CHECK(at_once.v_modifier == affine.v_modifier);
+}
+
 /// The same double, bit for bit (0.0 and -0.0 differ).
 bool same_bits(double a, double b) {
     return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
@@ -799,13 +816,7 @@ TEST_CASE("texture planes and rounding from shared quotients are those of the co
         CHECK(from_q.u_modifier == alone.u_modifier);
         CHECK(from_q.v_modifier == alone.v_modifier);
         // A triangle mapped affine: its planes and rounding alone, gradients at once.
-        const auto [u, t] = affine_planes(p, v);
-        check_same_plane(u, shared.u);
-        check_same_plane(t, shared.v);
-        const TexelRounding affine = choose_rounding(v, MapperKind::affine);
-        const TexelRounding at_once = choose_affine_rounding(v);
-        CHECK(at_once.u_modifier == affine.u_modifier);
-        CHECK(at_once.v_modifier == affine.v_modifier);
+        check_affine_setup(p, v, shared);
     }
 }
 
@@ -840,13 +851,7 @@ TEST_CASE("the affine setup at once is chapter 3's and 4's on flat and thin tria
         }
         INFO(n);
         const TexturePlanes planes = texture_planes(p, v);
-        const auto [u, t] = affine_planes(p, v);
-        check_same_plane(u, planes.u);
-        check_same_plane(t, planes.v);
-        const TexelRounding affine = choose_rounding(v, MapperKind::affine);
-        const TexelRounding at_once = choose_affine_rounding(v);
-        CHECK(at_once.u_modifier == affine.u_modifier);
-        CHECK(at_once.v_modifier == affine.v_modifier);
+        check_affine_setup(p, v, planes);
         flat += planes.u.g.dx == 0.0 && planes.u.g.dy == 0.0;
     }
     CHECK(flat > 10000);

@@ -66,7 +66,7 @@ TEST_CASE("a deeply dotted key is refused before the parser sees it") {
 
 // A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.
 TEST_CASE("the smallest near plane with a corner on the view axis gives finite texels" *
-          doctest::description("points: 2; exercise: ch07-plan-mesh")) {
+          doctest::description("points: 1; exercise: ch07-plan-mesh")) {
     CHECK_THROWS_WITH_AS(
         parse_scene(axis_scene(min_camera_near / 2, 1.0, "double", "exact"), "n.toml",
                     "."),

@@ -484,28 +484,6 @@ void count_depth(RenderReport& report, int count, int shown) {
     report.hidden.pixels += count - shown;
 }
 
-/// real_texel_index(u, modifier) with the modifier's part worked out once (the direct
-/// span's): the same index for every u.
-class RealTexelIndex {
-  public:
-    explicit RealTexelIndex(std::int32_t modifier)
-        : floor_(modifier >= texel_scale / 2),
-          bias_(floor_ ? double(modifier - texel_scale / 2) / texel_scale
-                       : double(modifier - texel_scale / 2 + 1) / texel_scale) {}
-    int operator()(double u) const {
-        const bool small = std::abs(u) < 0x1p30; // false for NaN too
-        const double x = u + bias_;
-        if (floor_) {
-            return small ? floor_to_int(x) : saturated_int(std::floor(x));
-        }
-        return small ? ceil_to_int(x) - 1 : saturated_int(std::ceil(x) - 1.0);
-    }
-
-  private:
-    bool floor_;  ///< rule 1's floor(u + bias), else ceil(u + bias) - 1
-    double bias_; ///< the modifier's offset in texels
-};
-
 /// The direct span's texels where the whole triangle is mapped affine in double:
 /// map_span's affine mapper (u and v stepped from pixel 0, indices by real_texel_index),
 /// inline, its rounding set up once per span and a hidden pixel's index not taken.

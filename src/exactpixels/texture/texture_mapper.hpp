@@ -88,25 +88,40 @@ constexpr int fixed_texel_index(std::int32_t U, std::int32_t modifier) {
     return static_cast<int>(shifted >> texel_fraction_bits); // >> floors (C++20)
 }
 
-/// The texel index for a real coordinate u under the same modifier: floor(u) for
-/// modifier = D/2, ceil(u) - 1 for rule 2's modifier. Agrees with
-/// fixed_texel_index(u * D, modifier) whenever u * D is an integer. Every real mapper
-/// calls it for every pixel, twice: within |u| < 2^30 it rounds with floor_to_int and
-/// ceil_to_int (base/floor_to_int.hpp), which are exact and need no call into the maths
-/// library; beyond, std::floor and std::ceil.
+/// The texel index for a real coordinate u under one modifier, with the modifier's part
+/// worked out once: floor(u) for modifier = D/2, ceil(u) - 1 for rule 2's modifier.
+/// Agrees with fixed_texel_index(u * D, modifier) whenever u * D is an integer. Within
+/// |u| < 2^30 it rounds with floor_to_int and ceil_to_int (base/floor_to_int.hpp), which
+/// are exact and need no call into the maths library; beyond, std::floor and std::ceil,
+/// held to int's range.
+class RealTexelIndex {
+  public:
+    explicit RealTexelIndex(std::int32_t modifier)
+        : floor_(modifier >= texel_scale / 2),
+          // b' = modifier - D/2 in floor((U + b') / D); for integer U that floor is
+          // ceil((U + b' + 1) / D) - 1, which with rule 2's modifier is ceil(u) - 1.
+          bias_(double(floor_ ? modifier - texel_scale / 2
+                              : modifier - texel_scale / 2 + 1) /
+                texel_scale) {}
+    int operator()(double u) const {
+        const bool small = std::abs(u) < 0x1p30; // false for NaN too
+        const double x = u + bias_;
+        if (floor_) {
+            return small ? floor_to_int(x) : saturated_int(std::floor(x));
+        }
+        return small ? ceil_to_int(x) - 1 : saturated_int(std::ceil(x) - 1.0);
+    }
+
+  private:
+    bool floor_;  ///< floor(u + bias), else ceil(u + bias) - 1
+    double bias_; ///< the modifier's offset in texels
+};
+
+/// RealTexelIndex(modifier)(u): every real mapper calls it for every pixel, twice.
 /// Always inlined: where a file instantiates the mappers twice (chapter 7's renderer
 /// with its lean drawing path), GCC otherwise calls it, two calls per pixel.
 [[gnu::always_inline]] inline int real_texel_index(double u, std::int32_t modifier) {
-    const std::int32_t offset = modifier - texel_scale / 2; // b' in floor((U + b') / D)
-    const bool small = std::abs(u) < 0x1p30;            // false for NaN too
-    if (offset >= 0) {
-        const double x = u + double(offset) / texel_scale;
-        return small ? floor_to_int(x) : saturated_int(std::floor(x));
-    }
-    // For integer U, floor((U + b') / D) = ceil((U + b' + 1) / D) - 1: with rule 2's
-    // modifier this is ceil(u) - 1.
-    const double x = u + double(offset + 1) / texel_scale;
-    return small ? ceil_to_int(x) - 1 : saturated_int(std::ceil(x) - 1.0);
+    return RealTexelIndex(modifier)(u);
 }
 
 /// The texel indices a mapper chose for each pixel of a frame (before wrapping).
