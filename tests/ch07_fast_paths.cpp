@@ -469,6 +469,19 @@ TEST_CASE("any number of threads refuses a bad scene with the message of one" *
         CHECK(render_error(scene, threads) == one);
     }
     MESSAGE("one thread: " << one);
+    // Trilinear, with every triangle bad: the threaded driver makes the mip chains
+    // first, in scene order, and meets the first bad triangle there; it then leaves the
+    // frame to the book's loop, which names the same error.
+    scene.options.filter = SceneFilter::trilinear;
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        triangles[t][2].uv.y = -1e31 * static_cast<double>(t + 1);
+    }
+    const std::string filtered = render_error(scene, 1);
+    CHECK(filtered.find("texture coordinate") != std::string::npos);
+    for (int threads : checked_threads) {
+        INFO(threads << " threads, trilinear");
+        CHECK(render_error(scene, threads) == filtered);
+    }
 }
 
 TEST_CASE("a bad thread count is refused before any work") {
