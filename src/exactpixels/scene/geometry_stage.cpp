@@ -27,6 +27,10 @@
 #include <type_traits>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace exactpixels {
 
 namespace {
@@ -165,6 +169,51 @@ std::uint32_t outcode(const OutcodePlanes& codes, const glm::dvec3& p) {
 }
 //< outcodes
 
+/// Two doubles side by side (GCC's and Clang's vector extension): each lane is
+/// multiplied and added as a double is, so a lane's value has the scalar one's bits.
+using PlanePair = double __attribute__((vector_size(16)));
+
+/// OutcodePlanes with planes 2k and 2k + 1 side by side in pair k.
+struct OutcodePairs {
+    std::array<PlanePair, max_outcode_planes / 2> a{}, b{}, c{}, d{};
+};
+
+/// The planes of `codes` in pairs.
+OutcodePairs outcode_pairs(const OutcodePlanes& codes) {
+    OutcodePairs pairs;
+    for (std::size_t k = 0; k < pairs.a.size(); ++k) {
+        pairs.a[k] = PlanePair{codes.a[2 * k], codes.a[2 * k + 1]};
+        pairs.b[k] = PlanePair{codes.b[2 * k], codes.b[2 * k + 1]};
+        pairs.c[k] = PlanePair{codes.c[2 * k], codes.c[2 * k + 1]};
+        pairs.d[k] = PlanePair{codes.d[2 * k], codes.d[2 * k + 1]};
+    }
+    return pairs;
+}
+
+/// Bit i set when lane i of `value` is < 0 (false for NaN).
+std::uint32_t negative_lanes(PlanePair value) {
+#if defined(__SSE2__)
+    return static_cast<std::uint32_t>(
+        _mm_movemask_pd(_mm_cmplt_pd(value, _mm_setzero_pd())));
+#else
+    return static_cast<std::uint32_t>(value[0] < 0.0) |
+           static_cast<std::uint32_t>(value[1] < 0.0) << 1;
+#endif
+}
+
+/// Lean form of outcode: its bits, two planes at a time with each plane's products and
+/// sums in outcode's order (tests/ch07_fast_paths.cpp compares the two).
+std::uint32_t outcode_lean(const OutcodePairs& pairs, const glm::dvec3& p) {
+    const PlanePair x{p.x, p.x}, y{p.y, p.y}, z{p.z, p.z};
+    std::uint32_t code = 0;
+    for (std::size_t k = 0; k < pairs.a.size(); ++k) { // planes 2k and 2k + 1
+        const PlanePair value =
+            pairs.a[k] * x + pairs.b[k] * y + pairs.c[k] * z + pairs.d[k];
+        code |= negative_lanes(value) << (2 * k);
+    }
+    return code;
+}
+
 /// Twice the signed screen area of the triangle p0 p1 p2; negative when it faces the
 /// camera (its corners run counter-clockwise as seen from its front).
 double screen_area2(Point2 p0, Point2 p1, Point2 p2) {
@@ -215,12 +264,16 @@ struct StageSetup {
     const OutcodePlanes codes;
     const double limit; ///< largest(scene.options.precision)
     const std::vector<ViewLight>& lights;
-    const bool lit; ///< no light, no lighting stage
-    StageSetup(const Scene& s, const CameraFrame& frame, const std::vector<ViewLight>& l)
+    const bool lit;           ///< no light, no lighting stage
+    const bool lean;          ///< run_geometry's `lean`: the lean forms
+    const OutcodePairs pairs; ///< `codes` in pairs, for outcode_lean
+    StageSetup(const Scene& s, const CameraFrame& frame, const std::vector<ViewLight>& l,
+               bool lean_forms)
         : scene(s), camera(frame),
           perspective(s.camera.projection == Projection::perspective), lens(pinhole(s)),
           volume(view_volume(s, lens)), codes(outcode_planes(volume)),
-          limit(largest(s.options.precision)), lights(l), lit(!s.lights.empty()) {}
+          limit(largest(s.options.precision)), lights(l), lit(!s.lights.empty()),
+          lean(lean_forms), pairs(outcode_pairs(codes)) {}
 };
 
 /// A mesh position as the geometry stage moves it, once for all the corners at it.
@@ -244,7 +297,7 @@ static_assert(std::is_trivially_default_constructible_v<MovedPosition>);
 MovedPosition move_position(const StageSetup& s, const glm::dvec3& p) {
     MovedPosition m{}; // zero where not projected
     m.view = to_view(s.camera, p - s.camera.eye);
-    m.code = outcode(s.codes, m.view);
+    m.code = s.lean ? outcode_lean(s.pairs, m.view) : outcode(s.codes, m.view);
     const bool finite =
         std::isfinite(m.view.x) && std::isfinite(m.view.y) && std::isfinite(m.view.z);
     // project() refuses a point that is not finite; the triangle asks it again, to throw.
@@ -640,7 +693,8 @@ void run_meshes_threaded(std::vector<std::unique_ptr<MeshPass>>& passes,
 
 } // namespace
 
-SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads) {
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads,
+                           bool lean) {
     SceneGeometry geometry;
     const CameraFrame camera = camera_frame(scene.camera);
     if (!scene.lights.empty()) {
@@ -650,7 +704,7 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads
     }
     report.lighting_on = !scene.lights.empty();
     report.lights = static_cast<int>(geometry.lights.size());
-    const StageSetup setup(scene, camera, geometry.lights);
+    const StageSetup setup(scene, camera, geometry.lights, lean);
     // Every mesh first: the depth stage's plan needs to know where on screen each lands.
     geometry.meshes.resize(scene.meshes.size());
     geometry.shading.resize(scene.meshes.size());
