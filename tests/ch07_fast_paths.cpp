@@ -500,7 +500,9 @@ int check_lean_geometry(const Scene& unlit) {
 
 /// The scene with each corner position of its first mesh replaced, one in `every`, by
 /// a hard one drawn by `random`: huge, tiny, zero, on the camera, behind it, at the
-/// near plane, far off screen, not finite (positions past the loader's limits).
+/// near plane, far off screen, not finite (positions past the loader's limits); and a
+/// corner's texture coordinate, one in 7 `every`, by one whose u/w or v/w lies near
+/// the largest float or double.
 Scene with_hard_positions(Scene scene, std::mt19937& random, std::size_t every) {
     const CameraFrame frame = camera_frame(scene.camera);
     const double inf = std::numeric_limits<double>::infinity();
@@ -511,10 +513,17 @@ Scene with_hard_positions(Scene scene, std::mt19937& random, std::size_t every) 
         return values[std::uniform_int_distribution<std::size_t>(0, values.size() -
                                                                         1)(random)];
     };
+    const std::vector<double> large_uvs = {1e37,  2e38,   -3e38, 5e38,   1e39,
+                                           1e307, -5e307, 1e308, 1.7e308};
     SceneMesh& mesh = scene.meshes.at(0);
     std::size_t n = 0;
     for (auto& triangle : mesh.triangles) {
         for (SceneVertex& corner : triangle) {
+            if (n % (7 * every) == 3) {
+                const double uv = large_uvs[std::uniform_int_distribution<std::size_t>(
+                    0, large_uvs.size() - 1)(random)];
+                (n % 2 == 0 ? corner.uv.x : corner.uv.y) = uv;
+            }
             if (n++ % every != 0) {
                 continue;
             }
@@ -569,6 +578,18 @@ TEST_CASE("the geometry stage's lean forms give the plain forms' bits") {
     const Scene torus = big_torus();
     compared += check_lean_geometry(torus);
     compared += check_lean_geometry(with_hard_positions(torus, random, 9973));
+    // One corner's v/w just past the largest float, its neighbours' not (their 1/w
+    // differ): each corner's test reads its own 1/w, in the corner's order.
+    const CameraFrame frame = camera_frame(torus.camera);
+    for (std::size_t t = 1000; t < 7000; t += 1001) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            Scene poisoned = torus;
+            SceneVertex& corner = poisoned.meshes[0].triangles[t][k];
+            const double w = glm::dot(corner.position - frame.eye, frame.forward);
+            corner.uv.y = double(std::numeric_limits<float>::max()) * w * (1.0 + 1e-9);
+            compared += check_lean_geometry(poisoned);
+        }
+    }
     Scene behind = torus; // the camera inside the torus's ring: corners all around it
     behind.camera.position = {0.0, 0.0, 0.0};
     behind.camera.target = {1.0, 0.0, 0.0};

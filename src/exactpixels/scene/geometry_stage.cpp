@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
@@ -369,6 +370,7 @@ class MeshPass {
 
   private:
     void triangle(std::size_t index, MeshOutput& to) const;
+    void triangles_lean(std::size_t first, std::size_t end, MeshOutput& to) const;
     void check_corners(std::size_t index, const MovedCorners& m) const;
     void light(std::size_t index, const std::array<glm::dvec3, 3>& points,
                std::array<Colour, 3>& colours, std::array<glm::dvec3, 3>& normals,
@@ -486,9 +488,102 @@ void MeshPass::move_positions(std::size_t first, std::size_t end) {
 void MeshPass::triangles(std::size_t first, std::size_t end, MeshOutput& to) const {
     to.out.reserve(to.out.size() + (end - first) / 2); // a closed mesh shows about half
     to.shading.reserve(shaded ? to.out.capacity() : 0);
+    if (s.lean && !shaded) {
+        triangles_lean(first, end, to);
+        return;
+    }
     for (std::size_t index = first; index < end; ++index) {
         triangle(index, to);
     }
+}
+
+namespace {
+
+/// Two int64 lanes, for PlanePair's sign bits and comparisons.
+using BitsPair = std::int64_t __attribute__((vector_size(16)));
+
+/// Both lanes of |value| <= limit, as -1 lanes (0 where not, or NaN): std::abs clears
+/// the sign bit, as the mask does.
+BitsPair within(PlanePair value, PlanePair limit) {
+    constexpr std::int64_t no_sign = std::numeric_limits<std::int64_t>::max();
+    const BitsPair magnitude =
+        std::bit_cast<BitsPair>(value) & BitsPair{no_sign, no_sign};
+    return std::bit_cast<PlanePair>(magnitude) <= limit;
+}
+
+/// A stretch's counts, added to the report when the stretch ends (also by an error).
+struct StretchCounts {
+    RenderReport& report;
+    long long triangles = 0, rejected = 0, culled = 0;
+    explicit StretchCounts(RenderReport& to) : report(to) {}
+    StretchCounts(const StretchCounts&) = delete;
+    StretchCounts& operator=(const StretchCounts&) = delete;
+    ~StretchCounts() {
+        report.geometry.triangles += triangles;
+        report.rejected.triangles += rejected;
+        report.culling.triangles += culled;
+    }
+};
+
+} // namespace
+
+/// Lean form of triangle() on a stretch of an unshaded mesh: the same decisions, lists,
+/// box, counts and errors, with the loop's constants and the box held in locals, the
+/// corners' finite tests and the box two values at a time.
+void MeshPass::triangles_lean(std::size_t first, std::size_t end, MeshOutput& to) const {
+    const std::array<std::uint32_t, 3>* const at = corners->data();
+    const std::array<SceneVertex, 3>* const triangle = mesh.triangles.data();
+    const MovedPosition* const position = moved.get();
+    const std::uint32_t reject = s.codes.reject, clip = s.codes.clip;
+    const bool cull_back = mesh.cull_back;
+    const PlanePair limit{s.limit, s.limit};
+    StretchCounts counts{to.report};
+    // The box as two pairs, (x0, y0) and (x1, y1), grown as ScreenBox::add grows it.
+    PlanePair low{to.box.x0, to.box.y0}, high{to.box.x1, to.box.y1};
+    const auto box = [&] { return ScreenBox{low[0], low[1], high[0], high[1]}; };
+    for (std::size_t index = first; index < end; ++index) {
+        const MovedPosition &m0 = position[at[index][0]], &m1 = position[at[index][1]],
+                            &m2 = position[at[index][2]];
+        if ((m0.code & m1.code & m2.code & reject) != 0) {
+            counts.rejected += 1;
+            continue;
+        }
+        if (((m0.code | m1.code | m2.code) & clip) != 0) {
+            counts.triangles = index + 1 - first; // cut_triangle may throw
+            to.box = box();
+            cut_triangle(index, {&m0, &m1, &m2}, to);
+            low = PlanePair{to.box.x0, to.box.y0};
+            high = PlanePair{to.box.x1, to.box.y1};
+            continue;
+        }
+        const std::array<SceneVertex, 3>& t = triangle[index];
+        const BitsPair uv_within =
+            within(PlanePair{t[0].uv.x, t[0].uv.y} * m0.one_w, limit) &
+            within(PlanePair{t[1].uv.x, t[1].uv.y} * m1.one_w, limit) &
+            within(PlanePair{t[2].uv.x, t[2].uv.y} * m2.one_w, limit);
+        const bool uvs_within = (uv_within[0] & uv_within[1]) != 0;
+        if (!(m0.finite & m1.finite & m2.finite & uvs_within)) {
+            counts.triangles = index + 1 - first;
+            check_corners(index, {&m0, &m1, &m2}); // throws check_finite's error
+        }
+        if (cull_back && screen_area2(m0.at, m1.at, m2.at) >= 0.0) {
+            counts.culled += 1;
+            continue;
+        }
+        const MovedCorners m{&m0, &m1, &m2};
+        ScreenTriangle& kept = to.out.emplace_back(); // field by field: no copy
+        for (std::size_t k = 0; k < 3; ++k) {
+            kept.corners[k].position = m[k]->at;
+            kept.corners[k].w = m[k]->w;
+            kept.corners[k].uv = t[k].uv;
+            kept.nearness[k] = m[k]->nearness;
+            const PlanePair p{m[k]->at.x, m[k]->at.y};
+            low = p < low ? p : low;    // std::min(x0, p.x): the first of equals
+            high = high < p ? p : high; // std::max(x1, p.x): likewise
+        }
+    }
+    counts.triangles = end - first;
+    to.box = box();
 }
 
 /// Stops a triangle drawn uncut whose corner fails check_finite's tests, with its
