@@ -371,6 +371,7 @@ class MeshPass {
   private:
     void triangle(std::size_t index, MeshOutput& to) const;
     void triangles_lean(std::size_t first, std::size_t end, MeshOutput& to) const;
+    void move_positions_lean(std::size_t first, std::size_t end);
     void check_corners(std::size_t index, const MovedCorners& m) const;
     void light(std::size_t index, const std::array<glm::dvec3, 3>& points,
                std::array<Colour, 3>& colours, std::array<glm::dvec3, 3>& normals,
@@ -480,8 +481,44 @@ void MeshPass::triangle(std::size_t index, MeshOutput& to) const {
 //< geometry-mesh
 
 void MeshPass::move_positions(std::size_t first, std::size_t end) {
+    if (s.lean && s.perspective) {
+        move_positions_lean(first, end);
+        return;
+    }
     for (std::size_t p = first; p < end; ++p) {
         moved[p] = move_position(s, (*positions)[p]);
+    }
+}
+
+/// Lean form of move_position on positions first .. end - 1 under perspective: the
+/// same values, with the camera, the lens and the planes in locals and each position
+/// written in place.
+void MeshPass::move_positions_lean(std::size_t first, std::size_t end) {
+    const CameraFrame camera = s.camera;
+    const OutcodePairs pairs = s.pairs;
+    const std::uint32_t clip = s.codes.clip;
+    const Point2 centre = s.lens.centre;
+    const double focal = s.lens.focal, limit = s.limit;
+    const glm::dvec3* const position = positions->data();
+    for (std::size_t p = first; p < end; ++p) {
+        MovedPosition& m = moved[p];
+        const glm::dvec3 view = to_view(camera, position[p] - camera.eye);
+        m.view = view;
+        m.code = outcode_lean(pairs, view);
+        m.projected = (m.code & clip) == 0 && std::isfinite(view.x) &&
+                      std::isfinite(view.y) && std::isfinite(view.z);
+        if (!m.projected) {
+            m.at = {0.0, 0.0};
+            m.w = m.one_w = m.nearness = 0.0;
+            m.finite = false;
+            continue;
+        }
+        m.at = {centre.x + focal * view.x / view.z, centre.y - focal * view.y / view.z};
+        m.w = view.z;
+        m.one_w = 1.0 / view.z;
+        m.nearness = m.one_w;
+        m.finite = std::abs(m.at.x) <= limit && std::abs(m.at.y) <= limit &&
+                   std::abs(m.w) <= limit && std::abs(m.one_w) <= limit;
     }
 }
 
