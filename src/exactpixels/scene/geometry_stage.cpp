@@ -6,6 +6,7 @@
 #include "exactpixels/fast/worker_pool.hpp"
 #include "exactpixels/raster/fill_work.hpp"
 #include "exactpixels/scene/camera.hpp"
+#include "exactpixels/scene/geometry_lanes.hpp"
 #include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/render_report.hpp"
@@ -16,7 +17,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstdint>
@@ -27,10 +27,6 @@
 #include <optional>
 #include <type_traits>
 #include <vector>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace exactpixels {
 
@@ -170,50 +166,9 @@ std::uint32_t outcode(const OutcodePlanes& codes, const glm::dvec3& p) {
 }
 //< outcodes
 
-/// Two doubles side by side (GCC's and Clang's vector extension): each lane is
-/// multiplied and added as a double is, so a lane's value has the scalar one's bits.
-using PlanePair = double __attribute__((vector_size(16)));
-
-/// OutcodePlanes with planes 2k and 2k + 1 side by side in pair k.
-struct OutcodePairs {
-    std::array<PlanePair, max_outcode_planes / 2> a{}, b{}, c{}, d{};
-};
-
-/// The planes of `codes` in pairs.
-OutcodePairs outcode_pairs(const OutcodePlanes& codes) {
-    OutcodePairs pairs;
-    for (std::size_t k = 0; k < pairs.a.size(); ++k) {
-        pairs.a[k] = PlanePair{codes.a[2 * k], codes.a[2 * k + 1]};
-        pairs.b[k] = PlanePair{codes.b[2 * k], codes.b[2 * k + 1]};
-        pairs.c[k] = PlanePair{codes.c[2 * k], codes.c[2 * k + 1]};
-        pairs.d[k] = PlanePair{codes.d[2 * k], codes.d[2 * k + 1]};
-    }
-    return pairs;
-}
-
-/// Bit i set when lane i of `value` is < 0 (false for NaN).
-std::uint32_t negative_lanes(PlanePair value) {
-#if defined(__SSE2__)
-    return static_cast<std::uint32_t>(
-        _mm_movemask_pd(_mm_cmplt_pd(value, _mm_setzero_pd())));
-#else
-    return static_cast<std::uint32_t>(value[0] < 0.0) |
-           static_cast<std::uint32_t>(value[1] < 0.0) << 1;
-#endif
-}
-
-/// Lean form of outcode: its bits, two planes at a time with each plane's products and
-/// sums in outcode's order (tests/ch07_fast_paths.cpp compares the two).
-std::uint32_t outcode_lean(const OutcodePairs& pairs, const glm::dvec3& p) {
-    const PlanePair x{p.x, p.x}, y{p.y, p.y}, z{p.z, p.z};
-    std::uint32_t code = 0;
-    for (std::size_t k = 0; k < pairs.a.size(); ++k) { // planes 2k and 2k + 1
-        const PlanePair value =
-            pairs.a[k] * x + pairs.b[k] * y + pairs.c[k] * z + pairs.d[k];
-        code |= negative_lanes(value) << (2 * k);
-    }
-    return code;
-}
+/// The outcode planes in pairs: PlanePairs::negative_bits is outcode's lean form (the
+/// same sums in the same order; tests/ch07_fast_paths.cpp compares the two).
+using OutcodePairs = PlanePairs<max_outcode_planes>;
 
 /// Twice the signed screen area of the triangle p0 p1 p2; negative when it faces the
 /// camera (its corners run counter-clockwise as seen from its front).
@@ -267,14 +222,14 @@ struct StageSetup {
     const std::vector<ViewLight>& lights;
     const bool lit;           ///< no light, no lighting stage
     const bool lean;          ///< run_geometry's `lean`: the lean forms
-    const OutcodePairs pairs; ///< `codes` in pairs, for outcode_lean
+    const OutcodePairs pairs; ///< `codes` in pairs
     StageSetup(const Scene& s, const CameraFrame& frame, const std::vector<ViewLight>& l,
                bool lean_forms)
         : scene(s), camera(frame),
           perspective(s.camera.projection == Projection::perspective), lens(pinhole(s)),
           volume(view_volume(s, lens)), codes(outcode_planes(volume)),
           limit(largest(s.options.precision)), lights(l), lit(!s.lights.empty()),
-          lean(lean_forms), pairs(outcode_pairs(codes)) {}
+          lean(lean_forms), pairs(codes.a, codes.b, codes.c, codes.d) {}
 };
 
 /// A mesh position as the geometry stage moves it, once for all the corners at it.
@@ -298,7 +253,7 @@ static_assert(std::is_trivially_default_constructible_v<MovedPosition>);
 MovedPosition move_position(const StageSetup& s, const glm::dvec3& p) {
     MovedPosition m{}; // zero where not projected
     m.view = to_view(s.camera, p - s.camera.eye);
-    m.code = s.lean ? outcode_lean(s.pairs, m.view) : outcode(s.codes, m.view);
+    m.code = s.lean ? s.pairs.negative_bits(m.view) : outcode(s.codes, m.view);
     const bool finite =
         std::isfinite(m.view.x) && std::isfinite(m.view.y) && std::isfinite(m.view.z);
     // project() refuses a point that is not finite; the triangle asks it again, to throw.
@@ -504,7 +459,7 @@ void MeshPass::move_positions_lean(std::size_t first, std::size_t end) {
         MovedPosition& m = moved[p];
         const glm::dvec3 view = to_view(camera, position[p] - camera.eye);
         m.view = view;
-        m.code = outcode_lean(pairs, view);
+        m.code = pairs.negative_bits(view);
         m.projected = (m.code & clip) == 0 && std::isfinite(view.x) &&
                       std::isfinite(view.y) && std::isfinite(view.z);
         if (!m.projected) {
@@ -533,36 +488,6 @@ void MeshPass::triangles(std::size_t first, std::size_t end, MeshOutput& to) con
         triangle(index, to);
     }
 }
-
-namespace {
-
-/// Two int64 lanes, for PlanePair's sign bits and comparisons.
-using BitsPair = std::int64_t __attribute__((vector_size(16)));
-
-/// Both lanes of |value| <= limit, as -1 lanes (0 where not, or NaN): std::abs clears
-/// the sign bit, as the mask does.
-BitsPair within(PlanePair value, PlanePair limit) {
-    constexpr std::int64_t no_sign = std::numeric_limits<std::int64_t>::max();
-    const BitsPair magnitude =
-        std::bit_cast<BitsPair>(value) & BitsPair{no_sign, no_sign};
-    return std::bit_cast<PlanePair>(magnitude) <= limit;
-}
-
-/// A stretch's counts, added to the report when the stretch ends (also by an error).
-struct StretchCounts {
-    RenderReport& report;
-    long long triangles = 0, rejected = 0, culled = 0;
-    explicit StretchCounts(RenderReport& to) : report(to) {}
-    StretchCounts(const StretchCounts&) = delete;
-    StretchCounts& operator=(const StretchCounts&) = delete;
-    ~StretchCounts() {
-        report.geometry.triangles += triangles;
-        report.rejected.triangles += rejected;
-        report.culling.triangles += culled;
-    }
-};
-
-} // namespace
 
 /// Lean form of triangle() on a stretch of an unshaded mesh: the same decisions, lists,
 /// box, counts and errors, with the loop's constants and the box held in locals, the

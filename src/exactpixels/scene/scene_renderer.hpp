@@ -122,7 +122,7 @@ struct SceneGeometry {
 /// that is not finite. With `threads` > 1 (1 .. max_threads) the positions and then the
 /// triangles are split among that many threads (run_on_shared_pool) and each thread's
 /// part joined in order: the same geometry, counts and first error for any number.
-/// `lean` runs the stage's lean forms (outcode_lean, ...), which give the plain forms'
+/// `lean` runs the stage's lean forms (geometry_lanes.hpp), which give the plain forms'
 /// bits; false runs only the plain forms the book shows (tests compare the two).
 SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads = 1,
                            bool lean = true);
