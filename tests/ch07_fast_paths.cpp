@@ -450,6 +450,153 @@ TEST_CASE("any number of threads names the geometry stage's first error as one")
     MESSAGE("one thread: " << one);
 }
 
+/// Runs the geometry stage's lean forms and its plain forms on the scene, unlit and lit,
+/// in double and in float precision, and checks that the lists, footprints, counts and
+/// any error message are the same, bit for bit. Returns the number of runs compared.
+int check_lean_geometry(const Scene& unlit) {
+    int compared = 0;
+    for (const Precision precision : {Precision::float64, Precision::float32}) {
+        for (const bool with_light : {false, true}) {
+            Scene scene = unlit;
+            scene.options.precision = precision;
+            if (with_light) {
+                scene.lights.push_back(SceneLight{});
+            }
+            INFO((with_light ? "lit, " : "unlit, ")
+                 << (precision == Precision::float32 ? "float" : "double"));
+            RenderReport lean_report, plain_report;
+            std::optional<SceneGeometry> lean, plain;
+            std::string lean_error, plain_error;
+            try {
+                lean = run_geometry(scene, lean_report, 1, true);
+            } catch (const Error& error) {
+                lean_error = error.what();
+            }
+            try {
+                plain = run_geometry(scene, plain_report, 1, false);
+            } catch (const Error& error) {
+                plain_error = error.what();
+            }
+            CHECK(lean_error == plain_error);
+            REQUIRE(lean.has_value() == plain.has_value());
+            compared += 1;
+            if (!lean) {
+                continue;
+            }
+            REQUIRE(lean->meshes.size() == plain->meshes.size());
+            for (std::size_t i = 0; i < plain->meshes.size(); ++i) {
+                INFO("mesh " << i);
+                CHECK(same_bits(lean->meshes[i], plain->meshes[i]));
+                CHECK(same_bits(lean->shading[i], plain->shading[i]));
+                const ScreenBox &a = lean->footprints[i].box,
+                                b = plain->footprints[i].box;
+                CHECK(std::memcmp(&a, &b, sizeof a) == 0);
+            }
+            check_same_report(lean_report, plain_report);
+        }
+    }
+    return compared;
+}
+
+/// The scene with each corner position of its first mesh replaced, one in `every`, by
+/// a hard one drawn by `random`: huge, tiny, zero, on the camera, behind it, at the
+/// near plane, far off screen, not finite (positions past the loader's limits); and a
+/// corner's texture coordinate, one in 7 `every`, by one whose u/w or v/w lies near
+/// the largest float or double.
+Scene with_hard_positions(Scene scene, std::mt19937& random, std::size_t every) {
+    const CameraFrame frame = camera_frame(scene.camera);
+    const double inf = std::numeric_limits<double>::infinity();
+    const std::vector<double> values = {
+        0.0,  -0.0,  1e-300, -1e-300, 1e-3,    -1e-3,    1.0, -1.0, 1e6,         -1e6,
+        1e30, -1e30, 1e300,  -1e300,  1.7e308, -1.7e308, inf, -inf, std::nan("")};
+    const auto pick = [&] {
+        return values[std::uniform_int_distribution<std::size_t>(0, values.size() -
+                                                                        1)(random)];
+    };
+    const std::vector<double> large_uvs = {1e37,  2e38,   -3e38, 5e38,   1e39,
+                                           1e307, -5e307, 1e308, 1.7e308};
+    SceneMesh& mesh = scene.meshes.at(0);
+    std::size_t n = 0;
+    for (auto& triangle : mesh.triangles) {
+        for (SceneVertex& corner : triangle) {
+            if (n % (7 * every) == 3) {
+                const double uv = large_uvs[std::uniform_int_distribution<std::size_t>(
+                    0, large_uvs.size() - 1)(random)];
+                (n % 2 == 0 ? corner.uv.x : corner.uv.y) = uv;
+            }
+            if (n++ % every != 0) {
+                continue;
+            }
+            switch (std::uniform_int_distribution<int>(0, 4)(random)) {
+            case 0: // anywhere
+                corner.position = {pick(), pick(), pick()};
+                break;
+            case 1: // along the view axis, behind or before the camera, or on it
+                corner.position = frame.eye + pick() * frame.forward;
+                break;
+            case 2: // at the near plane, off to one side
+                corner.position =
+                    frame.eye + scene.camera.near * frame.forward + pick() * frame.right;
+                break;
+            case 3: // in front of the camera, far off screen
+                corner.position = frame.eye + frame.forward + pick() * frame.up;
+                break;
+            default: // where another corner is: a degenerate triangle
+                corner.position = triangle[0].position;
+                break;
+            }
+        }
+    }
+    share_positions(mesh);
+    return scene;
+}
+
+TEST_CASE("the geometry stage's lean forms give the plain forms' bits") {
+    const std::filesystem::path folder = shipped_scene_folder();
+    int compared = 0;
+    std::mt19937 random(3434);
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        if (entry.path().extension() != ".toml") {
+            continue;
+        }
+        INFO(entry.path().string());
+        const Scene scene = load_scene(entry.path());
+        compared += check_lean_geometry(scene);
+        for (const std::size_t every : {5, 23, 101}) {
+            for (int k = 0; k < 4; ++k) {
+                compared +=
+                    check_lean_geometry(with_hard_positions(scene, random, every));
+            }
+        }
+    }
+    Scene narrow = load_scene(folder / "horizon.toml"); // corners far off screen
+    narrow.camera.fov_degrees = 5.0;
+    compared += check_lean_geometry(narrow);
+    Scene cut = load_scene(folder / "corridor.toml"); // a far plane that cuts
+    cut.camera.far = 0.5 * (cut.camera.near + 20.0);
+    compared += check_lean_geometry(cut);
+    const Scene torus = big_torus();
+    compared += check_lean_geometry(torus);
+    compared += check_lean_geometry(with_hard_positions(torus, random, 9973));
+    // One corner's v/w just past the largest float, its neighbours' not (their 1/w
+    // differ): each corner's test reads its own 1/w, in the corner's order.
+    const CameraFrame frame = camera_frame(torus.camera);
+    for (std::size_t t = 1000; t < 7000; t += 1001) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            Scene poisoned = torus;
+            SceneVertex& corner = poisoned.meshes[0].triangles[t][k];
+            const double w = glm::dot(corner.position - frame.eye, frame.forward);
+            corner.uv.y = double(std::numeric_limits<float>::max()) * w * (1.0 + 1e-9);
+            compared += check_lean_geometry(poisoned);
+        }
+    }
+    Scene behind = torus; // the camera inside the torus's ring: corners all around it
+    behind.camera.position = {0.0, 0.0, 0.0};
+    behind.camera.target = {1.0, 0.0, 0.0};
+    compared += check_lean_geometry(behind);
+    MESSAGE(compared << " geometry runs compared");
+}
+
 // A stub of ch07-plan-mesh (no stage runs) maps no texture coordinate, so no triangle is
 // refused: the test grades that exercise.
 TEST_CASE("any number of threads refuses a bad scene with the message of one" *
@@ -620,6 +767,7 @@ TEST_CASE(
         const Scene scene = parse_scene(toml, "edges.toml", ".");
         check_fast_is_teaching(scene);
         check_geometry_threads(scene); // rejected, cut and culled in every stretch
+        check_lean_geometry(scene);    // corners on and around every plane
         // The counts the view volume's plane tests give, corner by corner, triangle by
         // triangle (outside_one, then any_outside), as chapter 6 states them.
         const CameraFrame frame = camera_frame(scene.camera);

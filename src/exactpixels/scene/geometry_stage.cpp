@@ -6,6 +6,7 @@
 #include "exactpixels/fast/worker_pool.hpp"
 #include "exactpixels/raster/fill_work.hpp"
 #include "exactpixels/scene/camera.hpp"
+#include "exactpixels/scene/geometry_lanes.hpp"
 #include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/render_report.hpp"
@@ -165,6 +166,10 @@ std::uint32_t outcode(const OutcodePlanes& codes, const glm::dvec3& p) {
 }
 //< outcodes
 
+/// The outcode planes in pairs: PlanePairs::negative_bits is outcode's lean form (the
+/// same sums in the same order; tests/ch07_fast_paths.cpp compares the two).
+using OutcodePairs = PlanePairs<max_outcode_planes>;
+
 /// Twice the signed screen area of the triangle p0 p1 p2; negative when it faces the
 /// camera (its corners run counter-clockwise as seen from its front).
 double screen_area2(Point2 p0, Point2 p1, Point2 p2) {
@@ -215,12 +220,16 @@ struct StageSetup {
     const OutcodePlanes codes;
     const double limit; ///< largest(scene.options.precision)
     const std::vector<ViewLight>& lights;
-    const bool lit; ///< no light, no lighting stage
-    StageSetup(const Scene& s, const CameraFrame& frame, const std::vector<ViewLight>& l)
+    const bool lit;           ///< no light, no lighting stage
+    const bool lean;          ///< run_geometry's `lean`: the lean forms
+    const OutcodePairs pairs; ///< `codes` in pairs
+    StageSetup(const Scene& s, const CameraFrame& frame, const std::vector<ViewLight>& l,
+               bool lean_forms)
         : scene(s), camera(frame),
           perspective(s.camera.projection == Projection::perspective), lens(pinhole(s)),
           volume(view_volume(s, lens)), codes(outcode_planes(volume)),
-          limit(largest(s.options.precision)), lights(l), lit(!s.lights.empty()) {}
+          limit(largest(s.options.precision)), lights(l), lit(!s.lights.empty()),
+          lean(lean_forms), pairs(codes.a, codes.b, codes.c, codes.d) {}
 };
 
 /// A mesh position as the geometry stage moves it, once for all the corners at it.
@@ -244,7 +253,7 @@ static_assert(std::is_trivially_default_constructible_v<MovedPosition>);
 MovedPosition move_position(const StageSetup& s, const glm::dvec3& p) {
     MovedPosition m{}; // zero where not projected
     m.view = to_view(s.camera, p - s.camera.eye);
-    m.code = outcode(s.codes, m.view);
+    m.code = s.lean ? s.pairs.negative_bits(m.view) : outcode(s.codes, m.view);
     const bool finite =
         std::isfinite(m.view.x) && std::isfinite(m.view.y) && std::isfinite(m.view.z);
     // project() refuses a point that is not finite; the triangle asks it again, to throw.
@@ -316,6 +325,8 @@ class MeshPass {
 
   private:
     void triangle(std::size_t index, MeshOutput& to) const;
+    void triangles_lean(std::size_t first, std::size_t end, MeshOutput& to) const;
+    void move_positions_lean(std::size_t first, std::size_t end);
     void check_corners(std::size_t index, const MovedCorners& m) const;
     void light(std::size_t index, const std::array<glm::dvec3, 3>& points,
                std::array<Colour, 3>& colours, std::array<glm::dvec3, 3>& normals,
@@ -425,17 +436,116 @@ void MeshPass::triangle(std::size_t index, MeshOutput& to) const {
 //< geometry-mesh
 
 void MeshPass::move_positions(std::size_t first, std::size_t end) {
+    if (s.lean && s.perspective) {
+        move_positions_lean(first, end);
+        return;
+    }
     for (std::size_t p = first; p < end; ++p) {
         moved[p] = move_position(s, (*positions)[p]);
+    }
+}
+
+/// Lean form of move_position on positions first .. end - 1 under perspective: the
+/// same values, with the camera, the lens and the planes in locals and each position
+/// written in place.
+void MeshPass::move_positions_lean(std::size_t first, std::size_t end) {
+    const CameraFrame camera = s.camera;
+    const OutcodePairs pairs = s.pairs;
+    const std::uint32_t clip = s.codes.clip;
+    const Point2 centre = s.lens.centre;
+    const double focal = s.lens.focal, limit = s.limit;
+    const glm::dvec3* const position = positions->data();
+    for (std::size_t p = first; p < end; ++p) {
+        MovedPosition& m = moved[p];
+        const glm::dvec3 view = to_view(camera, position[p] - camera.eye);
+        m.view = view;
+        m.code = pairs.negative_bits(view);
+        m.projected = (m.code & clip) == 0 && std::isfinite(view.x) &&
+                      std::isfinite(view.y) && std::isfinite(view.z);
+        if (!m.projected) {
+            m.at = {0.0, 0.0};
+            m.w = m.one_w = m.nearness = 0.0;
+            m.finite = false;
+            continue;
+        }
+        m.at = {centre.x + focal * view.x / view.z, centre.y - focal * view.y / view.z};
+        m.w = view.z;
+        m.one_w = 1.0 / view.z;
+        m.nearness = m.one_w;
+        m.finite = std::abs(m.at.x) <= limit && std::abs(m.at.y) <= limit &&
+                   std::abs(m.w) <= limit && std::abs(m.one_w) <= limit;
     }
 }
 
 void MeshPass::triangles(std::size_t first, std::size_t end, MeshOutput& to) const {
     to.out.reserve(to.out.size() + (end - first) / 2); // a closed mesh shows about half
     to.shading.reserve(shaded ? to.out.capacity() : 0);
+    if (s.lean && !shaded) {
+        triangles_lean(first, end, to);
+        return;
+    }
     for (std::size_t index = first; index < end; ++index) {
         triangle(index, to);
     }
+}
+
+/// Lean form of triangle() on a stretch of an unshaded mesh: the same decisions, lists,
+/// box, counts and errors, with the loop's constants and the box held in locals, the
+/// corners' finite tests and the box two values at a time.
+void MeshPass::triangles_lean(std::size_t first, std::size_t end, MeshOutput& to) const {
+    const std::array<std::uint32_t, 3>* const at = corners->data();
+    const std::array<SceneVertex, 3>* const triangle = mesh.triangles.data();
+    const MovedPosition* const position = moved.get();
+    const std::uint32_t reject = s.codes.reject, clip = s.codes.clip;
+    const bool cull_back = mesh.cull_back;
+    const PlanePair limit{s.limit, s.limit};
+    StretchCounts counts{to.report};
+    // The box as two pairs, (x0, y0) and (x1, y1), grown as ScreenBox::add grows it.
+    PlanePair low{to.box.x0, to.box.y0}, high{to.box.x1, to.box.y1};
+    const auto box = [&] { return ScreenBox{low[0], low[1], high[0], high[1]}; };
+    for (std::size_t index = first; index < end; ++index) {
+        const MovedPosition &m0 = position[at[index][0]], &m1 = position[at[index][1]],
+                            &m2 = position[at[index][2]];
+        if ((m0.code & m1.code & m2.code & reject) != 0) {
+            counts.rejected += 1;
+            continue;
+        }
+        if (((m0.code | m1.code | m2.code) & clip) != 0) {
+            counts.triangles = index + 1 - first; // cut_triangle may throw
+            to.box = box();
+            cut_triangle(index, {&m0, &m1, &m2}, to);
+            low = PlanePair{to.box.x0, to.box.y0};
+            high = PlanePair{to.box.x1, to.box.y1};
+            continue;
+        }
+        const std::array<SceneVertex, 3>& t = triangle[index];
+        const BitsPair uv_within =
+            within(PlanePair{t[0].uv.x, t[0].uv.y} * m0.one_w, limit) &
+            within(PlanePair{t[1].uv.x, t[1].uv.y} * m1.one_w, limit) &
+            within(PlanePair{t[2].uv.x, t[2].uv.y} * m2.one_w, limit);
+        const bool uvs_within = (uv_within[0] & uv_within[1]) != 0;
+        if (!(m0.finite & m1.finite & m2.finite & uvs_within)) {
+            counts.triangles = index + 1 - first;
+            check_corners(index, {&m0, &m1, &m2}); // throws check_finite's error
+        }
+        if (cull_back && screen_area2(m0.at, m1.at, m2.at) >= 0.0) {
+            counts.culled += 1;
+            continue;
+        }
+        const MovedCorners m{&m0, &m1, &m2};
+        ScreenTriangle& kept = to.out.emplace_back(); // field by field: no copy
+        for (std::size_t k = 0; k < 3; ++k) {
+            kept.corners[k].position = m[k]->at;
+            kept.corners[k].w = m[k]->w;
+            kept.corners[k].uv = t[k].uv;
+            kept.nearness[k] = m[k]->nearness;
+            const PlanePair p{m[k]->at.x, m[k]->at.y};
+            low = p < low ? p : low;    // std::min(x0, p.x): the first of equals
+            high = high < p ? p : high; // std::max(x1, p.x): likewise
+        }
+    }
+    counts.triangles = end - first;
+    to.box = box();
 }
 
 /// Stops a triangle drawn uncut whose corner fails check_finite's tests, with its
@@ -640,7 +750,8 @@ void run_meshes_threaded(std::vector<std::unique_ptr<MeshPass>>& passes,
 
 } // namespace
 
-SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads) {
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads,
+                           bool lean) {
     SceneGeometry geometry;
     const CameraFrame camera = camera_frame(scene.camera);
     if (!scene.lights.empty()) {
@@ -650,7 +761,7 @@ SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads
     }
     report.lighting_on = !scene.lights.empty();
     report.lights = static_cast<int>(geometry.lights.size());
-    const StageSetup setup(scene, camera, geometry.lights);
+    const StageSetup setup(scene, camera, geometry.lights, lean);
     // Every mesh first: the depth stage's plan needs to know where on screen each lands.
     geometry.meshes.resize(scene.meshes.size());
     geometry.shading.resize(scene.meshes.size());

@@ -122,7 +122,10 @@ struct SceneGeometry {
 /// that is not finite. With `threads` > 1 (1 .. max_threads) the positions and then the
 /// triangles are split among that many threads (run_on_shared_pool) and each thread's
 /// part joined in order: the same geometry, counts and first error for any number.
-SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads = 1);
+/// `lean` runs the stage's lean forms (geometry_lanes.hpp), which give the plain forms'
+/// bits; false runs only the plain forms the book shows (tests compare the two).
+SceneGeometry run_geometry(const Scene& scene, RenderReport& report, int threads = 1,
+                           bool lean = true);
 
 /// The fill work of each mesh of `geometry` (fill_work.hpp): the pixels of its
 /// triangles' bounding boxes inside `image`. render_scene refuses a scene whose sum
