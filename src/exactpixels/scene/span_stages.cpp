@@ -87,11 +87,11 @@ check_mapper_ranges(const MeshContext& m, const std::array<TexturedVertex, 3>& t
 /// The texture stage's setup of a textured triangle whose corners `tv` snap to `p`
 /// (its planes run through the snapped corners), once check_mapper_ranges has passed.
 /// `one_w` is the triangle's 1/w plane (the corners' 1/w through p); the planes and
-/// the rounding share one divide per quotient.
-TextureSetup texture_setup(const RenderOptions& options,
-                           const std::array<TexturedVertex, 3>& tv,
-                           const std::array<Point2, 3>& p, const ScreenPlane& one_w) {
-    TextureSetup setup;
+/// the rounding share one divide per quotient. Sets up `setup`, default-constructed,
+/// in place (returned, the setup was copied: 0.3M instructions on the big torus).
+void texture_setup(TextureSetup& setup, const RenderOptions& options,
+                   const std::array<TexturedVertex, 3>& tv,
+                   const std::array<Point2, 3>& p, const ScreenPlane& one_w) {
     setup.affine_exact =
         constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
     // auto: the whole triangle affine where its bound fits (no divide), else per span.
@@ -113,14 +113,13 @@ TextureSetup texture_setup(const RenderOptions& options,
         if (options.rounding) { // chapter 4: ties go right, or down
             setup.affine_rounding = choose_affine_rounding(tv);
         }
-        return setup; // u/w, v/w and 1/w unset: no span reads them
+        return; // u/w, v/w and 1/w unset: no span reads them
     }
     const CornerQuotients quotients = corner_quotients(tv);
     setup.planes = texture_planes(p, tv, quotients, one_w, false);
     if (options.rounding) {
         setup.perspective_rounding = choose_rounding(tv, quotients);
     }
-    return setup;
 }
 
 /// The vertex colours' planes: c, or c/w when perspective-correct (then divided by the
@@ -196,7 +195,7 @@ class TrianglePlanes {
     /// The texture stage's planes and rounding.
     const TextureSetup& texture() {
         if (!has_texture_) {
-            texture_ = texture_setup(m_.scene.options, triangle_.corners, p, one_w());
+            texture_setup(texture_, m_.scene.options, triangle_.corners, p, one_w());
             has_texture_ = true;
         }
         return texture_;
@@ -311,10 +310,11 @@ depth_stage(DepthBuffer& depth, const ScreenPlane& nearness, Span s, char* visib
     const int count = s.x_end - s.x_begin;
     const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
     const ScreenPlane q = nearness; // a copy: writing visible[k] cannot change it
+    float* const keys = depth.row(s.y) + s.x_begin; // the span's keys (likewise)
     int shown = 0;
     for (int k = 0; k < count; ++k) {
         const float key = nearness_key(q.at(x + k, y));
-        const bool seen = depth.test_and_write(s.x_begin + k, s.y, key);
+        const bool seen = DepthBuffer::test_and_write(keys[k], key);
         visible[k] = seen;
         shown += seen;
     }
