@@ -574,6 +574,16 @@ TEST_CASE("two overlapping quads give the same image in either file order") {
     CHECK(differ > 100); // the overlap is large: without depth the order matters
     CHECK(near_first.report.hidden.pixels == differ);
     CHECK(far_first.report.hidden.pixels == 0); // near drawn last: nothing fails the test
+    // The spans counted (once per triangle, SpanCounts): the depth stage tests every
+    // span drawn; a span counts as hidden only where a pixel of it is, and the near
+    // quad's never are.
+    for (const RenderReport* report : {&near_first.report, &far_first.report}) {
+        CHECK(report->depth.spans == report->raster.spans);
+        CHECK(report->depth.pixels == report->raster.pixels);
+    }
+    CHECK(far_first.report.hidden.spans == 0);
+    CHECK(near_first.report.hidden.spans > 0);
+    CHECK(near_first.report.hidden.spans < near_first.report.depth.spans / 2);
 }
 
 // A stub of ch07-plan-mesh (no stage runs) breaks it, so it grades that exercise.

@@ -53,15 +53,21 @@ class DepthBuffer {
     /// The depth test at pixel (x, y): true, and q stored, when q is at least as near
     /// as what is there (ties go to the later surface); false, and nothing changed,
     /// when the pixel already shows something nearer.
-    bool test_and_write(int x, int y, float q) {
-        float& stored =
-            keys_[static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) +
-                  static_cast<std::size_t>(x)];
+    bool test_and_write(int x, int y, float q) { return test_and_write(row(y)[x], q); }
+
+    /// The same test on one stored key (of a row()).
+    static bool test_and_write(float& stored, float q) {
         if (q < stored) {
             return false;
         }
         stored = q;
         return true;
+    }
+
+    /// Row y's keys, left to right: a stage that tests a span of pixels finds them once.
+    float* row(int y) {
+        return keys_.data() +
+               static_cast<std::size_t>(y) * static_cast<std::size_t>(width_);
     }
 
     /// The key stored at pixel (x, y).

@@ -87,11 +87,11 @@ check_mapper_ranges(const MeshContext& m, const std::array<TexturedVertex, 3>& t
 /// The texture stage's setup of a textured triangle whose corners `tv` snap to `p`
 /// (its planes run through the snapped corners), once check_mapper_ranges has passed.
 /// `one_w` is the triangle's 1/w plane (the corners' 1/w through p); the planes and
-/// the rounding share one divide per quotient.
-TextureSetup texture_setup(const RenderOptions& options,
-                           const std::array<TexturedVertex, 3>& tv,
-                           const std::array<Point2, 3>& p, const ScreenPlane& one_w) {
-    TextureSetup setup;
+/// the rounding share one divide per quotient. Sets up `setup`, default-constructed,
+/// in place (returned, the setup was copied: 0.3M instructions on the big torus).
+void texture_setup(TextureSetup& setup, const RenderOptions& options,
+                   const std::array<TexturedVertex, 3>& tv,
+                   const std::array<Point2, 3>& p, const ScreenPlane& one_w) {
     setup.affine_exact =
         constant_depth(tv[0].w, tv[1].w, tv[2].w); // @eq:scene-constant-w
     // auto: the whole triangle affine where its bound fits (no divide), else per span.
@@ -113,14 +113,13 @@ TextureSetup texture_setup(const RenderOptions& options,
         if (options.rounding) { // chapter 4: ties go right, or down
             setup.affine_rounding = choose_affine_rounding(tv);
         }
-        return setup; // u/w, v/w and 1/w unset: no span reads them
+        return; // u/w, v/w and 1/w unset: no span reads them
     }
     const CornerQuotients quotients = corner_quotients(tv);
     setup.planes = texture_planes(p, tv, quotients, one_w, false);
     if (options.rounding) {
         setup.perspective_rounding = choose_rounding(tv, quotients);
     }
-    return setup;
 }
 
 /// The vertex colours' planes: c, or c/w when perspective-correct (then divided by the
@@ -196,7 +195,7 @@ class TrianglePlanes {
     /// The texture stage's planes and rounding.
     const TextureSetup& texture() {
         if (!has_texture_) {
-            texture_ = texture_setup(m_.scene.options, triangle_.corners, p, one_w());
+            texture_setup(texture_, m_.scene.options, triangle_.corners, p, one_w());
             has_texture_ = true;
         }
         return texture_;
@@ -311,10 +310,11 @@ depth_stage(DepthBuffer& depth, const ScreenPlane& nearness, Span s, char* visib
     const int count = s.x_end - s.x_begin;
     const double x = s.x_begin + 0.5, y = s.y + 0.5; // the first pixel's centre
     const ScreenPlane q = nearness; // a copy: writing visible[k] cannot change it
+    float* const keys = depth.row(s.y) + s.x_begin; // the span's keys (likewise)
     int shown = 0;
     for (int k = 0; k < count; ++k) {
         const float key = nearness_key(q.at(x + k, y));
-        const bool seen = depth.test_and_write(s.x_begin + k, s.y, key);
+        const bool seen = DepthBuffer::test_and_write(keys[k], key);
         visible[k] = seen;
         shown += seen;
     }
@@ -476,13 +476,48 @@ Filter prepare_filter(MeshContext& m, const TrianglePlanes& planes) {
     }
 }
 
-/// Counts a span of `count` pixels of which the depth test showed `shown`.
-void count_depth(RenderReport& report, int count, int shown) {
-    report.depth.spans += 1;
-    report.depth.pixels += count;
-    report.hidden.spans += shown < count;
-    report.hidden.pixels += count - shown;
-}
+/// A triangle's rasterized spans, those the depth test hid pixels of and those the
+/// direct span mapped with the triangle's affine mapper, counted in locals span by span
+/// and added to the report once (add_to): per span into the report, they cost the big
+/// torus's frame 1.6M instructions more.
+struct SpanCounts {
+    long long spans = 0, pixels = 0;        ///< rasterized (and depth-tested)
+    long long hidden_spans = 0, hidden = 0; ///< spans with a hidden pixel, those pixels
+    /// Spans mapped by `affine`, the triangle's mapper (affine, no divide), their pixels
+    /// and seconds: count_mapped_span's counts of each, added up.
+    long long affine_spans = 0, affine_pixels = 0;
+    double affine_seconds = 0.0;
+    const MappedSpan* affine = nullptr;
+
+    /// Adds them to the raster counts of `report`, to the depth stage's where it ran
+    /// (`depth`: it tests every span rasterized) and to the texture stage's, auto's and
+    /// the mapper's (the only mapper of the triangle: its triangle counted once).
+    void add_to(RenderReport& report, bool depth) const {
+        report.raster.spans += spans;
+        report.raster.pixels += pixels;
+        if (depth) {
+            report.depth.spans += spans;
+            report.depth.pixels += pixels;
+            report.hidden.spans += hidden_spans;
+            report.hidden.pixels += hidden;
+        }
+        if (affine_spans == 0) {
+            return;
+        }
+        if (affine->chosen) {
+            report.auto_choice.spans += affine_spans;
+            report.auto_choice.pixels += affine_pixels;
+            report.auto_choice.divides += affine->choice_divides * affine_spans;
+        }
+        WorkCount& counter = report.mappers[static_cast<std::size_t>(MapperKind::affine)];
+        for (WorkCount* stage : {&counter, &report.texture}) {
+            stage->spans += affine_spans;
+            stage->pixels += affine_pixels;
+            stage->seconds += affine_seconds;
+        }
+        counter.triangles += 1;
+    }
+};
 
 /// The direct span's texels where the whole triangle is mapped affine in double:
 /// map_span's affine mapper (u and v stepped from pixel 0, indices by real_texel_index),
@@ -507,10 +542,9 @@ void count_depth(RenderReport& report, int count, int shown) {
 /// The direct span (FastPaths::lean_spans, for a mesh lean_drawable accepts): the one
 /// stage that makes the colour, nearest texels or the flat colour, writes each visible
 /// pixel straight to the frame; a hidden pixel's texel is not read.
-[[gnu::always_inline]] inline void direct_span(MeshContext& m, TrianglePlanes& planes,
-                                               StageTimer& timer, Span s,
-                                               const char* visible,
-                                               std::array<bool, 5>& used) {
+[[gnu::always_inline]] inline void
+direct_span(MeshContext& m, TrianglePlanes& planes, StageTimer& timer, Span s,
+            const char* visible, std::array<bool, 5>& used, SpanCounts& counts) {
     const int count = s.x_end - s.x_begin;
     Rgba8* const out = &m.frame.at(s.x_begin, s.y); // the span's pixels in a row
     if (!m.stages.texture) {
@@ -536,7 +570,10 @@ void count_depth(RenderReport& report, int count, int shown) {
             direct_affine_span(texture, s, visible, texels, masked, wrap, out);
             return 0;
         });
-        count_mapped_span(m.report, texture.mapped, count, spent, used);
+        counts.affine_spans += 1; // count_mapped_span's counts, once per triangle
+        counts.affine_pixels += count;
+        counts.affine_seconds += spent;
+        counts.affine = &texture.mapped;
         return;
     }
     const MappedSpan mapped = timer.timed(spent, [&] {
@@ -637,14 +674,15 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle,
     StageTimer timer{m.timed};
     const Clock::time_point start = timer.now();
     std::array<bool, 5> mapper_used{};
+    SpanCounts counts; // added to the report after the last span
     const Viewport screen{m.frame.width(), std::min(m.frame.height(), m.end_row)};
     scanline_spans_in_range(planes.snapped, screen, [&](Span s) { // snapped in range
         if (s.y < m.first_row) {
             return; // above the threaded driver's band
         }
         const int count = s.x_end - s.x_begin;
-        m.report.raster.spans += 1;
-        m.report.raster.pixels += count;
+        counts.spans += 1;
+        counts.pixels += count;
         const char* visible = nullptr; // every pixel seen
         // The depth test first, on every pixel: a span it hides is not shaded.
         if (m.depth != nullptr) {
@@ -652,18 +690,20 @@ void draw_triangle(MeshContext& m, const ScreenTriangle& triangle,
             const int shown = timer.timed(m.report.depth.seconds, [&] {
                 return depth_stage(*m.depth, planes.nearness(), s, tested);
             });
-            count_depth(m.report, count, shown);
+            counts.hidden_spans += shown < count;
+            counts.hidden += count - shown;
             if (shown == 0) {
                 return;
             }
             visible = shown < count ? tested : nullptr;
         }
         if constexpr (direct) {
-            direct_span(m, planes, timer, s, visible, mapper_used);
+            direct_span(m, planes, timer, s, visible, mapper_used, counts);
         } else {
             shaded_span(m, planes, filter, timer, s, visible, mapper_used);
         }
     });
+    counts.add_to(m.report, m.depth != nullptr);
     m.report.raster.seconds += timer.since(start) - timer.shading;
 }
 //< draw-triangle
