@@ -174,12 +174,14 @@ void bin_triangles(const SceneGeometry& geometry, int height, std::size_t i,
         const double top = std::min({c[0].position.y, c[1].position.y, c[2].position.y});
         const double bottom =
             std::max({c[0].position.y, c[1].position.y, c[2].position.y});
-        const double margin = 0.5 + 1.0 / 256.0;
-        const int first =
-            static_cast<int>(std::clamp(std::floor(top - margin), 0.0, last_row)) /
-            band_rows;
-        const int last = static_cast<int>(std::clamp(
-                             std::floor(bottom - 0.5 + 1.0 / 256.0), 0.0, last_row)) /
+        // Rows clamped to the image before they are floored: the same rows (the bounds
+        // are whole), and a value in [0, last_row] converts to int by truncation, which
+        // is its floor.
+        const int first = static_cast<int>(std::clamp(top - 0.5 - 1.0 / 256.0, 0.0,
+                                                      last_row)) /
+                          band_rows;
+        const int last = static_cast<int>(std::clamp(bottom - 0.5 + 1.0 / 256.0, 0.0,
+                                                     last_row)) /
                          band_rows;
         for (int b = first; b <= last; ++b) {
             bins[static_cast<std::size_t>(b)].push_back(
@@ -267,30 +269,26 @@ bool draw_band_part(MeshContext& m, const Frame& f, const std::vector<std::size_
     return true;
 }
 
-/// Draws band `band`: the threads' bins of it in thread order (so in scene order), each
-/// mesh by mesh; `whole` says which textures' chains are whole, `first` as scene_index's.
+/// Draws band `band`'s bin mesh by mesh; `whole` says which textures' chains are whole,
+/// `first` as scene_index's.
 BandResult draw_band(const Frame& f, const std::vector<char>& corrected, bool* whole,
-                     const std::vector<std::size_t>& first,
-                     const std::vector<Bins>& parts, int band) {
+                     const std::vector<std::size_t>& first, std::span<const Binned> bin,
+                     int band) {
     BandResult out;
     bool no_chain = false;
-    for (const Bins& part : parts) {
-        const std::vector<Binned>& bin = part[static_cast<std::size_t>(band)];
-        for (std::size_t at = 0, end = 0; at < bin.size(); at = end) {
-            end = at;
-            while (end < bin.size() && bin[end].mesh == bin[at].mesh) {
-                ++end;
-            }
-            const std::size_t i = bin[at].mesh;
-            MeshContext m = mesh_context(f, i, out.report, corrected[i] != 0);
-            const std::optional<std::size_t> texture = f.scene.meshes[i].texture;
-            m.full_chain = texture ? &whole[*texture] : &no_chain;
-            m.first_row = band * band_rows;
-            m.end_row = m.first_row + band_rows;
-            if (!draw_band_part(m, f, first, std::span(bin).subspan(at, end - at),
-                                out)) {
-                return out;
-            }
+    for (std::size_t at = 0, end = 0; at < bin.size(); at = end) {
+        end = at;
+        while (end < bin.size() && bin[end].mesh == bin[at].mesh) {
+            ++end;
+        }
+        const std::size_t i = bin[at].mesh;
+        MeshContext m = mesh_context(f, i, out.report, corrected[i] != 0);
+        const std::optional<std::size_t> texture = f.scene.meshes[i].texture;
+        m.full_chain = texture ? &whole[*texture] : &no_chain;
+        m.first_row = band * band_rows;
+        m.end_row = m.first_row + band_rows;
+        if (!draw_band_part(m, f, first, bin.subspan(at, end - at), out)) {
+            break;
         }
     }
     return out;
@@ -349,7 +347,7 @@ void merge_bands(const std::vector<BandResult>& bands, std::size_t triangles,
 /// The threaded driver (FastPaths::threads > 1): the chains the filter stage will read
 /// made first, in scene order; each thread bins its share of the triangles into bands of
 /// rows (bin_by_rows); the threads take the bands one at a time, the fullest first,
-/// and draw a band's parts in thread order, so its triangles in scene order, their
+/// join each band's parts in thread order and draw its triangles in scene order, their
 /// spans in its rows only; the bands' counts added in band order. Returns
 /// false, having drawn nothing, when making a chain meets a bad triangle: the book's
 /// loop then finds the first error in scene order.
@@ -391,7 +389,12 @@ bool draw_threaded(const Frame& f, RenderReport& report) {
     const std::function<void(int)> take_bands = [&](int) {
         for (std::size_t n = next++; n < sizes.size(); n = next++) {
             const std::size_t b = fullest[n];
-            bands[b] = draw_band(f, corrected, whole.get(), first, parts,
+            std::vector<Binned> bin; // the threads' parts in order: scene order
+            bin.reserve(sizes[b]);
+            for (const Bins& part : parts) {
+                bin.insert(bin.end(), part[b].begin(), part[b].end());
+            }
+            bands[b] = draw_band(f, corrected, whole.get(), first, bin,
                                  static_cast<int>(b));
         }
     };
