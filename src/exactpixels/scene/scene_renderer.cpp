@@ -212,8 +212,18 @@ std::vector<Bins> bin_by_rows(const SceneGeometry& geometry, int height, int thr
     return bins;
 }
 
+/// Per mesh, the index of its first triangle in the scene's list of all triangles, mesh
+/// after mesh; then the number of all.
+std::vector<std::size_t> first_triangles(const SceneGeometry& geometry) {
+    std::vector<std::size_t> first{0};
+    for (const std::vector<ScreenTriangle>& mesh : geometry.meshes) {
+        first.push_back(first.back() + mesh.size());
+    }
+    return first;
+}
+
 /// Triangle (mesh, triangle) as its index in the scene's list of all triangles, mesh
-/// after mesh (so in scene order): first[mesh] + triangle.
+/// after mesh (so in scene order), `first` as first_triangles gives it.
 std::size_t scene_index(const std::vector<std::size_t>& first, const Binned& b) {
     return first[b.mesh] + b.triangle;
 }
@@ -380,10 +390,7 @@ bool draw_threaded(const Frame& f, RenderReport& report) {
     std::iota(fullest.begin(), fullest.end(), std::size_t{0});
     std::stable_sort(fullest.begin(), fullest.end(),
                      [&](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; });
-    std::vector<std::size_t> first(meshes); // scene_index of each mesh's first triangle
-    for (std::size_t i = 1; i < meshes; ++i) {
-        first[i] = first[i - 1] + f.geometry.meshes[i - 1].size();
-    }
+    const std::vector<std::size_t> first = first_triangles(f.geometry); // scene_index's
     std::vector<BandResult> bands(sizes.size());
     std::atomic<std::size_t> next{0};
     const std::function<void(int)> take_bands = [&](int) {
@@ -399,8 +406,7 @@ bool draw_threaded(const Frame& f, RenderReport& report) {
         }
     };
     run_on_shared_pool(f.fast.threads, take_bands); // threads kept from frame to frame
-    merge_bands(bands, meshes == 0 ? 0 : first.back() + f.geometry.meshes.back().size(),
-                report);
+    merge_bands(bands, first.back(), report);
     return true;
 }
 //< draw-threaded
