@@ -70,7 +70,13 @@
 // Instruction counts (chapters/07-scenes/big_scene.sh): `--once=SIDE/RUN` draws
 // one frame untimed, then one more inside ch07_frame_once, the function that
 // valgrind --tool=callgrind --toggle-collect=ch07_frame_once counts. Run it with
-// LP_NUM_THREADS=0 so that llvmpipe rasterizes in the counted thread.
+// LP_NUM_THREADS=0 so that llvmpipe rasterizes in the counted thread. The toggle counts
+// our calling thread only; `--thread-counts` (with --threads=N, before --once=ours/RUN)
+// has each of our N threads dump its own counts just before and just after that frame
+// (callgrind client requests, on the renderer's shared pool), so that
+//   valgrind --tool=callgrind --separate-threads=yes bench_ch07_big_scene --threads=2
+//       --thread-counts --once=ours/full
+// writes each thread's count of the frame in the dumps whose trigger is "after frame".
 // `--report` prints format_report of the median of seven renders (by total time) of each
 // drawn RUN; `--png=FILE` writes our render of the full scene. `--fast=NAMES` (before
 // --once, --report or --png) makes our side use only the named fast paths (FastPaths,
@@ -89,6 +95,10 @@
 #include <GL/glext.h>
 #include <GL/osmesa.h>
 #include <benchmark/benchmark.h>
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define EXACTPIXELS_CALLGRIND 1
+#endif
 
 #include <algorithm>
 #include <array>
@@ -674,6 +684,20 @@ void llvmpipe_frame_copy(benchmark::State& state) {
     report_check(state, FrameCheck{}); // nothing drawn: nothing covered
 }
 
+/// --thread-counts: each of our threads dumps its callgrind counts around the frame.
+bool thread_counts = false;
+
+/// With --thread-counts, each of our bench_threads threads dumps (and so zeroes) its
+/// callgrind counts under the trigger `when`; nothing outside callgrind.
+void dump_each_thread([[maybe_unused]] const char* when) {
+#ifdef EXACTPIXELS_CALLGRIND
+    if (thread_counts) {
+        run_on_shared_pool(bench_threads,
+                           [when](int) { CALLGRIND_DUMP_STATS_AT(when); });
+    }
+#endif
+}
+
 /// The one frame callgrind counts (see the top of the file).
 extern "C" __attribute__((noinline)) void
 ch07_frame_once(const std::function<void()>& draw) {
@@ -709,7 +733,9 @@ int frame_once(const std::string& name) {
         return 2;
     }
     draw(); // the first frame compiles llvmpipe's code
+    dump_each_thread("before frame");
     ch07_frame_once(draw);
+    dump_each_thread("after frame");
     return 0;
 }
 
@@ -767,6 +793,13 @@ int main(int argc, char** argv) {
             if (!read_fast_paths(arg.substr(7))) {
                 return 2;
             }
+            std::copy(argv + i + 1, argv + argc, argv + i);
+            argc -= 1;
+            i -= 1;
+            continue;
+        }
+        if (arg == "--thread-counts") { // ours on --threads=N only
+            thread_counts = bench_threads > 1;
             std::copy(argv + i + 1, argv + argc, argv + i);
             argc -= 1;
             i -= 1;

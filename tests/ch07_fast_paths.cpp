@@ -378,6 +378,49 @@ TEST_CASE("any number of threads draws every shipped scene and the big torus as 
     MESSAGE((scenes + 2) << " scenes, " << renders << " threaded renders compared");
 }
 
+TEST_CASE("any number of threads draws triangles at the bands' edges as one") {
+    // Orthographic, one world unit a pixel: each corner lands on screen where it is
+    // placed. Each triangle's flat side lies at, or within 3/512 px of, the centre of the
+    // last row of a band or the first row of the next (64 k -+ 1/2), its apex 3 px above
+    // or below: the rows the bins' margins decide. A bin that misses the band of such a
+    // row loses the triangle's pixels there.
+    constexpr int width = 256, height = 256;
+    std::string positions, uvs;
+    int triangles = 0;
+    for (const int edge : {64, 128, 192}) {
+        for (const double centre : {edge - 0.5, edge + 0.5}) {
+            for (int d = -3; d <= 3; ++d) {
+                for (const double apex : {-3.0, 3.0}) {
+                    const double x = 3.0 * triangles + 0.25, y = centre + d / 512.0;
+                    const std::array<glm::dvec2, 3> corners = {
+                        glm::dvec2{x, y}, glm::dvec2{x + 2.5, y},
+                        glm::dvec2{x + 1.25, y + apex}};
+                    for (std::size_t k = 0; k < 3; ++k) { // screen (px, py): world
+                        positions += fmt::format( // (px - w/2, h/2 - py, 1)
+                            "[{}, {}, 1],", number(corners[k].x - 0.5 * width),
+                            number(0.5 * height - corners[k].y));
+                        uvs += fmt::format("[{}, {}],", 8 * k, 4 * triangles % 64);
+                    }
+                    triangles += 1;
+                }
+            }
+        }
+    }
+    const Scene scene = parse_scene(
+        fmt::format("[image]\nwidth = {}\nheight = {}\n[camera]\nprojection = "
+                    "\"orthographic\"\nposition = [0, 0, 0]\ntarget = [0, 0, 1]\n"
+                    "view_height = {}\n[render]\nmapper = \"auto\"\n"
+                    "[textures.checks]\nkind = \"checkerboard\"\nsize = [64, 64]\n"
+                    "square = 8\n[[mesh]]\nprimitive = \"triangles\"\n"
+                    "texture = \"checks\"\npositions = [{}]\nuv = [{}]\n",
+                    width, height, height, positions, uvs),
+        "band_edges.toml", ".");
+    const RenderResult one = render_scene(scene);
+    REQUIRE(one.report.raster.triangles == triangles); // none culled or clipped
+    REQUIRE(one.report.raster.pixels > 2 * triangles); // pixels in both bands' rows
+    CHECK(check_threads_are_one(scene) == 12);
+}
+
 TEST_CASE("any number of threads runs the geometry stage as one") {
     const std::filesystem::path folder = shipped_scene_folder();
     int compared = 0;

@@ -164,11 +164,6 @@ struct Binned {
 /// Per band of band_rows rows, its triangles in scene order.
 using Bins = std::vector<std::vector<Binned>>;
 
-/// Triangle (mesh, triangle) as one number, in scene order.
-std::uint64_t scene_order(const Binned& b) {
-    return (std::uint64_t{b.mesh} << 32) | b.triangle;
-}
-
 /// Bins triangles `from` .. `to` - 1 of mesh i into `bins` (see bin_by_rows).
 void bin_triangles(const SceneGeometry& geometry, int height, std::size_t i,
                    std::size_t from, std::size_t to, Bins& bins) {
@@ -179,12 +174,14 @@ void bin_triangles(const SceneGeometry& geometry, int height, std::size_t i,
         const double top = std::min({c[0].position.y, c[1].position.y, c[2].position.y});
         const double bottom =
             std::max({c[0].position.y, c[1].position.y, c[2].position.y});
-        const double margin = 0.5 + 1.0 / 256.0;
-        const int first =
-            static_cast<int>(std::clamp(std::floor(top - margin), 0.0, last_row)) /
-            band_rows;
-        const int last = static_cast<int>(std::clamp(
-                             std::floor(bottom - 0.5 + 1.0 / 256.0), 0.0, last_row)) /
+        // Rows clamped to the image before they are floored: the same rows (the bounds
+        // are whole), and a value in [0, last_row] converts to int by truncation, which
+        // is its floor.
+        const int first = static_cast<int>(std::clamp(top - 0.5 - 1.0 / 256.0, 0.0,
+                                                      last_row)) /
+                          band_rows;
+        const int last = static_cast<int>(std::clamp(bottom - 0.5 + 1.0 / 256.0, 0.0,
+                                                     last_row)) /
                          band_rows;
         for (int b = first; b <= last; ++b) {
             bins[static_cast<std::size_t>(b)].push_back(
@@ -215,18 +212,36 @@ std::vector<Bins> bin_by_rows(const SceneGeometry& geometry, int height, int thr
     return bins;
 }
 
+/// Per mesh, the index of its first triangle in the scene's list of all triangles, mesh
+/// after mesh; then the number of all.
+std::vector<std::size_t> first_triangles(const SceneGeometry& geometry) {
+    std::vector<std::size_t> first{0};
+    for (const std::vector<ScreenTriangle>& mesh : geometry.meshes) {
+        first.push_back(first.back() + mesh.size());
+    }
+    return first;
+}
+
+/// Triangle (mesh, triangle) as its index in the scene's list of all triangles, mesh
+/// after mesh (so in scene order), `first` as first_triangles gives it.
+std::size_t scene_index(const std::vector<std::size_t>& first, const Binned& b) {
+    return first[b.mesh] + b.triangle;
+}
+
 /// What a band drew: its counts, the mappers each of its shared triangles used there
-/// (bit k: MapperKind k), counted once per triangle after the bands, and its first error.
+/// (scene_index, bit k: MapperKind k), counted once per triangle after the bands, and
+/// its first error.
 struct BandResult {
     RenderReport report;
-    std::vector<std::pair<std::uint64_t, unsigned>> shared_mappers;
-    std::uint64_t error_at = ~std::uint64_t{0}; ///< scene_order of the failing triangle
+    std::vector<std::pair<std::size_t, unsigned>> shared_mappers;
+    std::size_t error_at = ~std::size_t{0}; ///< scene_index of the failing triangle
     std::string error;                          ///< its message, as render_scene's
 };
 
-/// One mesh's triangles `part` of a band, as draw_mesh draws them. False after an error.
-bool draw_band_part(MeshContext& m, const Frame& f, std::span<const Binned> part,
-                    BandResult& out) {
+/// One mesh's triangles `part` of a band, as draw_mesh draws them; `first` as
+/// scene_index's. False after an error.
+bool draw_band_part(MeshContext& m, const Frame& f, const std::vector<std::size_t>& first,
+                    std::span<const Binned> part, BandResult& out) {
     const std::size_t i = part.front().mesh;
     const bool direct = draws_direct(m, f.fast.lean_spans);
     m.visible.resize(static_cast<std::size_t>(f.image.width()));
@@ -246,7 +261,7 @@ bool draw_band_part(MeshContext& m, const Frame& f, std::span<const Binned> part
             draw_one_triangle(m, f.geometry.meshes[i][b.triangle],
                               shading.empty() ? nullptr : &shading[b.triangle], direct);
         } catch (const Error& error) {
-            out.error_at = scene_order(b);
+            out.error_at = scene_index(first, b);
             out.error = fmt::format("{}: {}", m.mesh.origin, error.what());
             return false;
         }
@@ -257,16 +272,18 @@ bool draw_band_part(MeshContext& m, const Frame& f, std::span<const Binned> part
                 mask |= counter.triangles != used[kind] ? 1U << kind : 0U;
                 counter.triangles = used[kind];
             }
-            out.shared_mappers.emplace_back(scene_order(b), mask);
+            out.shared_mappers.emplace_back(scene_index(first, b), mask);
         }
     }
     share_drawing_time(out.report, before, seconds_since(t0));
     return true;
 }
 
-/// Draws band `band`'s bin mesh by mesh; `whole` says which textures' chains are whole.
+/// Draws band `band`'s bin mesh by mesh; `whole` says which textures' chains are whole,
+/// `first` as scene_index's.
 BandResult draw_band(const Frame& f, const std::vector<char>& corrected, bool* whole,
-                     std::span<const Binned> bin, int band) {
+                     const std::vector<std::size_t>& first, std::span<const Binned> bin,
+                     int band) {
     BandResult out;
     bool no_chain = false;
     for (std::size_t at = 0, end = 0; at < bin.size(); at = end) {
@@ -280,7 +297,7 @@ BandResult draw_band(const Frame& f, const std::vector<char>& corrected, bool* w
         m.full_chain = texture ? &whole[*texture] : &no_chain;
         m.first_row = band * band_rows;
         m.end_row = m.first_row + band_rows;
-        if (!draw_band_part(m, f, bin.subspan(at, end - at), out)) {
+        if (!draw_band_part(m, f, first, bin.subspan(at, end - at), out)) {
             break;
         }
     }
@@ -313,29 +330,25 @@ void add_drawing(RenderReport& report, const RenderReport& part) {
 }
 
 /// The bands' results into `report` in band order; the mappers of a triangle in several
-/// bands counted once; the first error in scene order thrown.
-void merge_bands(std::vector<BandResult>& bands, RenderReport& report) {
+/// bands counted once (`triangles`: how many the scene has); the first error in scene
+/// order thrown.
+void merge_bands(const std::vector<BandResult>& bands, std::size_t triangles,
+                 RenderReport& report) {
     const auto first_error = std::min_element(
         bands.begin(), bands.end(),
         [](const BandResult& a, const BandResult& b) { return a.error_at < b.error_at; });
     if (first_error != bands.end() && !first_error->error.empty()) {
         throw Error(first_error->error);
     }
-    std::vector<std::pair<std::uint64_t, unsigned>> shared;
-    for (BandResult& band : bands) {
+    std::vector<unsigned char> used(triangles); // per triangle: the mappers counted
+    for (const BandResult& band : bands) {
         add_drawing(report, band.report);
-        shared.insert(shared.end(), band.shared_mappers.begin(),
-                      band.shared_mappers.end());
-    }
-    std::sort(shared.begin(), shared.end());
-    for (std::size_t at = 0, end = 0; at < shared.size(); at = end) {
-        unsigned mask = 0;
-        for (end = at; end < shared.size() && shared[end].first == shared[at].first;
-             ++end) {
-            mask |= shared[end].second;
-        }
-        for (std::size_t kind = 0; kind < report.mappers.size(); ++kind) {
-            report.mappers[kind].triangles += (mask >> kind) & 1U;
+        for (const auto& [triangle, mask] : band.shared_mappers) {
+            const unsigned fresh = mask & ~unsigned{used[triangle]}; // not yet counted
+            used[triangle] = static_cast<unsigned char>(used[triangle] | mask);
+            for (std::size_t kind = 0; kind < report.mappers.size(); ++kind) {
+                report.mappers[kind].triangles += (fresh >> kind) & 1U;
+            }
         }
     }
 }
@@ -377,6 +390,7 @@ bool draw_threaded(const Frame& f, RenderReport& report) {
     std::iota(fullest.begin(), fullest.end(), std::size_t{0});
     std::stable_sort(fullest.begin(), fullest.end(),
                      [&](std::size_t a, std::size_t b) { return sizes[a] > sizes[b]; });
+    const std::vector<std::size_t> first = first_triangles(f.geometry); // scene_index's
     std::vector<BandResult> bands(sizes.size());
     std::atomic<std::size_t> next{0};
     const std::function<void(int)> take_bands = [&](int) {
@@ -387,11 +401,12 @@ bool draw_threaded(const Frame& f, RenderReport& report) {
             for (const Bins& part : parts) {
                 bin.insert(bin.end(), part[b].begin(), part[b].end());
             }
-            bands[b] = draw_band(f, corrected, whole.get(), bin, static_cast<int>(b));
+            bands[b] = draw_band(f, corrected, whole.get(), first, bin,
+                                 static_cast<int>(b));
         }
     };
     run_on_shared_pool(f.fast.threads, take_bands); // threads kept from frame to frame
-    merge_bands(bands, report);
+    merge_bands(bands, first.back(), report);
     return true;
 }
 //< draw-threaded
