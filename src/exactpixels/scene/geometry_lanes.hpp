@@ -56,7 +56,12 @@ inline BitsPair within(PlanePair value, PlanePair limit) {
 /// N planes a x + b y + c z + d (N even), planes 2k and 2k + 1 side by side in pair k.
 template <std::size_t N> struct PlanePairs {
     static_assert(N % 2 == 0);
-    std::array<PlanePair, N / 2> a{}, b{}, c{}, d{};
+    // The coefficients, plane 2k's and plane 2k + 1's side by side in pair k.
+    std::array<PlanePair, N / 2> a{}; ///< of x
+    std::array<PlanePair, N / 2> b{}; ///< of y
+    std::array<PlanePair, N / 2> c{}; ///< of z
+    std::array<PlanePair, N / 2> d{}; ///< the constant
+    /// Pairs up the planes with coefficients pa[i] x + pb[i] y + pc[i] z + pd[i].
     PlanePairs(const std::array<double, N>& pa, const std::array<double, N>& pb,
                const std::array<double, N>& pc, const std::array<double, N>& pd) {
         for (std::size_t k = 0; k < N / 2; ++k) {
@@ -82,8 +87,11 @@ template <std::size_t N> struct PlanePairs {
 /// A stretch of triangles' counts, added to the report when the stretch ends (also when
 /// an error ends it).
 struct StretchCounts {
-    RenderReport& report;
-    long long triangles = 0, rejected = 0, culled = 0;
+    RenderReport& report;    ///< where the counts go
+    long long triangles = 0; ///< triangles the stretch met
+    long long rejected = 0;  ///< of them, outside one plane
+    long long culled = 0;    ///< of them, back faces culled
+    /// Counts from zero into `to`.
     explicit StretchCounts(RenderReport& to) : report(to) {}
     StretchCounts(const StretchCounts&) = delete;
     StretchCounts& operator=(const StretchCounts&) = delete;

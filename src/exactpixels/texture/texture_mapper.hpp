@@ -96,6 +96,7 @@ constexpr int fixed_texel_index(std::int32_t U, std::int32_t modifier) {
 /// held to int's range.
 class RealTexelIndex {
   public:
+    /// The rule for `modifier` (chapter 4's u_modifier or v_modifier).
     explicit RealTexelIndex(std::int32_t modifier)
         : floor_(modifier >= texel_scale / 2),
           // b' = modifier - D/2 in floor((U + b') / D); for integer U that floor is
@@ -103,6 +104,7 @@ class RealTexelIndex {
           bias_(double(floor_ ? modifier - texel_scale / 2
                               : modifier - texel_scale / 2 + 1) /
                 texel_scale) {}
+    /// The texel index of coordinate u (texels), held to int's range.
     int operator()(double u) const {
         const bool small = std::abs(u) < 0x1p30; // false for NaN too
         const double x = u + bias_;
