@@ -80,9 +80,9 @@
 // `--report` prints format_report of the median of seven renders (by total time) of each
 // drawn RUN; `--png=FILE` writes our render of the full scene. `--fast=NAMES` (before
 // --once, --report or --png) makes our side use only the named fast paths (FastPaths,
-// scene_renderer.hpp), a comma-separated list of masked_fetch and lean_spans, or
-// `none` for the teaching path: the instruction count of each fast path is the difference
-// it makes.
+// scene_renderer.hpp), a comma-separated list of masked_fetch, lean_spans and
+// lean_geometry, or `none` for the teaching path: the instruction count of each fast path
+// is the difference it makes.
 #define GL_GLEXT_PROTOTYPES 1
 #include "exactpixels/base/atomic_file.hpp"
 #include "exactpixels/base/png.hpp"
@@ -154,6 +154,8 @@ bool read_fast_paths(const std::string& names) {
             fast_paths.masked_fetch = true;
         } else if (name == "lean_spans") {
             fast_paths.lean_spans = true;
+        } else if (name == "lean_geometry") {
+            fast_paths.lean_geometry = true;
         } else if (name != "none") {
             std::fprintf(stderr, "bench_ch07_big_scene: unknown fast path %s\n",
                          name.c_str());

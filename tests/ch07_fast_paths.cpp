@@ -273,11 +273,11 @@ TEST_CASE("the fast paths draw the big torus as the teaching path does") {
     no_depth.options.depth = DepthMode::off;
     for (const Scene* s : std::array<const Scene*, 2>{&scene, &no_depth}) {
         const RenderResult plain = render_scene(*s, nullptr, teaching_path);
-        for (int path = 0; path < 3; ++path) {
+        for (int path = 0; path < 4; ++path) {
             INFO("fast path " << path << (s == &scene ? ", depth on" : ", depth off"));
             FastPaths alone = teaching_path;
             bool* const flags[] = {&alone.masked_fetch, &alone.lean_spans,
-                                   &alone.exact_lanes};
+                                   &alone.exact_lanes, &alone.lean_geometry};
             *flags[path] = true;
             const RenderResult fast = render_scene(*s, nullptr, alone);
             CHECK(fast.image == plain.image);

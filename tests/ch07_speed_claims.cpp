@@ -64,10 +64,12 @@ double fact(const std::string& name) {
 
 } // namespace
 
-TEST_CASE("claim: on the big torus llvmpipe's frame is shorter than ours, on one core, "
-          "though ours executes fewer instructions") {
-    CHECK(fact("time_ratio_full") > 1.0);
-    CHECK(fact("ours_full") > fact("llvmpipe_full"));
+TEST_CASE("claim: on the big torus ours and llvmpipe's frames take the same time on one "
+          "core, though ours executes fewer instructions") {
+    // The same time: the medians within 3 %, about the spread of either side's
+    // repetitions (@sec:scene-speed).
+    CHECK(fact("time_ratio_full") > 0.97);
+    CHECK(fact("time_ratio_full") < 1.03);
     CHECK(fact("instruction_ratio_full") < 1.0);
     CHECK(fact("instructions_ours_full") < fact("instructions_llvmpipe_full"));
 }
@@ -80,7 +82,7 @@ TEST_CASE("claim: the big torus without depth and texture costs less time and wo
 TEST_CASE(
     "claim: on the big torus each fast path saves instructions, and all save more") {
     const double plain = fact("instructions_ours_full_plain");
-    for (const char* path : {"masked_fetch", "lean_spans"}) {
+    for (const char* path : {"masked_fetch", "lean_spans", "lean_geometry"}) {
         INFO(path);
         const double alone = fact(std::string("instructions_ours_full_") + path);
         CHECK(alone < plain);

@@ -18,8 +18,8 @@
 #   LP_NUM_THREADS=0 valgrind --tool=callgrind --toggle-collect=ch07_frame_once \
 #       bench_ch07_big_scene --once=NAME
 # (and for our full scene also with --fast=none, and --fast=NAME for each fast path,
-# masked_fetch and lean_spans, before --once: the plain
-# path, each fast path alone, and the two together without the exact lanes)
+# masked_fetch, lean_spans and lean_geometry, before --once: the plain path, each fast
+# path alone, and masked_fetch with lean_spans)
 # which counts one frame after an uncounted first one (llvmpipe compiles its code then;
 # LP_NUM_THREADS=0 makes it rasterize in the counted thread). Writes Markdown tables whose
 # rows are facts for the chapter's claims (default:
@@ -213,6 +213,7 @@ instructions() {
     ours_plain=$(instructions ours/full none)
     ours_masked=$(instructions ours/full masked_fetch)
     ours_lean=$(instructions ours/full lean_spans)
+    ours_geometry=$(instructions ours/full lean_geometry)
     ours_both=$(instructions ours/full masked_fetch,lean_spans)
     echo "| run | instructions |"
     echo "|:--|--:|"
@@ -224,7 +225,8 @@ instructions() {
     ratio_rows "instruction ratio full" "$ours_full" "$lp_full" "$ours_empty" "$lp_empty"
     echo
     echo "Ours on the full scene with only some fast paths (FastPaths): none (the teaching" \
-         "path), each one alone, and the two without exact_lanes; all of them is" \
+         "path), each one alone (exact_lanes serves only the exact mapper), and" \
+         "masked_fetch with lean_spans; all of them is" \
          "\"ours full\" above:"
     echo
     echo "| run | instructions |"
@@ -232,6 +234,7 @@ instructions() {
     echo "| instructions ours full plain | $ours_plain |"
     echo "| instructions ours full masked_fetch | $ours_masked |"
     echo "| instructions ours full lean_spans | $ours_lean |"
+    echo "| instructions ours full lean_geometry | $ours_geometry |"
     echo "| instructions ours full masked_fetch lean_spans | $ours_both |"
     echo
     echo "The same in millions:"
@@ -248,6 +251,8 @@ instructions() {
          "$(ratio "$ours_masked" 1000000) |"
     echo "| instructions ours full lean_spans millions |" \
          "$(ratio "$ours_lean" 1000000) |"
+    echo "| instructions ours full lean_geometry millions |" \
+         "$(ratio "$ours_geometry" 1000000) |"
     echo "| instructions ours full masked_fetch lean_spans millions |" \
          "$(ratio "$ours_both" 1000000) |"
     "$bench" --report >"$scratch/report.txt"

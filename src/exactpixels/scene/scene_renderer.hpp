@@ -69,6 +69,10 @@ struct FastPaths {
     /// the vector instruction set chosen_simd picks (map_span_exact_lanes) instead of
     /// one pixel at a time.
     bool exact_lanes = true;
+    /// Geometry: the stage's lean forms (geometry_lanes.hpp: outcodes two planes at a
+    /// time, an unshaded mesh's triangles tested and stored without copies) instead of
+    /// the plain ones the book shows.
+    bool lean_geometry = true;
     /// Threads: with more than one, the geometry stage, the fill work and the binning
     /// are shared out among this many threads (from one to max_threads; a process-wide
     /// pool kept from frame to frame, run_on_shared_pool), and the threaded driver
@@ -79,7 +83,7 @@ struct FastPaths {
 };
 
 /// Every fast path off: the teaching path.
-inline constexpr FastPaths teaching_path{false, false, false};
+inline constexpr FastPaths teaching_path{false, false, false, false};
 //< fast-paths
 
 /// The stages a mesh runs in this scene: plan_mesh's, and under Gouraud lighting the
