@@ -7,6 +7,7 @@
 // the scene wrote. Scenes that need generated input (a corrupt PNG, a FIFO, a file of
 // megabytes) stay in ch07_bad_input.cpp and ch07_limits.cpp.
 #include "support/process.hpp"
+#include "support/scene_files.hpp"
 
 #include <doctest/doctest.h>
 
@@ -41,13 +42,7 @@ std::vector<std::string> expected_messages(const fs::path& path) {
 /// folder without scene files is a failure too.
 std::vector<std::string> refusal_failures(const fs::path& folder,
                                           const fs::path& scratch) {
-    std::vector<fs::path> scenes;
-    for (const auto& entry : fs::directory_iterator(folder)) {
-        if (entry.path().extension() == ".toml") {
-            scenes.push_back(entry.path());
-        }
-    }
-    std::sort(scenes.begin(), scenes.end());
+    const std::vector<fs::path> scenes = exactpixels::testing::scene_files(folder);
     std::vector<std::string> failures;
     if (scenes.empty()) {
         failures.push_back(folder.string() + ": no scene files");

@@ -13,6 +13,7 @@
 #include "support/printing.hpp"
 #include "support/measured_facts.hpp"
 #include "support/png_chunks.hpp"
+#include "support/scene_files.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -274,14 +275,7 @@ TEST_CASE("model references over the limits are refused before they are copied")
 TEST_CASE("every shipped scene asks for a small part of the fill-work limit") {
     // Every scene that ships in chapters/07-scenes/scenes/ (chapter 8's among them) and
     // the big torus of chapter 7's speed section, which the book build generates.
-    std::vector<fs::path> scenes;
-    for (const fs::directory_entry& entry :
-         fs::directory_iterator(shipped_scene_folder())) {
-        if (entry.path().extension() == ".toml") {
-            scenes.push_back(entry.path());
-        }
-    }
-    std::sort(scenes.begin(), scenes.end());
+    std::vector<fs::path> scenes = exactpixels::testing::scene_files(shipped_scene_folder());
     REQUIRE(scenes.size() >= 12);
     const fs::path folder = scratch_folder("fill");
     write_generated_model(big_torus_model(), folder);

@@ -1,6 +1,7 @@
 #include "exactpixels/texture/perspective.hpp"
 
 #include "exactpixels/base/error.hpp"
+#include "exactpixels/base/printable.hpp"
 
 #include <fmt/format.h>
 
@@ -15,7 +16,7 @@ TexturedVertex project(const Pinhole& camera, glm::dvec3 view_point, TexCoord uv
         throw Error(
             fmt::format("project: view-space point ({}, {}, {}) is not finite and "
                         "in front of the eye (z must be > 0)",
-                        x, y, z));
+                        unsigned_nan(x), unsigned_nan(y), unsigned_nan(z)));
     }
     const Point2 screen{camera.centre.x + camera.focal * x / z,
                         camera.centre.y -
