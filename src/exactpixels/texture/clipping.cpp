@@ -89,7 +89,9 @@ ViewVertex plane_crossing(const ViewVertex& inside, const ViewVertex& outside,
                           const ViewPlane& plane) {
     const double in = plane_value(plane, inside.position);
     const double out = plane_value(plane, outside.position);
-    assert(in >= 0.0 && out < 0.0);
+    // A corner made by an earlier plane from huge coordinates may be NaN (0 times
+    // infinity); it passes here, and project() refuses it, naming the triangle.
+    assert(!(in < 0.0) && !(out >= 0.0));
     // @eq:clip-t for any plane: t = in / (in - out), the denominator written as the plane
     // normal times the edge, which for the near plane is clip_near's a.z - b.z bit for
     // bit. Should rounding make it <= 0 or t leave [0, 1] (an edge almost in the plane),
