@@ -827,7 +827,7 @@ TEST_CASE(
     "outcodes reject and clip as the view volume's planes on triangles at its edges") {
     for (const Scene& scene : edge_scenes()) {
         const bool perspective = scene.camera.projection == Projection::perspective;
-        INFO((perspective ? "perspective" : "orthographic"));
+        INFO(std::string(perspective ? "perspective" : "orthographic"));
         check_fast_is_teaching(scene);
         check_lean_geometry(scene); // corners on and around every plane
         // The counts the view volume's plane tests give, corner by corner, triangle by
