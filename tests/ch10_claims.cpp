@@ -77,13 +77,12 @@ TEST_CASE("claim: on 3 and 15 px the best variant draws over twice llvmpipe's ra
     }
 }
 
-TEST_CASE("claim: the lead over llvmpipe is least at 80 px, flat and depth-tested") {
+TEST_CASE("claim: the lead over llvmpipe is over three times at every size, flat and "
+          "depth-tested") {
     for (const std::string mode : {"flat", "depth"}) {
-        const double at_80 = best(mode, 80) / rate(mode, "llvmpipe", 80);
-        CHECK(at_80 > 1.0); // a lead all the same
-        for (const int area : {3, 15, 1000, 65536}) {
+        for (const int area : {3, 15, 80, 1000, 65536}) {
             INFO(mode << " " << area << " px");
-            CHECK(best(mode, area) / rate(mode, "llvmpipe", area) > at_80);
+            CHECK(best(mode, area) > 3.0 * rate(mode, "llvmpipe", area));
         }
     }
 }
@@ -154,19 +153,18 @@ double wall(int area, int threads) {
 
 } // namespace
 
-TEST_CASE("claim: two threads beat one from 80 px up, by 1.5 to 2.3 times") {
+TEST_CASE("claim: two threads beat one from 80 px up, by 1.25 to 2.3 times") {
     for (const int area : {80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(wall(area, 2) > 1.5 * wall(area, 1));
+        CHECK(wall(area, 2) > 1.25 * wall(area, 1));
         CHECK(wall(area, 2) < 2.3 * wall(area, 1));
     }
 }
 
-TEST_CASE("claim: two threads gain under 1.6x on 3 and 15 px triangles") {
+TEST_CASE("claim: two threads gain nothing on 3 and 15 px triangles") {
     for (const int area : {3, 15}) {
         INFO(area << " px");
-        CHECK(wall(area, 2) > wall(area, 1));
-        CHECK(wall(area, 2) < 1.6 * wall(area, 1));
+        CHECK(wall(area, 2) < 1.1 * wall(area, 1)); // no gain beyond the spread
     }
 }
 
@@ -182,7 +180,7 @@ TEST_CASE("claim: on two threads each, the tiled renderer draws 2.5x llvmpipe's 
     double least_gain = 2.0;
     for (const int area : {80, 1000, 65536}) {
         INFO(area << " px");
-        CHECK(peer(area, 2) > 1.4 * peer(area, 1));
+        CHECK(peer(area, 2) > 1.1 * peer(area, 1));
         least_gain = std::min(least_gain, peer(area, 2) / peer(area, 1));
     }
     for (const int area : {3, 15}) {
