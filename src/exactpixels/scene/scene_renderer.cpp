@@ -247,10 +247,12 @@ bool draw_band_part(MeshContext& m, const Frame& f, const std::vector<std::size_
     m.visible.resize(static_cast<std::size_t>(f.image.width()));
     const RenderReport before = out.report;
     const Clock::time_point t0 = Clock::now();
-    const std::size_t interval = timed_triangle_interval(part.size());
-    for (std::size_t n = 0; n < part.size(); ++n) {
-        const Binned& b = part[n];
-        m.timed = n % interval == 0;
+    // The triangles draw_mesh times: the sample is the mesh's, not the band's (sampled
+    // per band, the big torus's twelve bands read the clock twelve times as often: 8 %
+    // of the frame's time, perf).
+    const std::size_t interval = timed_triangle_interval(f.geometry.meshes[i].size());
+    for (const Binned& b : part) {
+        m.timed = b.triangle % interval == 0;
         m.counts_triangle = b.owned;
         const std::vector<ShadedCorners>& shading = f.geometry.shading[i];
         std::array<long long, 5> used{};
