@@ -11,8 +11,9 @@ std::array<Gradient<double>, N>
 closed_form_gradients(const std::array<Point2, 3>& p,
                       const std::array<std::array<double, 3>, N>& c) {
     static_assert(N >= 1 && N <= 4);
-    // Four doubles (no function returns one: without AVX that would change the ABI).
-    using Lanes = double __attribute__((vector_size(32)));
+    // Two doubles at a time, baseline x86-64's width: a wider vector of four, split in
+    // halves through the stack, stalled each reload of halves stored as scalars.
+    using Lanes = double __attribute__((vector_size(16)));
     const auto at = [&](std::size_t i, std::size_t k) { return i < N ? c[i][k] : 0.0; };
     const double dx2 = p[1].x - p[0].x, dy2 = p[1].y - p[0].y;
     const double dx3 = p[2].x - p[0].x, dy3 = p[2].y - p[0].y;
@@ -21,16 +22,16 @@ closed_form_gradients(const std::array<Point2, 3>& p,
     if (area2 == 0.0) {
         return g; // collinear or coincident corners: no plane, as the one-value form
     }
-    const Lanes c0{at(0, 0), at(1, 0), at(2, 0), at(3, 0)}; // spare lanes 0
-    const Lanes dc2 = Lanes{at(0, 1), at(1, 1), at(2, 1), at(3, 1)} - c0;
-    const Lanes dc3 = Lanes{at(0, 2), at(1, 2), at(2, 2), at(3, 2)} - c0;
-    const Lanes a{area2, area2, area2, area2};
-    const Lanes gx =
-        (dc2 * Lanes{dy3, dy3, dy3, dy3} - dc3 * Lanes{dy2, dy2, dy2, dy2}) / a;
-    const Lanes gy =
-        (dc3 * Lanes{dx2, dx2, dx2, dx2} - dc2 * Lanes{dx3, dx3, dx3, dx3}) / a;
-    for (std::size_t i = 0; i < N; ++i) {
-        g[i] = {gx[i], gy[i]};
+    for (std::size_t i = 0; i < N; i += 2) { // values i and i + 1 (a spare lane 0)
+        const Lanes c0{at(i, 0), at(i + 1, 0)};
+        const Lanes dc2 = Lanes{at(i, 1), at(i + 1, 1)} - c0;
+        const Lanes dc3 = Lanes{at(i, 2), at(i + 1, 2)} - c0;
+        const Lanes gx = (dc2 * dy3 - dc3 * dy2) / area2; // a scalar is in every lane
+        const Lanes gy = (dc3 * dx2 - dc2 * dx3) / area2;
+        g[i] = {gx[0], gy[0]};
+        if (i + 1 < N) {
+            g[i + 1] = {gx[1], gy[1]};
+        }
     }
     return g;
 }
