@@ -88,6 +88,7 @@
 #include "exactpixels/base/png.hpp"
 #include "exactpixels/fast/worker_pool.hpp"
 #include "exactpixels/lab/model_generator.hpp"
+#include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 
@@ -216,6 +217,7 @@ Scene big_scene(const std::string& effects) {
             mesh.triangles.clear();
             mesh.positions.clear();
             mesh.corner_positions.clear();
+            mesh.corner_uvs.clear();
         }
     }
     if (effects == "ids") { // every triangle in a colour of its own (id_texture)
@@ -229,6 +231,7 @@ Scene big_scene(const std::string& effects) {
                 }
                 ++n;
             }
+            share_positions(mesh); // the packed uv follow
             mesh.texture = 0;
         }
         scene.textures.at(0).texture = id_texture(n);

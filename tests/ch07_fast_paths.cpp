@@ -549,6 +549,7 @@ TEST_CASE("any number of threads names the geometry stage's first error as one")
         for (std::size_t t : at) {
             scene.meshes[0].triangles[t][2].uv.x = 1e300;
         }
+        share_positions(scene.meshes[0]); // the packed uv follow the changed corners
         return scene;
     };
     const std::vector<std::vector<std::size_t>> cases = {
@@ -712,6 +713,7 @@ TEST_CASE("the geometry stage's lean forms give the plain forms' bits") {
             SceneVertex& corner = poisoned.meshes[0].triangles[t][k];
             const double w = glm::dot(corner.position - frame.eye, frame.forward);
             corner.uv.y = double(std::numeric_limits<float>::max()) * w * (1.0 + 1e-9);
+            share_positions(poisoned.meshes[0]); // and the packed uv
             compared += check_lean_geometry(poisoned);
         }
     }
@@ -749,6 +751,7 @@ TEST_CASE("any number of threads refuses a bad scene with the message of one" *
     for (std::size_t t = 250; t < triangles.size(); t += 499) {
         triangles[t][1].uv.x = 1e31 * static_cast<double>(t);
     }
+    share_positions(scene.meshes[0]); // the packed uv follow the changed corners
     const std::string one = render_error(scene, 1);
     CHECK(one.find("texture coordinate") != std::string::npos);
     for (int threads : checked_threads) {
@@ -763,6 +766,7 @@ TEST_CASE("any number of threads refuses a bad scene with the message of one" *
     for (std::size_t t = 0; t < triangles.size(); ++t) {
         triangles[t][2].uv.y = -1e31 * static_cast<double>(t + 1);
     }
+    share_positions(scene.meshes[0]);
     const std::string filtered = render_error(scene, 1);
     CHECK(filtered.find("texture coordinate") != std::string::npos);
     for (int threads : checked_threads) {
@@ -821,6 +825,37 @@ TEST_CASE("share_positions lists each distinct position once, bit for bit") {
                   bits(mesh.triangles[t][k].position));
         }
     }
+}
+
+TEST_CASE("share_positions packs each corner's texture coordinate, and index_matches "
+          "finds a corner changed after it") {
+    // The loader's index of the torus, read back corner by corner.
+    Scene scene = load_scene(shipped_scene_folder() / "torus.toml");
+    SceneMesh& mesh = scene.meshes.at(0);
+    REQUIRE(mesh.corner_uvs.size() == mesh.triangles.size());
+    const auto bits = [](const TexCoord& uv) {
+        return std::array<std::uint64_t, 2>{std::bit_cast<std::uint64_t>(uv.x),
+                                            std::bit_cast<std::uint64_t>(uv.y)};
+    };
+    std::size_t differ = 0;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            differ += bits(mesh.corner_uvs[t][k]) != bits(mesh.triangles[t][k].uv);
+        }
+    }
+    CHECK(differ == 0);
+    SharedPositions index{mesh.positions, mesh.corner_positions, mesh.corner_uvs};
+    CHECK(index_matches(mesh.triangles, index));
+    // A corner changed after sharing, and the index no longer holds: the geometry stage
+    // would read the old uv (debug builds assert index_matches before each mesh).
+    mesh.triangles[2][0].uv.x += 1.0;
+    CHECK_FALSE(index_matches(mesh.triangles, index));
+    index.uvs[2][0].x = mesh.triangles[2][0].uv.x;
+    CHECK(index_matches(mesh.triangles, index));
+    index.corners[0][0] = index.corners[0][1]; // another corner's position
+    CHECK_FALSE(index_matches(mesh.triangles, index));
+    index.corners[0][0] = static_cast<std::uint32_t>(index.positions.size()); // past it
+    CHECK_FALSE(index_matches(mesh.triangles, index));
 }
 
 TEST_CASE(
@@ -1104,6 +1139,7 @@ TEST_CASE("the geometry stage stops a corner that is not finite, naming the tria
     for (std::size_t t = first; t < mesh.triangles.size(); ++t) {
         mesh.triangles[t][1].uv = {1e45, 0.0};
     }
+    share_positions(mesh); // the packed uv follow the changed corners
     const auto message = [&](FastPaths fast) {
         try {
             render_scene(scene, nullptr, fast);

@@ -20,7 +20,6 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -278,23 +277,6 @@ MovedPosition move_position(const StageSetup& s, const glm::dvec3& p) {
     return m;
 }
 
-/// Whether `corners` indexes the corner positions of `triangles` in `positions`, bit for
-/// bit (SceneMesh's promise; checked in debug builds).
-[[maybe_unused]] bool
-index_matches(const std::vector<std::array<SceneVertex, 3>>& triangles,
-              const std::vector<glm::dvec3>& positions,
-              const std::vector<std::array<std::uint32_t, 3>>& corners) {
-    for (std::size_t t = 0; t < triangles.size(); ++t) {
-        for (std::size_t k = 0; k < 3; ++k) {
-            const glm::dvec3& p = triangles[t][k].position;
-            if (std::memcmp(&positions.at(corners[t][k]), &p, sizeof p) != 0) {
-                return false;
-            }
-        }
-    }
-    return true;
-}
-
 /// The three moved positions at a triangle's corners.
 using MovedCorners = std::array<const MovedPosition*, 3>;
 
@@ -344,6 +326,7 @@ class MeshPass {
     SharedPositions own; ///< the mesh's positions indexed here, when it has no index
     const std::vector<glm::dvec3>* positions = nullptr; ///< the mesh's or own's
     const std::vector<std::array<std::uint32_t, 3>>* corners = nullptr; ///< likewise
+    const std::vector<std::array<TexCoord, 3>>* uvs = nullptr;         ///< likewise
     std::unique_ptr<MovedPosition[]> moved; ///< per position, by move_positions
 };
 
@@ -368,12 +351,14 @@ MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
         s.scene.options.depth == DepthMode::automatic && can_overlap_itself(mesh);
     positions = &mesh.positions;
     corners = &mesh.corner_positions;
-    if (corners->size() != mesh.triangles.size()) { // a mesh made in code
+    uvs = &mesh.corner_uvs; // a mesh made in code has none of the three:
+    if (corners->size() != mesh.triangles.size() || uvs->size() != corners->size()) {
         own = shared_positions(mesh.triangles);
         positions = &own.positions;
         corners = &own.corners;
+        uvs = &own.uvs;
     }
-    assert(index_matches(mesh.triangles, *positions, *corners));
+    assert(index_matches(mesh.triangles, {*positions, *corners, *uvs}));
     moved.reset(new MovedPosition[positions->size()]); // unwritten: move_positions fills
 }
 
@@ -494,7 +479,7 @@ void MeshPass::triangles(std::size_t first, std::size_t end, MeshOutput& to) con
 /// corners' finite tests and the box two values at a time.
 void MeshPass::triangles_lean(std::size_t first, std::size_t end, MeshOutput& to) const {
     const std::array<std::uint32_t, 3>* const at = corners->data();
-    const std::array<SceneVertex, 3>* const triangle = mesh.triangles.data();
+    const std::array<TexCoord, 3>* const uv = uvs->data(); // packed: see SceneMesh
     const MovedPosition* const position = moved.get();
     const std::uint32_t reject = s.codes.reject, clip = s.codes.clip;
     const bool cull_back = mesh.cull_back;
@@ -518,11 +503,10 @@ void MeshPass::triangles_lean(std::size_t first, std::size_t end, MeshOutput& to
             high = PlanePair{to.box.x1, to.box.y1};
             continue;
         }
-        const std::array<SceneVertex, 3>& t = triangle[index];
-        const BitsPair uv_within =
-            within(PlanePair{t[0].uv.x, t[0].uv.y} * m0.one_w, limit) &
-            within(PlanePair{t[1].uv.x, t[1].uv.y} * m1.one_w, limit) &
-            within(PlanePair{t[2].uv.x, t[2].uv.y} * m2.one_w, limit);
+        const std::array<TexCoord, 3>& t = uv[index];
+        const BitsPair uv_within = within(PlanePair{t[0].x, t[0].y} * m0.one_w, limit) &
+                                   within(PlanePair{t[1].x, t[1].y} * m1.one_w, limit) &
+                                   within(PlanePair{t[2].x, t[2].y} * m2.one_w, limit);
         const bool uvs_within = (uv_within[0] & uv_within[1]) != 0;
         if (!(m0.finite & m1.finite & m2.finite & uvs_within)) {
             counts.triangles = index + 1 - first;
@@ -537,7 +521,7 @@ void MeshPass::triangles_lean(std::size_t first, std::size_t end, MeshOutput& to
         for (std::size_t k = 0; k < 3; ++k) {
             kept.corners[k].position = m[k]->at;
             kept.corners[k].w = m[k]->w;
-            kept.corners[k].uv = t[k].uv;
+            kept.corners[k].uv = t[k];
             kept.nearness[k] = m[k]->nearness;
             const PlanePair p{m[k]->at.x, m[k]->at.y};
             low = p < low ? p : low;    // std::min(x0, p.x): the first of equals

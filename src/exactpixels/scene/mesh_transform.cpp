@@ -6,6 +6,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <unordered_map>
@@ -101,6 +102,7 @@ shared_positions(const std::vector<std::array<SceneVertex, 3>>& triangles) {
     }
     SharedPositions shared;
     shared.corners.assign(triangles.size(), {});
+    shared.uvs.assign(triangles.size(), {});
     std::unordered_map<PositionBits, std::uint32_t, PositionBitsHash> index;
     index.reserve(triangles.size()); // a closed mesh has about half as many
     for (std::size_t t = 0; t < triangles.size(); ++t) {
@@ -112,15 +114,36 @@ shared_positions(const std::vector<std::array<SceneVertex, 3>>& triangles) {
                 shared.positions.push_back(p);
             }
             shared.corners[t][k] = at->second;
+            shared.uvs[t][k] = triangles[t][k].uv;
         }
     }
     return shared;
+}
+
+bool index_matches(const std::vector<std::array<SceneVertex, 3>>& triangles,
+                   const SharedPositions& index) {
+    if (index.corners.size() != triangles.size() || index.uvs.size() != triangles.size()) {
+        return false;
+    }
+    for (std::size_t t = 0; t < triangles.size(); ++t) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            const SceneVertex& v = triangles[t][k];
+            const std::uint32_t at = index.corners[t][k];
+            if (at >= index.positions.size() ||
+                std::memcmp(&index.positions[at], &v.position, sizeof v.position) != 0 ||
+                std::memcmp(&index.uvs[t][k], &v.uv, sizeof v.uv) != 0) {
+                return false;
+            }
+        }
+    }
+    return true;
 }
 
 void share_positions(SceneMesh& mesh) {
     SharedPositions shared = shared_positions(mesh.triangles);
     mesh.positions = std::move(shared.positions);
     mesh.corner_positions = std::move(shared.corners);
+    mesh.corner_uvs = std::move(shared.uvs);
 }
 
 } // namespace exactpixels

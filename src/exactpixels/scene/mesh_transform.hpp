@@ -50,10 +50,12 @@ void transform_mesh(SceneMesh& mesh, const MeshTransform& t);
 
 /// A mesh's corner positions as an indexed mesh: each distinct position once (equal
 /// bit for bit: 0 and -0 differ), in the order they first appear, and each triangle's
-/// corners as indices into that list.
+/// corners as indices into that list; with each triangle's texture coordinates packed
+/// beside them, the rest of what the geometry stage reads of a corner.
 struct SharedPositions {
     std::vector<glm::dvec3> positions;                 ///< distinct, in first-seen order
     std::vector<std::array<std::uint32_t, 3>> corners; ///< per triangle, into positions
+    std::vector<std::array<TexCoord, 3>> uvs;          ///< per triangle, its corners' uv
 };
 
 /// The indexed positions of `triangles`. Throws Error beyond 32-bit indices (over
@@ -61,9 +63,15 @@ struct SharedPositions {
 SharedPositions
 shared_positions(const std::vector<std::array<SceneVertex, 3>>& triangles);
 
-/// Fills mesh.positions and mesh.corner_positions with shared_positions(mesh.triangles).
-/// The loader calls it once a mesh is placed; code that moves a corner afterwards calls
-/// it again (or clears both) before rendering.
+/// Whether `index` is true of `triangles`: each corner's position at its index, and its
+/// texture coordinate packed, bit for bit.
+bool index_matches(const std::vector<std::array<SceneVertex, 3>>& triangles,
+                   const SharedPositions& index);
+
+/// Fills mesh.positions, mesh.corner_positions and mesh.corner_uvs with
+/// shared_positions(mesh.triangles). The loader calls it once a mesh is placed; code
+/// that moves a corner or changes its texture coordinate afterwards calls it again (or
+/// clears them) before rendering.
 void share_positions(SceneMesh& mesh);
 
 } // namespace exactpixels
