@@ -310,8 +310,8 @@ double row_value(const std::map<std::string, std::vector<double>>& rows,
 }
 
 /// How far above a target a rate must be to meet it: 3 %, about the spread of one
-/// side's repetitions in the committed runs (the big torus: 12.95 to 13.41 ms). Closer
-/// than that, the two are a tie.
+/// side's repetitions in the committed runs (the big torus's smallest and largest
+/// repetitions, big_scene_results.md). Closer than that, the two are a tie.
 constexpr double tie_margin = 0.03;
 
 /// The verdict on a rate `q` times llvmpipe's against a target of `must` (goal `goal`)

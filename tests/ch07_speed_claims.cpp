@@ -64,14 +64,16 @@ double fact(const std::string& name) {
 
 } // namespace
 
-TEST_CASE("claim: on the big torus ours and llvmpipe's frames take the same time on one "
-          "core, though ours executes fewer instructions") {
-    // The same time: the medians within 3 %, about the spread of either side's
-    // repetitions (@sec:scene-speed).
-    CHECK(fact("time_ratio_full") > 0.97);
-    CHECK(fact("time_ratio_full") < 1.03);
+TEST_CASE("claim: on the big torus ours is the shorter frame, on one core and on two, "
+          "and executes fewer instructions") {
+    // Shorter: the medians more than 3 % apart, about the spread of either side's
+    // repetitions (@sec:scene-speed; closer is a tie, as ch10_speed.cpp's verdicts say).
+    CHECK(fact("time_ratio_full") < 0.97);
+    CHECK(fact("time_ratio_full_two_threads") < 0.97);
     CHECK(fact("instruction_ratio_full") < 1.0);
     CHECK(fact("instructions_ours_full") < fact("instructions_llvmpipe_full"));
+    // Not yet the goal of twice llvmpipe's rate (@sec:fast-scene).
+    CHECK(fact("time_ratio_full") > 0.5);
 }
 
 TEST_CASE("claim: the big torus without depth and texture costs less time and work") {
