@@ -19,6 +19,7 @@
 #include "exactpixels/lab/model_generator.hpp"
 #include "exactpixels/scene/camera.hpp"
 #include "exactpixels/scene/corner_quotients.hpp"
+#include "exactpixels/scene/lighting.hpp"
 #include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/scene_loader.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
@@ -856,6 +857,63 @@ TEST_CASE("share_positions packs each corner's texture coordinate, and index_mat
     CHECK_FALSE(index_matches(mesh.triangles, index));
     index.corners[0][0] = static_cast<std::uint32_t>(index.positions.size()); // past it
     CHECK_FALSE(index_matches(mesh.triangles, index));
+}
+
+/// How many corners' normals differ, bit for bit, between mesh_normals and
+/// mesh_normals_shared over the mesh's own index.
+int normals_differing(const SceneMesh& mesh) {
+    const std::vector<CornerNormals> plain = mesh_normals(mesh),
+                                     shared = mesh_normals_shared(
+                                         mesh, mesh.positions, mesh.corner_positions);
+    REQUIRE(plain.size() == shared.size());
+    int differ = 0;
+    for (std::size_t t = 0; t < plain.size(); ++t) {
+        differ += std::memcmp(&plain[t], &shared[t], sizeof plain[t]) != 0;
+    }
+    return differ;
+}
+
+TEST_CASE("smooth normals summed per shared position are mesh_normals's, bit for bit") {
+    // lit.toml's smooth torus, and the big torus made smooth: no -0 in a position, so
+    // the sums per position run (not the fallback).
+    const Scene lit = load_scene(shipped_scene_folder() / "lit.toml");
+    Scene big = big_torus();
+    big.meshes.at(0).normals = NormalSource::smooth;
+    int smooth_meshes = 0;
+    for (const Scene* scene : std::array<const Scene*, 2>{&lit, &big}) {
+        for (const SceneMesh& mesh : scene->meshes) {
+            INFO(mesh.name);
+            CHECK(normals_differing(mesh) == 0);
+            if (mesh.normals != NormalSource::smooth) {
+                continue;
+            }
+            smooth_meshes += 1;
+            const auto negative_zero = [](double c) { return c == 0.0 && std::signbit(c); };
+            for (const glm::dvec3& p : mesh.positions) {
+                const bool any =
+                    negative_zero(p.x) || negative_zero(p.y) || negative_zero(p.z);
+                REQUIRE_FALSE(any);
+            }
+        }
+    }
+    CHECK(smooth_meshes == 2);
+    // A corner at -0 and one at 0: two positions to the index, one to the map, whose
+    // sum there holds both faces. The fallback keeps the map's normals.
+    SceneMesh folded;
+    folded.normals = NormalSource::smooth;
+    const auto at = [](double x, double y, double z) {
+        SceneVertex v;
+        v.position = {x, y, z};
+        return v;
+    };
+    folded.triangles = {{at(0.0, 0, 0), at(1, 0, 0), at(0, 1, 0)},
+                        {at(-0.0, 0, 0), at(0, 1, 0), at(0, 0, 1)}};
+    share_positions(folded);
+    CHECK(folded.positions.size() == 5);
+    CHECK(normals_differing(folded) == 0);
+    const glm::dvec3 n = mesh_normals(folded)[0][0]; // both faces summed
+    CHECK(n.x < 0.0);
+    CHECK(n.z < 0.0);
 }
 
 TEST_CASE(

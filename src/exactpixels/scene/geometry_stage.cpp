@@ -342,9 +342,6 @@ MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
     phong = s.lit && !gouraud;
     report.gouraud_meshes += gouraud;
     report.phong_meshes += phong;
-    if (s.lit) {
-        normals = mesh_normals(mesh);
-    }
     footprint.name = fmt::format("mesh[{}]", i); // as messages name it
     // Only `depth = "auto"` asks (a scan of every corner per corner of one face).
     footprint.can_overlap_itself =
@@ -359,6 +356,10 @@ MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
         uvs = &own.uvs;
     }
     assert(index_matches(mesh.triangles, {*positions, *corners, *uvs}));
+    if (s.lit) { // lean: smooth normals summed per shared position
+        normals = s.lean ? mesh_normals_shared(mesh, *positions, *corners)
+                         : mesh_normals(mesh);
+    }
     moved.reset(new MovedPosition[positions->size()]); // unwritten: move_positions fills
 }
 

@@ -61,6 +61,39 @@ std::vector<CornerNormals> mesh_normals(const SceneMesh& mesh) {
 }
 //< smooth-normals
 
+std::vector<CornerNormals>
+mesh_normals_shared(const SceneMesh& mesh, const std::vector<glm::dvec3>& positions,
+                    const std::vector<std::array<std::uint32_t, 3>>& corners) {
+    // Equal as doubles is equal as bits for finite values, but for 0 and -0.
+    const auto alike = [](double c) { return std::isfinite(c) && !(c == 0.0 && std::signbit(c)); };
+    const auto merged_alike = [&](const glm::dvec3& p) {
+        return alike(p.x) && alike(p.y) && alike(p.z);
+    };
+    if (mesh.normals != NormalSource::smooth ||
+        !std::all_of(positions.begin(), positions.end(), merged_alike)) {
+        return mesh_normals(mesh);
+    }
+    // The map's sums, in its order: each position's faces added triangle by triangle.
+    std::vector<glm::dvec3> sum(positions.size(), glm::dvec3{0.0});
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+        const std::array<SceneVertex, 3>& v = mesh.triangles[t];
+        const glm::dvec3 area2 =
+            glm::cross(v[2].position - v[0].position, v[1].position - v[0].position);
+        for (const std::uint32_t at : corners[t]) {
+            sum[at] += area2;
+        }
+    }
+    std::vector<CornerNormals> normals(mesh.triangles.size());
+    for (std::size_t t = 0; t < normals.size(); ++t) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            const glm::dvec3 s = sum[corners[t][k]];
+            normals[t][k] =
+                glm::length(s) > 0.0 ? glm::normalize(s) : face_normal(mesh.triangles[t]);
+        }
+    }
+    return normals;
+}
+
 std::vector<ViewLight>
 lights_in_view(const std::vector<SceneLight>& lights,
                const std::function<glm::dvec3(glm::dvec3, bool)>& to_view) {

@@ -42,6 +42,15 @@ glm::dvec3 face_normal(const std::array<SceneVertex, 3>& triangle);
 /// triangles that share its position exactly, each weighted by its area, normalised.
 std::vector<CornerNormals> mesh_normals(const SceneMesh& mesh);
 
+/// mesh_normals, bit for bit, with `smooth`'s sums kept per shared position (`corners`
+/// indexes the corners of mesh.triangles in `positions`, as SceneMesh's index does)
+/// instead of looked up per corner in an ordered map. Exact where every position is
+/// finite and no component is -0 (the map merges 0 and -0, the index does not);
+/// elsewhere it is mesh_normals.
+std::vector<CornerNormals>
+mesh_normals_shared(const SceneMesh& mesh, const std::vector<glm::dvec3>& positions,
+                    const std::vector<std::array<std::uint32_t, 3>>& corners);
+
 /// A light as the shading code sees it: in view space, with its colour and intensity
 /// folded into one radiance.
 struct ViewLight {

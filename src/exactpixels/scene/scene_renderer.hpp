@@ -70,8 +70,9 @@ struct FastPaths {
     /// one pixel at a time.
     bool exact_lanes = true;
     /// Geometry: the stage's lean forms (geometry_lanes.hpp: outcodes two planes at a
-    /// time, an unshaded mesh's triangles tested and stored without copies) instead of
-    /// the plain ones the book shows.
+    /// time, an unshaded mesh's triangles tested and stored without copies, its uv read
+    /// packed; smooth normals summed per shared position, mesh_normals_shared) instead
+    /// of the plain ones the book shows.
     bool lean_geometry = true;
     /// Threads: with more than one, the geometry stage, the fill work and the binning
     /// are shared out among this many threads (from one to max_threads; a process-wide
