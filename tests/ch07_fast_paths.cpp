@@ -485,7 +485,7 @@ TEST_CASE("any number of threads draws triangles at the bands' edges as one") {
                         glm::dvec2{x, y}, glm::dvec2{x + 2.5, y},
                         glm::dvec2{x + 1.25, y + apex}};
                     for (std::size_t k = 0; k < 3; ++k) { // screen (px, py): world
-                        positions += fmt::format( // (px - w/2, h/2 - py, 1)
+                        positions += fmt::format(         // (px - w/2, h/2 - py, 1)
                             "[{}, {}, 1],", number(corners[k].x - 0.5 * width),
                             number(0.5 * height - corners[k].y));
                         uvs += fmt::format("[{}, {}],", 8 * k, 4 * triangles % 64);
@@ -727,7 +727,8 @@ TEST_CASE("the geometry stage's lean forms give the plain forms' bits") {
 
 // A stub of ch07-plan-mesh (no stage runs) maps no texture coordinate, so no triangle is
 // refused: the test grades that exercise.
-TEST_CASE("project's message prints a NaN without its sign, which two exact paths may differ in") {
+TEST_CASE("project's message prints a NaN without its sign, which two exact paths may "
+          "differ in") {
     // IEEE 754 leaves an operation's NaN's sign open; the lean and the plain geometry
     // meet such points on the hard-position variants of near_plane.toml.
     const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -863,8 +864,8 @@ TEST_CASE("share_positions packs each corner's texture coordinate, and index_mat
 /// mesh_normals_shared over the mesh's own index.
 int normals_differing(const SceneMesh& mesh) {
     const std::vector<CornerNormals> plain = mesh_normals(mesh),
-                                     shared = mesh_normals_shared(
-                                         mesh, mesh.positions, mesh.corner_positions);
+                                     shared = mesh_normals_shared(mesh, mesh.positions,
+                                                                  mesh.corner_positions);
     REQUIRE(plain.size() == shared.size());
     int differ = 0;
     for (std::size_t t = 0; t < plain.size(); ++t) {
@@ -888,7 +889,9 @@ TEST_CASE("smooth normals summed per shared position are mesh_normals's, bit for
                 continue;
             }
             smooth_meshes += 1;
-            const auto negative_zero = [](double c) { return c == 0.0 && std::signbit(c); };
+            const auto negative_zero = [](double c) {
+                return c == 0.0 && std::signbit(c);
+            };
             for (const glm::dvec3& p : mesh.positions) {
                 const bool any =
                     negative_zero(p.x) || negative_zero(p.y) || negative_zero(p.z);

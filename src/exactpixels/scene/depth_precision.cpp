@@ -24,8 +24,8 @@ double fixed_z_depth_step(double w, double near, double far, int bits) {
 double reversed_z_depth_step(double w, double near, double far) {
     assert(0.0 < near && near < far && near <= w && w < far);
     const float key = static_cast<float>(near * (far - w) / ((far - near) * w));
-    const double above = 0.5 * (double(key) + double(std::nextafter(
-                                                  key, std::numeric_limits<float>::infinity())));
+    const float next = std::nextafter(key, std::numeric_limits<float>::infinity());
+    const double above = 0.5 * (double(key) + double(next));
     const double below = 0.5 * (double(key) + double(std::nextafter(key, 0.0f)));
     // d = n (f - w) / ((f - n) w) solved for w: w = f n / (d (f - n) + n).
     const auto depth = [&](double d) { return far * near / (d * (far - near) + near); };

@@ -1,6 +1,7 @@
 // depth_precision.hpp: the depth step of three ways to store depth (chapter 7,
 // @sec:scene-depth): the renderer's float 1/w, OpenGL's conventional z/w in 24-bit
-// fixed point, and reversed z in float, for the figure and the exercise that compare them.
+// fixed point, and reversed z in float, for the figure and the exercise that compare
+// them.
 //
 // Usage:
 //   double ours = nearness_depth_step(100.0);                  // float 1/w (DepthBuffer)

@@ -326,7 +326,7 @@ class MeshPass {
     SharedPositions own; ///< the mesh's positions indexed here, when it has no index
     const std::vector<glm::dvec3>* positions = nullptr; ///< the mesh's or own's
     const std::vector<std::array<std::uint32_t, 3>>* corners = nullptr; ///< likewise
-    const std::vector<std::array<TexCoord, 3>>* uvs = nullptr;         ///< likewise
+    const std::vector<std::array<TexCoord, 3>>* uvs = nullptr;          ///< likewise
     std::unique_ptr<MovedPosition[]> moved; ///< per position, by move_positions
 };
 
@@ -357,8 +357,8 @@ MeshPass::MeshPass(const StageSetup& setup, const SceneMesh& m, std::size_t i,
     }
     assert(index_matches(mesh.triangles, {*positions, *corners, *uvs}));
     if (s.lit) { // lean: smooth normals summed per shared position
-        normals = s.lean ? mesh_normals_shared(mesh, *positions, *corners)
-                         : mesh_normals(mesh);
+        normals =
+            s.lean ? mesh_normals_shared(mesh, *positions, *corners) : mesh_normals(mesh);
     }
     moved.reset(new MovedPosition[positions->size()]); // unwritten: move_positions fills
 }
@@ -553,8 +553,8 @@ void MeshPass::check_corners(std::size_t index, const MovedCorners& m) const {
 /// The normals at the view-space `points` of a triangle, and under Gouraud the lit
 /// colours in place of `colours`.
 void MeshPass::light(std::size_t index, const std::array<glm::dvec3, 3>& points,
-                     std::array<Colour, 3>& colours, std::array<glm::dvec3, 3>& at_normals,
-                     RenderReport& report) const {
+                     std::array<Colour, 3>& colours,
+                     std::array<glm::dvec3, 3>& at_normals, RenderReport& report) const {
     const Clock::time_point l0 = Clock::now();
     for (std::size_t k = 0; k < 3; ++k) {
         at_normals[k] = to_view(s.camera, normals[index][k]);
@@ -723,7 +723,8 @@ void run_meshes_threaded(std::vector<std::unique_ptr<MeshPass>>& passes,
             } else {
                 shading.insert(shading.end(), part.shading.begin(), part.shading.end());
             }
-            ScreenBox& box = geometry.footprints[part.mesh].box; // min, max keep the first
+            // min and max keep the first of equals
+            ScreenBox& box = geometry.footprints[part.mesh].box;
             box.x0 = std::min(box.x0, part.box.x0);
             box.y0 = std::min(box.y0, part.box.y0);
             box.x1 = std::max(box.x1, part.box.x1);

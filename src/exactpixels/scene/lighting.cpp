@@ -65,7 +65,9 @@ std::vector<CornerNormals>
 mesh_normals_shared(const SceneMesh& mesh, const std::vector<glm::dvec3>& positions,
                     const std::vector<std::array<std::uint32_t, 3>>& corners) {
     // Equal as doubles is equal as bits for finite values, but for 0 and -0.
-    const auto alike = [](double c) { return std::isfinite(c) && !(c == 0.0 && std::signbit(c)); };
+    const auto alike = [](double c) {
+        return std::isfinite(c) && !(c == 0.0 && std::signbit(c));
+    };
     const auto merged_alike = [&](const glm::dvec3& p) {
         return alike(p.x) && alike(p.y) && alike(p.z);
     };

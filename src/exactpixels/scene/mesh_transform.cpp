@@ -122,7 +122,8 @@ shared_positions(const std::vector<std::array<SceneVertex, 3>>& triangles) {
 
 bool index_matches(const std::vector<std::array<SceneVertex, 3>>& triangles,
                    const SharedPositions& index) {
-    if (index.corners.size() != triangles.size() || index.uvs.size() != triangles.size()) {
+    if (index.corners.size() != triangles.size() ||
+        index.uvs.size() != triangles.size()) {
         return false;
     }
     for (std::size_t t = 0; t < triangles.size(); ++t) {

@@ -158,9 +158,9 @@ struct SceneMesh {
     std::vector<glm::dvec3> positions;
     std::vector<std::array<std::uint32_t, 3>> corner_positions; ///< into `positions`
     std::vector<std::array<TexCoord, 3>> corner_uvs; ///< per triangle, its corners' uv
-    std::optional<std::size_t> texture;                ///< index into Scene::textures
-    Wrap wrap = Wrap::repeat;                          ///< how its texture repeats
-    bool vertex_colours = false;     ///< interpolate SceneVertex::colour
+    std::optional<std::size_t> texture;              ///< index into Scene::textures
+    Wrap wrap = Wrap::repeat;                        ///< how its texture repeats
+    bool vertex_colours = false;                     ///< interpolate SceneVertex::colour
     Colour colour = {1.0, 1.0, 1.0}; ///< the flat colour (texels are multiplied by it)
     bool cull_back = false;          ///< skip triangles whose back faces the camera
     NormalSource normals = NormalSource::face; ///< where lighting's normals come from

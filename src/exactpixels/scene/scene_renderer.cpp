@@ -428,7 +428,8 @@ RenderResult render_scene(const Scene& scene, TexelMap* coordinates, FastPaths f
     RenderResult result{
         Framebuffer(scene.width, scene.height, to_rgba8(scene.background)), {}};
     RenderReport& report = result.report;
-    const SceneGeometry geometry = run_geometry(scene, report, fast.threads, fast.lean_geometry);
+    const SceneGeometry geometry =
+        run_geometry(scene, report, fast.threads, fast.lean_geometry);
     check_fill_work(scene, geometry, fast.threads); // before the first pixel is drawn
     const DepthPlan depth_plan = plan_depth(scene.options.depth, geometry.footprints,
                                             Viewport{scene.width, scene.height});
