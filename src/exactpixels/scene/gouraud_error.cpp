@@ -1,5 +1,6 @@
 #include "exactpixels/scene/gouraud_error.hpp"
 
+#include "exactpixels/scene/mesh_transform.hpp"
 #include "exactpixels/scene/scene_renderer.hpp"
 
 #include <algorithm>
@@ -27,6 +28,7 @@ GouraudError gouraud_perspective_error(const Scene& scene) {
                     vertex.uv = {vertex.colour[channel], 0.0};
                 }
             }
+            share_positions(mesh); // the index packs the new uv
         }
         probe.options.precision = Precision::float64;
         probe.options.mapper = {false,
