@@ -28,7 +28,7 @@ GouraudError gouraud_perspective_error(const Scene& scene) {
                     vertex.uv = {vertex.colour[channel], 0.0};
                 }
             }
-            share_positions(mesh); // the index packs the new uv
+            share_positions(mesh); // the fast paths read uv from its copy (chapter 10)
         }
         probe.options.precision = Precision::float64;
         probe.options.mapper = {false,
